@@ -1,0 +1,112 @@
+// Run-time choice of the instruction-set level, and threading over rows and point blocks.
+#include "nimbus/noise/batch.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "batch_level.hpp"
+
+namespace nimbus::noise {
+
+std::string_view to_string(SimdLevel level) {
+  switch (level) {
+    case SimdLevel::Scalar: return "scalar";
+    case SimdLevel::Sse41: return "sse4.1";
+    case SimdLevel::Avx2: return "avx2";
+    case SimdLevel::Avx512: return "avx512";
+  }
+  return "?";
+}
+
+std::optional<SimdLevel> parse_simd_level(std::string_view s) {
+  for (SimdLevel l : {SimdLevel::Scalar, SimdLevel::Sse41, SimdLevel::Avx2, SimdLevel::Avx512})
+    if (s == to_string(l)) return l;
+  return std::nullopt;
+}
+
+bool simd_level_supported(SimdLevel level) {
+  __builtin_cpu_init();
+  switch (level) {
+    case SimdLevel::Scalar: return true;
+    case SimdLevel::Sse41: return __builtin_cpu_supports("sse4.1");
+    case SimdLevel::Avx2: return __builtin_cpu_supports("avx2");
+    case SimdLevel::Avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
+  }
+  return false;
+}
+
+SimdLevel best_simd_level() {
+  SimdLevel best = SimdLevel::Scalar;
+  for (SimdLevel l : {SimdLevel::Sse41, SimdLevel::Avx2, SimdLevel::Avx512})
+    if (simd_level_supported(l)) best = l;
+  if (const char* env = std::getenv("NIMBUS_SIMD")) {
+    if (auto want = parse_simd_level(env); want && int(*want) < int(best)) best = *want;
+  }
+  return best;
+}
+
+namespace {
+
+level::Kernels kernels_for(const BatchOptions& o) {
+  const SimdLevel l = o.simd.value_or(best_simd_level());
+  if (!simd_level_supported(l))
+    throw std::invalid_argument("SIMD level " + std::string(to_string(l)) + " is not supported by this CPU");
+  switch (l) {
+    case SimdLevel::Scalar: return level::scalar();
+    case SimdLevel::Sse41: return level::sse41();
+    case SimdLevel::Avx2: return level::avx2();
+    case SimdLevel::Avx512: return level::avx512();
+  }
+  return level::scalar();
+}
+
+}  // namespace
+
+void evaluate_grid(const NoiseField& field, const GridSpec& grid, std::span<float> out,
+                   const BatchOptions& options) {
+  for (int a = 0; a < 3; ++a)
+    if (grid.res[a] < 1) throw std::invalid_argument("grid resolution must be >= 1 on every axis");
+  if (!std::isfinite(grid.spacing) || grid.spacing <= 0.0)
+    throw std::invalid_argument("grid spacing must be finite and > 0");
+  if (static_cast<int64_t>(out.size()) != grid.count())
+    throw std::invalid_argument("output holds " + std::to_string(out.size()) + " values, grid has " +
+                                std::to_string(grid.count()));
+  const level::Kernels k = kernels_for(options);
+  const detail::FieldData& fd = field.data();
+  const int64_t rows = grid.res[1] * grid.res[2];
+  if (!options.parallel) {
+    k.rows(fd, grid, 0, rows, out.data());
+    return;
+  }
+  const int64_t grain = std::max<int64_t>(1, 4096 / grid.res[0]);
+  tbb::parallel_for(tbb::blocked_range<int64_t>(0, rows, grain),
+                    [&](const tbb::blocked_range<int64_t>& r) {
+                      k.rows(fd, grid, r.begin(), r.end(), out.data());
+                    });
+}
+
+void evaluate_points(const NoiseField& field, std::span<const std::array<double, 3>> points,
+                     std::span<float> out, const BatchOptions& options) {
+  if (out.size() != points.size())
+    throw std::invalid_argument("output holds " + std::to_string(out.size()) + " values for " +
+                                std::to_string(points.size()) + " points");
+  const level::Kernels k = kernels_for(options);
+  const detail::FieldData& fd = field.data();
+  if (!options.parallel) {
+    k.points(fd, points.data(), points.size(), out.data());
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      k.points(fd, points.data() + r.begin(), r.size(), out.data() + r.begin());
+                    });
+}
+
+}  // namespace nimbus::noise

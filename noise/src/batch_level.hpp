@@ -1,0 +1,26 @@
+// Entry points of one instruction-set level (defined by batch_level.inl per level).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "nimbus/noise/batch.hpp"
+
+namespace nimbus::noise::level {
+
+using RowsFn = void (*)(const detail::FieldData&, const GridSpec&, int64_t row_begin,
+                        int64_t row_end, float* out);
+using PointsFn = void (*)(const detail::FieldData&, const std::array<double, 3>* points,
+                          size_t count, float* out);
+
+struct Kernels {
+  RowsFn rows;
+  PointsFn points;
+};
+
+Kernels scalar();
+Kernels sse41();
+Kernels avx2();
+Kernels avx512();
+
+}  // namespace nimbus::noise::level

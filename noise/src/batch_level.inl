@@ -1,0 +1,70 @@
+// Grid rows and point blocks for NIMBUS_WIDTH lanes; included once per level source file,
+// each compiled with its own instruction-set flags.
+#include <cstring>
+
+#include "batch_level.hpp"
+#include "kernels.hpp"
+
+namespace nimbus::noise::level {
+namespace {
+
+using Lanes = simd::Batch<NIMBUS_WIDTH>;
+
+template <class Bt>
+void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
+  using D = typename Bt::D;
+  using F = typename Bt::F;
+  constexpr int W = Bt::width;
+  const int64_t nx = g.res[0], ny = g.res[1];
+  for (int64_t row = r0; row < r1; ++row) {
+    const int64_t j = row % ny, k = row / ny;
+    const double y = g.origin[1] + double(j) * g.spacing;  // shared by the row
+    const double z = g.origin[2] + double(k) * g.spacing;
+    float* dst = out + row * nx;
+    for (int64_t i = 0; i < nx; i += W) {
+      D x;
+      if constexpr (W == 1) {
+        x = g.origin[0] + double(i) * g.spacing;
+      } else {
+        for (int l = 0; l < W; ++l) {
+          const int64_t il = i + l < nx ? i + l : nx - 1;
+          x[l] = g.origin[0] + double(il) * g.spacing;
+        }
+      }
+      const F v = kernels::field<Bt>(fd, x, y, z);
+      const int64_t n = nx - i < W ? nx - i : W;
+      std::memcpy(dst + i, &v, sizeof(float) * size_t(n));
+    }
+  }
+}
+
+template <class Bt>
+void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t count, float* out) {
+  using D = typename Bt::D;
+  using F = typename Bt::F;
+  constexpr int W = Bt::width;
+  for (size_t i = 0; i < count; i += W) {
+    D x, y, z;
+    if constexpr (W == 1) {
+      x = p[i][0];
+      y = p[i][1];
+      z = p[i][2];
+    } else {
+      for (int l = 0; l < W; ++l) {
+        const size_t il = i + l < count ? i + l : count - 1;
+        x[l] = p[il][0];
+        y[l] = p[il][1];
+        z[l] = p[il][2];
+      }
+    }
+    const F v = kernels::field<Bt>(fd, x, y, z);
+    const size_t n = count - i < size_t(W) ? count - i : size_t(W);
+    std::memcpy(out + i, &v, sizeof(float) * n);
+  }
+}
+
+}  // namespace
+
+Kernels NIMBUS_LEVEL_FN() { return {&rows<Lanes>, &points<Lanes>}; }
+
+}  // namespace nimbus::noise::level

@@ -1,0 +1,391 @@
+// The noise kernels, written once over lane types (simd.hpp) and instantiated per
+// instruction set and for the scalar path. Each reads like its formula:
+//   value noise     sum over corners of  w(t) * v_corner          (quintic weights)
+//   gradient noise  sum over corners of  w(t) * (g_corner . d)    (Perlin 2002)
+//   wavelet noise   sum over 27 taps of  B2(x) B2(y) B2(z) * r    (Cook & DeRose 2005)
+#pragma once
+#include "hash.hpp"
+#include "nimbus/noise/detail/field_data.hpp"
+#include "nimbus/noise/gradient_bound.hpp"
+#include "simd.hpp"
+
+namespace nimbus::noise::detail {
+// Projected wavelet noise at one point (scalar, in field.cpp; SIMD lanes call it one by one).
+float wavelet_projected(const FieldData& fd, const OctaveData& o, double x, double y, double z);
+}  // namespace nimbus::noise::detail
+
+namespace nimbus::noise {
+inline namespace NIMBUS_KERNEL_NS {
+namespace kernels {
+
+using namespace simd;
+
+// Exact integer arithmetic on doubles without libm: adding 1.5 * 2^52 rounds a double with
+// |x| < 2^51 to an integer, and the low 32 bits of the sum's mantissa are that integer
+// modulo 2^32 (two's complement). Inputs are therefore limited to |x| < 2^51 lattice units.
+inline constexpr double kMagic = 6755399441055744.0;  // 1.5 * 2^52
+
+template <class D>
+NIMBUS_INLINE D floor_exact(D x) {
+  const D r = (x + kMagic) - kMagic;  // nearest integer
+  return select(r > x, r - 1.0, r);
+}
+
+// Low 32 bits of an integer-valued double (|c| < 2^51).
+template <class B>
+NIMBUS_INLINE typename B::U low_bits(typename B::D c) {
+  using L = std::conditional_t<B::width == 1, int64_t, typename B::L>;
+  return low32<typename B::U>(bitcast<L>(c + kMagic));
+}
+
+// c mod p for integer-valued c, p in [1, 2^31): floor(c / p) from a reciprocal, then corrected.
+template <class D>
+NIMBUS_INLINE D mod_exact(D c, double p, double inv_p) {
+  D m = c - p * floor_exact(c * inv_p);
+  m = select(m < 0.0, m + p, m);
+  return select(m >= p, m - p, m);
+}
+
+// Lattice coordinate on one axis: hashed coordinates of the two corners and the fraction.
+template <class B>
+struct Axis {
+  typename B::U h0, h1;
+  typename B::F t;
+};
+
+// Splits x (lattice units) into its cell, wrapped to 32 bits or to the period, and its
+// fraction in [0, 1]. All double operations here are exact.
+template <class B>
+NIMBUS_INLINE Axis<B> split(typename B::D x, double period, int32_t iperiod, uint32_t prime) {
+  using D = typename B::D;
+  using F = typename B::F;
+  using U = typename B::U;
+  const D c = floor_exact(x);
+  Axis<B> a;
+  a.t = convert<F>(x - c);
+  U u0, u1;
+  if (period > 0.0) {
+    u0 = low_bits<B>(mod_exact(c, period, 1.0 / period));
+    const U n1 = u0 + 1u;
+    u1 = select(n1 == splat<U>(uint32_t(iperiod)), splat<U>(0u), n1);
+  } else {
+    u0 = low_bits<B>(c);
+    u1 = u0 + 1u;
+  }
+  a.h0 = u0 * prime;
+  a.h1 = u1 * prime;
+  return a;
+}
+
+// Split of a coordinate that is either per lane (B::D) or the same for every lane (double,
+// e.g. y and z along a grid row, or time): the latter is split once and broadcast, with the
+// same bits as splitting it in every lane.
+template <class B, class X>
+NIMBUS_INLINE Axis<B> split_any(X x, double period, int32_t iperiod, uint32_t prime) {
+  if constexpr (B::width > 1 && std::is_same_v<X, double>) {
+    using B1 = Batch<1>;
+    const Axis<B1> a = split<B1>(x, period, iperiod, prime);
+    return {splat<typename B::U>(a.h0), splat<typename B::U>(a.h1), splat<typename B::F>(a.t)};
+  } else {
+    return split<B>(x, period, iperiod, prime);
+  }
+}
+
+template <class F>
+NIMBUS_INLINE F fade(F t) {  // 6t^5 - 15t^4 + 10t^3
+  return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
+
+template <class F>
+NIMBUS_INLINE F lerp(F s, F a, F b) {
+  return a + s * (b - a);
+}
+
+// Lattice value in (-1, 1), symmetric about 0, from the top 24 bits of the hash.
+template <class B>
+NIMBUS_INLINE typename B::F lattice_value(typename B::U h) {
+  using F = typename B::F;
+  return (convert<F>(bitcast<typename B::I>(h >> 8)) + 0.5f) * (1.0f / 8388608.0f) - 1.0f;
+}
+
+// g . (x, y, z) for the 12 cube-edge gradients (+-1, +-1, 0), (+-1, 0, +-1), (0, +-1, +-1).
+template <class B>
+NIMBUS_INLINE typename B::F edge_dot3(typename B::U idx, typename B::F x, typename B::F y,
+                                      typename B::F z) {
+  using F = typename B::F;
+  using U = typename B::U;
+  const U pair = idx >> 2;  // 0: xy, 1: xz, 2: yz
+  F u = select(pair == 2u, y, x);
+  F v = select(pair == 0u, y, z);
+  u = bitcast<F>(bitcast<U>(u) ^ ((idx & 1u) << 31));
+  v = bitcast<F>(bitcast<U>(v) ^ ((idx & 2u) << 30));
+  return u + v;
+}
+
+// Uniform index in [0, 12) from a hash (bias below 2^-22).
+template <class U>
+NIMBUS_INLINE U edge_index3(U h) {
+  return ((h >> 8) * 12u) >> 24;
+}
+
+// g . (x, y, z, w) for the 32 tesseract-edge gradients: one component 0, three +-1.
+template <class B>
+NIMBUS_INLINE typename B::F edge_dot4(typename B::U idx, typename B::F x, typename B::F y,
+                                      typename B::F z, typename B::F w) {
+  using F = typename B::F;
+  using U = typename B::U;
+  const U zero_axis = idx >> 3;
+  F p = select(zero_axis == 0u, y, x);
+  F q = select(zero_axis <= 1u, z, y);
+  F r = select(zero_axis <= 2u, w, z);
+  p = bitcast<F>(bitcast<U>(p) ^ ((idx & 1u) << 31));
+  q = bitcast<F>(bitcast<U>(q) ^ ((idx & 2u) << 30));
+  r = bitcast<F>(bitcast<U>(r) ^ ((idx & 4u) << 29));
+  return p + q + r;
+}
+
+// Trilinear blend of 8 corner values (corner k has offsets k&1, k>>1&1, k>>2&1), x first.
+template <class F>
+NIMBUS_INLINE F blend8(const F* v, F sx, F sy, F sz) {
+  const F x00 = lerp(sx, v[0], v[1]);
+  const F x10 = lerp(sx, v[2], v[3]);
+  const F x01 = lerp(sx, v[4], v[5]);
+  const F x11 = lerp(sx, v[6], v[7]);
+  return lerp(sz, lerp(sy, x00, x10), lerp(sy, x01, x11));
+}
+
+template <class B>
+NIMBUS_INLINE typename B::U corner_hash(const Axis<B>* a, int k, uint32_t seed) {
+  using U = typename B::U;
+  U h = ((k & 1) ? a[0].h1 : a[0].h0) ^ ((k & 2) ? a[1].h1 : a[1].h0) ^
+        ((k & 4) ? a[2].h1 : a[2].h0);
+  return hash::mix<U>(h ^ seed);
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F value3(const Axis<B>* a, uint32_t seed) {
+  using F = typename B::F;
+  F v[8];
+  for (int k = 0; k < 8; ++k) v[k] = lattice_value<B>(corner_hash<B>(a, k, seed));
+  return blend8(v, fade(a[0].t), fade(a[1].t), fade(a[2].t));
+}
+
+// Perlin's improved noise for given gradient indices at the 8 corners (raw, unscaled).
+template <class B>
+NIMBUS_INLINE typename B::F gradient3_cell(const typename B::U* idx, typename B::F tx,
+                                           typename B::F ty, typename B::F tz) {
+  using F = typename B::F;
+  F g[8];
+  for (int k = 0; k < 8; ++k) {
+    const F dx = (k & 1) ? tx - 1.0f : tx;
+    const F dy = (k & 2) ? ty - 1.0f : ty;
+    const F dz = (k & 4) ? tz - 1.0f : tz;
+    g[k] = edge_dot3<B>(idx[k], dx, dy, dz);
+  }
+  return blend8(g, fade(tx), fade(ty), fade(tz));
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F gradient3(const Axis<B>* a, uint32_t seed) {
+  using U = typename B::U;
+  U idx[8];
+  for (int k = 0; k < 8; ++k) idx[k] = edge_index3(corner_hash<B>(a, k, seed));
+  return gradient3_cell<B>(idx, a[0].t, a[1].t, a[2].t) * kGradientScale3;
+}
+
+template <class B>
+NIMBUS_INLINE typename B::U corner_hash4(const Axis<B>* a, int k, uint32_t seed) {
+  using U = typename B::U;
+  U h = ((k & 1) ? a[0].h1 : a[0].h0) ^ ((k & 2) ? a[1].h1 : a[1].h0) ^
+        ((k & 4) ? a[2].h1 : a[2].h0) ^ ((k & 8) ? a[3].h1 : a[3].h0);
+  return hash::mix<U>(h ^ seed);
+}
+
+// Animated value noise: the two 3D value noises at the neighbouring integer times, blended
+// by the fade s of the time fraction and divided by sqrt((1-s)^2 + s^2) so the variance is
+// the same at every time (time_norm also holds the 1/sqrt(2) that keeps |n| <= 1).
+template <class B>
+NIMBUS_INLINE typename B::F value4(const Axis<B>* a, uint32_t seed, float time_norm) {
+  using F = typename B::F;
+  F v[16];
+  for (int k = 0; k < 16; ++k) v[k] = lattice_value<B>(corner_hash4<B>(a, k, seed));
+  const F sx = fade(a[0].t), sy = fade(a[1].t), sz = fade(a[2].t);
+  return lerp(fade(a[3].t), blend8(v, sx, sy, sz), blend8(v + 8, sx, sy, sz)) * time_norm;
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F gradient4_cell(const typename B::U* idx, typename B::F tx,
+                                           typename B::F ty, typename B::F tz,
+                                           typename B::F tw) {
+  using F = typename B::F;
+  F g[16];
+  for (int k = 0; k < 16; ++k) {
+    const F dx = (k & 1) ? tx - 1.0f : tx;
+    const F dy = (k & 2) ? ty - 1.0f : ty;
+    const F dz = (k & 4) ? tz - 1.0f : tz;
+    const F dw = (k & 8) ? tw - 1.0f : tw;
+    g[k] = edge_dot4<B>(idx[k], dx, dy, dz, dw);
+  }
+  const F sx = fade(tx), sy = fade(ty), sz = fade(tz);
+  return lerp(fade(tw), blend8(g, sx, sy, sz), blend8(g + 8, sx, sy, sz));
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F gradient4(const Axis<B>* a, uint32_t seed) {
+  using U = typename B::U;
+  U idx[16];
+  for (int k = 0; k < 16; ++k) idx[k] = corner_hash4<B>(a, k, seed) >> 27;
+  return gradient4_cell<B>(idx, a[0].t, a[1].t, a[2].t, a[3].t) * kGradientScale4;
+}
+
+// ---- Wavelet noise -------------------------------------------------------------------
+
+// Quadratic B-spline taps around the nearest tile node: indices (wrapped to the tile) of
+// nodes c-1, c, c+1 and their weights for t = x - c in [-0.5, 0.5].
+template <class B>
+struct Taps {
+  typename B::I i[3];
+  typename B::F w[3];
+};
+
+template <class B>
+NIMBUS_INLINE Taps<B> bspline_taps(typename B::D x, int32_t n) {
+  using D = typename B::D;
+  using F = typename B::F;
+  using I = typename B::I;
+  const D c = floor_exact(x + 0.5);
+  const F t = convert<F>(x - c);
+  Taps<B> k;
+  k.i[1] = bitcast<I>(low_bits<B>(mod_exact(c, double(n), 1.0 / double(n))));
+  k.i[0] = select(k.i[1] == splat<I>(0), splat<I>(n - 1), k.i[1] - 1);
+  k.i[2] = select(k.i[1] == splat<I>(n - 1), splat<I>(0), k.i[1] + 1);
+  const F a = 0.5f - t, b = 0.5f + t;
+  k.w[0] = a * a * 0.5f;
+  k.w[1] = 0.75f - t * t;
+  k.w[2] = b * b * 0.5f;
+  return k;
+}
+
+template <class B, class X>
+NIMBUS_INLINE Taps<B> bspline_taps_any(X x, int32_t n) {
+  if constexpr (B::width > 1 && std::is_same_v<X, double>) {
+    const Taps<Batch<1>> a = bspline_taps<Batch<1>>(x, n);
+    Taps<B> k;
+    for (int j = 0; j < 3; ++j) {
+      k.i[j] = splat<typename B::I>(a.i[j]);
+      k.w[j] = splat<typename B::F>(a.w[j]);
+    }
+    return k;
+  } else {
+    return bspline_taps<B>(x, n);
+  }
+}
+
+template <class I>
+NIMBUS_INLINE I wrap_add(I i, int32_t off, int32_t n) {
+  const I s = i + off;
+  return select(s >= splat<I>(n), s - n, s);
+}
+
+// sum_x wx * (sum_y wy * (sum_z wz * r[z][y][x])), the order every path uses.
+template <class B>
+NIMBUS_INLINE typename B::F wavelet3_slice(const float* tile, int32_t n, const Taps<B>* t,
+                                           const int32_t* off) {
+  using F = typename B::F;
+  using I = typename B::I;
+  I ix[3], iy[3], iz[3];
+  for (int k = 0; k < 3; ++k) {
+    ix[k] = wrap_add(t[0].i[k], off[0], n);
+    iy[k] = wrap_add(t[1].i[k], off[1], n) * n;
+    iz[k] = wrap_add(t[2].i[k], off[2], n) * (n * n);
+  }
+  F sx = splat<F>(0.0f);
+  for (int a = 0; a < 3; ++a) {
+    F sy = splat<F>(0.0f);
+    for (int b = 0; b < 3; ++b) {
+      const I row = ix[a] + iy[b];
+      F sz = t[2].w[0] * gather<F>(tile, row + iz[0]);
+      sz = sz + t[2].w[1] * gather<F>(tile, row + iz[1]);
+      sz = sz + t[2].w[2] * gather<F>(tile, row + iz[2]);
+      sy = sy + t[1].w[b] * sz;
+    }
+    sx = sx + t[0].w[a] * sy;
+  }
+  return sx;
+}
+
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F wavelet3(const detail::FieldData& fd, const detail::OctaveData& o,
+                                     typename B::D x, DY y, DZ z) {
+  using F = typename B::F;
+  Taps<B> t[3] = {bspline_taps<B>(x, fd.tile_n), bspline_taps_any<B>(y, fd.tile_n),
+                  bspline_taps_any<B>(z, fd.tile_n)};
+  F r = wavelet3_slice<B>(fd.tile, fd.tile_n, t, o.slice_offset[0]);
+  if (o.slices == 1) return r;
+  r = r * o.slice_weight[0];
+  for (int s = 1; s < o.slices; ++s)
+    r = r + o.slice_weight[s] * wavelet3_slice<B>(fd.tile, fd.tile_n, t, o.slice_offset[s]);
+  return r;
+}
+
+
+// ---- One sample of the whole field -----------------------------------------------------
+
+// One octave at x (per lane) and y, z (per lane, or shared by all lanes as doubles).
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F octave_noise(const detail::FieldData& fd, const detail::OctaveData& o,
+                                         typename B::D x, DY y, DZ z) {
+  using F = typename B::F;
+  using D = typename B::D;
+  const D X = x * o.freq;
+  const DY Y = y * o.freq;
+  const DZ Z = z * o.freq;
+  if (fd.kind == Kind::Wavelet) {
+    if (fd.projected) {
+      F r;
+      if constexpr (B::width == 1) {
+        r = detail::wavelet_projected(fd, o, X, Y, Z);
+      } else {
+        for (int l = 0; l < B::width; ++l)
+          r[l] = detail::wavelet_projected(fd, o, X[l], lane(Y, l), lane(Z, l));
+      }
+      return r;
+    }
+    return wavelet3<B>(fd, o, X, Y, Z);
+  }
+  Axis<B> a[4] = {split<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
+                  split_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
+                  split_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ),
+                  {}};
+  if (fd.animated) {
+    a[3] = split_any<B>(o.time, 0.0, 0, hash::kPrimeW);
+    return fd.kind == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
+  }
+  return fd.kind == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
+}
+
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, DY y, DZ z) {
+  using F = typename B::F;
+  if (fd.fractal == Fractal::None) return octave_noise<B>(fd, fd.oct[0], x, y, z);
+  F acc = splat<F>(0.0f);
+  for (int i = 0; i < fd.octaves; ++i) {
+    const detail::OctaveData& o = fd.oct[i];
+    const F n = octave_noise<B>(fd, o, x, y, z);
+    switch (fd.fractal) {
+      case Fractal::Fbm: acc = acc + o.amp * n; break;
+      case Fractal::Turbulence: acc = acc + o.amp * simd::abs(n); break;
+      case Fractal::Ridged: {
+        const F r = 1.0f - simd::abs(n);
+        acc = acc + o.amp * (r * r);
+        break;
+      }
+      case Fractal::None: break;
+    }
+  }
+  return acc * fd.inv_amp_sum;
+}
+
+}  // namespace kernels
+}  // inline namespace
+}  // namespace nimbus::noise

@@ -1,0 +1,24 @@
+// Shared pieces of the nimbus command line: error kinds and subcommand registration.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace nimbus::cli {
+
+// Bad input from the user: exit code 2, one line naming the input.
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// Each subcommand registers itself and sets the action that main() runs after parsing.
+using Action = std::function<int()>;
+void add_noise_command(CLI::App& app, Action& action);
+void add_bench_command(CLI::App& app, Action& action);
+
+// Benchmarks, each a `nimbus bench NAME` subcommand.
+void add_bench_noise(CLI::App& bench, Action& action);
+
+}  // namespace nimbus::cli

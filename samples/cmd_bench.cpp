@@ -1,0 +1,12 @@
+// `nimbus bench NAME`: benchmarks that report speed beside error, against named anchors.
+#include "cli.hpp"
+
+namespace nimbus::cli {
+
+void add_bench_command(CLI::App& app, Action& action) {
+  CLI::App* bench = app.add_subcommand("bench", "Run a benchmark and print its table");
+  bench->require_subcommand(1);
+  add_bench_noise(*bench, action);
+}
+
+}  // namespace nimbus::cli

@@ -166,6 +166,7 @@ template <class B>
 NIMBUS_INLINE typename B::F value3(const Axis<B>* a, uint32_t seed) {
   using F = typename B::F;
   F v[8];
+#pragma GCC unroll 16
   for (int k = 0; k < 8; ++k) v[k] = lattice_value<B>(corner_hash<B>(a, k, seed));
   return blend8(v, fade(a[0].t), fade(a[1].t), fade(a[2].t));
 }
@@ -176,6 +177,7 @@ NIMBUS_INLINE typename B::F gradient3_cell(const typename B::U* idx, typename B:
                                            typename B::F ty, typename B::F tz) {
   using F = typename B::F;
   F g[8];
+#pragma GCC unroll 16
   for (int k = 0; k < 8; ++k) {
     const F dx = (k & 1) ? tx - 1.0f : tx;
     const F dy = (k & 2) ? ty - 1.0f : ty;
@@ -189,6 +191,7 @@ template <class B>
 NIMBUS_INLINE typename B::F gradient3(const Axis<B>* a, uint32_t seed) {
   using U = typename B::U;
   U idx[8];
+#pragma GCC unroll 16
   for (int k = 0; k < 8; ++k) idx[k] = edge_index3(corner_hash<B>(a, k, seed));
   return gradient3_cell<B>(idx, a[0].t, a[1].t, a[2].t) * kGradientScale3;
 }
@@ -208,6 +211,7 @@ template <class B>
 NIMBUS_INLINE typename B::F value4(const Axis<B>* a, uint32_t seed, float time_norm) {
   using F = typename B::F;
   F v[16];
+#pragma GCC unroll 16
   for (int k = 0; k < 16; ++k) v[k] = lattice_value<B>(corner_hash4<B>(a, k, seed));
   const F sx = fade(a[0].t), sy = fade(a[1].t), sz = fade(a[2].t);
   return lerp(fade(a[3].t), blend8(v, sx, sy, sz), blend8(v + 8, sx, sy, sz)) * time_norm;
@@ -219,6 +223,7 @@ NIMBUS_INLINE typename B::F gradient4_cell(const typename B::U* idx, typename B:
                                            typename B::F tw) {
   using F = typename B::F;
   F g[16];
+#pragma GCC unroll 16
   for (int k = 0; k < 16; ++k) {
     const F dx = (k & 1) ? tx - 1.0f : tx;
     const F dy = (k & 2) ? ty - 1.0f : ty;
@@ -234,6 +239,7 @@ template <class B>
 NIMBUS_INLINE typename B::F gradient4(const Axis<B>* a, uint32_t seed) {
   using U = typename B::U;
   U idx[16];
+#pragma GCC unroll 16
   for (int k = 0; k < 16; ++k) idx[k] = corner_hash4<B>(a, k, seed) >> 27;
   return gradient4_cell<B>(idx, a[0].t, a[1].t, a[2].t, a[3].t) * kGradientScale4;
 }

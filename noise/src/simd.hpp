@@ -57,7 +57,17 @@ NIMBUS_INLINE T splat(auto s) {
 template <class M, class T>
 NIMBUS_INLINE T select(M m, T a, T b) {
   if constexpr (std::is_arithmetic_v<T>) {
-    return m ? a : b;
+    // Branch-free for scalars too: the conditions in noise kernels are random (gradient
+    // indices, cell parities), so a branch would be mispredicted half the time.
+    using Bits = std::conditional_t<sizeof(T) == 8, uint64_t, uint32_t>;
+    const Bits mask = Bits(0) - static_cast<Bits>(static_cast<bool>(m));
+    Bits ab, bb;
+    std::memcpy(&ab, &a, sizeof(T));
+    std::memcpy(&bb, &b, sizeof(T));
+    const Bits r = (ab & mask) | (bb & ~mask);
+    T out;
+    std::memcpy(&out, &r, sizeof(T));
+    return out;
   } else {
     using IM = decltype(a < b);  // integer vector with the lane size of T
     return (m != IM{}) ? a : b;

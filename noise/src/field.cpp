@@ -58,11 +58,16 @@ double bspline2(double x) {
 
 namespace detail {
 
-// Cook & DeRose's projected evaluation: the basis function of coefficient c is evaluated at
-// c moved halfway towards the sample plane along the normal, i.e. at x = p - c - n (n.(p-c))/2,
-// which stretches it by 2 along n. For |x_i| < 1.5 we need |p_i - c_i| < 1.5 + 2.6 |n_i|.
-// The result is divided by the sum of the weights, so it stays a convex combination of tile
-// coefficients (in [-1, 1]); for axis-aligned normals that sum is exactly 2.
+// Projected evaluation (Cook & DeRose section 3.4): the basis function of coefficient c is
+// evaluated at c moved towards the sample's plane along the normal, by the fraction
+// 1 - 1/k, i.e. at x = p - c - (1 - 1/k) n (n.(p-c)). Along the normal that is B2(d / k): the
+// slice averages the 3D noise with a B-spline k times wider, which multiplies the spectrum
+// by sinc^3(k f_n) and removes the out-of-plane frequencies that would alias into low
+// in-plane ones. C&D move halfway (k = 2); nimbus uses k = kProjectionStretch = 3, which
+// cuts the power left at f_n = 1/4 from 6.6 % to 0.07 % (measured slice leakage: docs).
+// For |x_i| < 1.5 we need |p_i - c_i| < 1.5 + 2.6 (k - 1) |n_i|. The result is divided by
+// the sum of the weights, so it stays a convex combination of tile coefficients (in
+// [-1, 1]); for axis-aligned normals that sum is exactly k.
 float wavelet_projected(const detail::FieldData& fd, const detail::OctaveData& o, double x,
                         double y, double z) {
   const int n = fd.tile_n;
@@ -70,7 +75,7 @@ float wavelet_projected(const detail::FieldData& fd, const detail::OctaveData& o
   const double* nv = fd.normal;
   int64_t lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    const double r = 1.5 + 2.6 * std::fabs(nv[a]);
+    const double r = 1.5 + 2.6 * (kProjectionStretch - 1.0) * std::fabs(nv[a]);
     lo[a] = static_cast<int64_t>(std::ceil(p[a] - r));
     hi[a] = static_cast<int64_t>(std::floor(p[a] + r));
   }
@@ -82,8 +87,9 @@ float wavelet_projected(const detail::FieldData& fd, const detail::OctaveData& o
         for (int64_t cx = lo[0]; cx <= hi[0]; ++cx) {
           const double d[3] = {p[0] - double(cx), p[1] - double(cy), p[2] - double(cz)};
           const double dot = nv[0] * d[0] + nv[1] * d[1] + nv[2] * d[2];
-          const double w = bspline2(d[0] - 0.5 * dot * nv[0]) * bspline2(d[1] - 0.5 * dot * nv[1]) *
-                           bspline2(d[2] - 0.5 * dot * nv[2]);
+          const double move = (1.0 - 1.0 / kProjectionStretch) * dot;
+          const double w = bspline2(d[0] - move * nv[0]) * bspline2(d[1] - move * nv[1]) *
+                           bspline2(d[2] - move * nv[2]);
           if (w == 0.0) continue;
           const int ix = wrap_int(cx + o.slice_offset[s][0], n);
           const int iy = wrap_int(cy + o.slice_offset[s][1], n);

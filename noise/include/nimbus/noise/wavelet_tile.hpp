@@ -42,6 +42,10 @@ class WaveletTile {
   std::vector<float> data_;
 };
 
+// Projected wavelet noise averages along the normal with a quadratic B-spline this many
+// lattice units wide per unit (Cook & DeRose use 2; see field.cpp and docs/noise.md).
+inline constexpr double kProjectionStretch = 3.0;
+
 // How many standard deviations of the tile map to 1 (the clamp level).
 inline constexpr double kWaveletClampSigmas = 4.0;
 

@@ -102,12 +102,15 @@ int run_noise(const NoiseOptions& o) {
   if (p.time) desc.metadata.push_back({"nimbus_time", *p.time});
   volume::write_dense_vdb(o.output, desc, values);
   float lo = values[0], hi = values[0];
-  double sum = 0.0;
+  double sum = 0.0, sum2 = 0.0;
   for (float v : values) {
     lo = std::min(lo, v);
     hi = std::max(hi, v);
     sum += v;
+    sum2 += double(v) * v;
   }
+  const double mean = sum / double(count);
+  const double sd = std::sqrt(std::max(0.0, sum2 / double(count) - mean * mean));
   const double secs = std::chrono::duration<double>(t1 - t0).count();
   std::printf("wrote %s: %s %s noise, %lld^3 samples, voxel size %g lattice units, octaves %d",
               o.output.c_str(), std::string(noise::to_string(p.fractal)).c_str(),
@@ -116,8 +119,10 @@ int run_noise(const NoiseOptions& o) {
   if (o.auto_octaves)
     std::printf(" (footprint limit: %d of %d; Nyquist %g cycles/unit)", choice.octaves,
                 choice.requested, choice.nyquist);
-  std::printf("\n  values in [%.4f, %.4f], mean %.4f; evaluated in %.3f s (%s)\n", lo, hi,
-              sum / double(count), secs,
+  std::printf("\n  values in [%.4f, %.4f] (documented range [%g, %g]), mean %.4f, sd %.4f", lo, hi,
+              double(field.range().lo), double(field.range().hi), mean, sd);
+  if (const double e = field.expected_sd(); std::isfinite(e)) std::printf(" (predicted %.4f)", e);
+  std::printf("; evaluated in %.3f s (%s)\n", secs,
               std::string(noise::to_string(batch.simd.value_or(noise::best_simd_level()))).c_str());
   return 0;
 }

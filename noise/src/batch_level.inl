@@ -1,6 +1,7 @@
 // Grid rows and point blocks for NIMBUS_WIDTH lanes; included once per level source file,
 // each compiled with its own instruction-set flags.
 #include <cstring>
+#include <vector>
 
 #include "batch_level.hpp"
 #include "kernels.hpp"
@@ -16,10 +17,15 @@ void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1
   using F = typename Bt::F;
   constexpr int W = Bt::width;
   const int64_t nx = g.res[0], ny = g.res[1];
+  // Row context: y, z and time split once per row and octave (wavelet: column sums).
+  thread_local std::vector<float> scratch;
+  if (fd.kind == Kind::Wavelet) scratch.resize(size_t(kMaxOctaves) * 3 * size_t(fd.tile_n));
+  kernels::RowContext rc;
+  const double x_lo = g.origin[0], x_hi = g.origin[0] + double(nx - 1) * g.spacing;
   for (int64_t row = r0; row < r1; ++row) {
     const int64_t j = row % ny, k = row / ny;
-    const double y = g.origin[1] + double(j) * g.spacing;  // shared by the row
-    const double z = g.origin[2] + double(k) * g.spacing;
+    kernels::prepare_row<Bt>(fd, g.origin[1] + double(j) * g.spacing,
+                             g.origin[2] + double(k) * g.spacing, x_lo, x_hi, rc, scratch.data());
     float* dst = out + row * nx;
     for (int64_t i = 0; i < nx; i += W) {
       D x;
@@ -31,7 +37,7 @@ void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1
           x[l] = g.origin[0] + double(il) * g.spacing;
         }
       }
-      const F v = kernels::field<Bt>(fd, x, y, z);
+      const F v = kernels::field_row<Bt>(fd, x, rc);
       const int64_t n = nx - i < W ? nx - i : W;
       std::memcpy(dst + i, &v, sizeof(float) * size_t(n));
     }

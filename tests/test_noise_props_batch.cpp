@@ -185,7 +185,7 @@ TEST_P(NoisePropsBatch, GridAndPointsMatchScalarEvalAtEveryLevel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, NoisePropsBatch, ::testing::ValuesIn(batch_cases()),
-                         [](const ::testing::TestParamInfo<BatchCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<BatchCase>& param_info) { return param_info.param.name; });
 
 TEST(NoisePropsBatchLevels, ReportsLevels) {
   std::string s;

@@ -108,7 +108,7 @@ TEST_P(NoisePropsLarge, SameStatisticsAsNearTheOrigin) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ValueAndGradient, NoisePropsLarge, ::testing::ValuesIn(large_cases()),
-                         [](const ::testing::TestParamInfo<LargeCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<LargeCase>& param_info) { return param_info.param.name; });
 
 // The fraction survives at 2^30: samples 1e-3 apart differ, and the noise there is not a copy
 // of the noise near the origin.

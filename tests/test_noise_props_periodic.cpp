@@ -142,7 +142,7 @@ TEST_P(NoisePropsPeriodic, WithoutThePeriodTheFieldDoesNotRepeat) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, NoisePropsPeriodic, ::testing::ValuesIn(period_cases()),
-                         [](const ::testing::TestParamInfo<PeriodCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<PeriodCase>& param_info) { return param_info.param.name; });
 
 }  // namespace
 }  // namespace nimbus::noise

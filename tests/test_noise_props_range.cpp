@@ -385,7 +385,7 @@ TEST_P(NoisePropsSampledRange, EveryOutputLiesInRange) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, NoisePropsSampledRange, ::testing::ValuesIn(range_cases()),
-                         [](const ::testing::TestParamInfo<RangeCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<RangeCase>& param_info) { return param_info.param.name; });
 
 }  // namespace
 }  // namespace nimbus::noise

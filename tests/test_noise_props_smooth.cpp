@@ -335,16 +335,18 @@ TEST_P(NoisePropsGradient, AnalyticGradientMatchesCentralDifferences) {
   EXPECT_GT(rms_grad, 0.1);
   EXPECT_LE(rms_a, 1e-4);
   EXPECT_LE(value_err, 4e-6);
-  if (c.check_eval_differences) EXPECT_LE(rms_b, 1e-4 * rms_grad);
+  if (c.check_eval_differences) {
+    EXPECT_LE(rms_b, 1e-4 * rms_grad);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(ValueAndGradient, NoisePropsGradient, ::testing::ValuesIn(grad_cases()),
-                         [](const ::testing::TestParamInfo<GradCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<GradCase>& param_info) { return param_info.param.name; });
 
 INSTANTIATE_TEST_SUITE_P(ValueAndGradient, NoisePropsSmoothKind,
                          ::testing::Values(Kind::Value, Kind::Gradient),
-                         [](const ::testing::TestParamInfo<Kind>& info) {
-                           return std::string(info.param == Kind::Value ? "Value" : "Gradient");
+                         [](const ::testing::TestParamInfo<Kind>& param_info) {
+                           return std::string(param_info.param == Kind::Value ? "Value" : "Gradient");
                          });
 
 TEST(NoisePropsGradientErrors, UnsupportedFieldsThrowLogicError) {

@@ -198,7 +198,7 @@ TEST_P(NoisePropsStats, MeanZeroAndSdAsDocumented) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, NoisePropsStats, ::testing::ValuesIn(stats_cases()),
-                         [](const ::testing::TestParamInfo<StatsCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<StatsCase>& param_info) { return param_info.param.name; });
 
 // Random points over a large box as a second, independent sampling (no grid structure).
 TEST(NoisePropsStatsRandom, RandomPointsAgreeWithExpectedSd) {

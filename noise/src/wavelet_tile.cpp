@@ -83,7 +83,7 @@ AnalysisFilter wavelet_analysis_filter(int n) {
     row[j] = s;
   }
   // Offsets relative to 2m: the filter is symmetric about -1/2.
-  const int half = n > 48 ? 24 : n / 2;
+  const int half = n > 64 ? 32 : n / 2;  // dropped taps (|j| > 32) are below 3e-6
   AnalysisFilter f;
   f.first = -half;
   for (int o = -half; o < half; ++o) f.taps.push_back(static_cast<float>(row[wrap(o, n)]));

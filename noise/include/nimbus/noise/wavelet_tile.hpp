@@ -30,7 +30,8 @@ class WaveletTile {
   double scale() const { return scale_; }
   // Standard deviation of the band-pass coefficients before scaling.
   double band_sd() const { return band_sd_; }
-  // How many coefficients the clamp to [-1, 1] changed (about 6e-5 of them for a Gaussian).
+  // How many coefficients the clamp to [-1, 1] changed (none so far: the band-pass part of
+  // uniform white noise stays within 4 standard deviations).
   int64_t clamped() const { return clamped_; }
 
  private:
@@ -51,8 +52,8 @@ inline constexpr double kWaveletClampSigmas = 4.0;
 
 // Analysis filter of the exact L2 projection onto half-resolution quadratic B-splines, for a
 // periodic line of n fine coefficients: coarse[m] = sum_j filter[j] * fine[(2m + j - r) mod n],
-// with r = (filter.size() - 1) / 2 rounded as documented in the source. Taps beyond |j| = 24
-// (below 2e-5) are dropped for n > 48.
+// taps[t] applying to offset first + t. For n <= 64 the filter holds all n taps (the exact
+// periodic projection); for larger n the taps beyond |j| = 32, all below 3e-6, are dropped.
 struct AnalysisFilter {
   std::vector<float> taps;
   int first;  // offset of taps[0] relative to 2m

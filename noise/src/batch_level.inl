@@ -11,36 +11,48 @@ namespace {
 
 using Lanes = simd::Batch<NIMBUS_WIDTH>;
 
-template <class Bt>
-void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
+template <class Bt, Kind K>
+void rows_of_kind(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
   using D = typename Bt::D;
   using F = typename Bt::F;
   constexpr int W = Bt::width;
   const int64_t nx = g.res[0], ny = g.res[1];
   // Row context: y, z and time split once per row and octave (wavelet: column sums).
   thread_local std::vector<float> scratch;
-  if (fd.kind == Kind::Wavelet) scratch.resize(size_t(kMaxOctaves) * 3 * size_t(fd.tile_n));
+  if (K == Kind::Wavelet) scratch.resize(size_t(kMaxOctaves) * 3 * size_t(fd.tile_n));
   kernels::RowContext rc;
   const double x_lo = g.origin[0], x_hi = g.origin[0] + double(nx - 1) * g.spacing;
+  const double last = double(nx - 1);
+  D lanes;
+  if constexpr (W == 1) {
+    lanes = 0.0;
+  } else {
+    for (int l = 0; l < W; ++l) lanes[l] = double(l);
+  }
   for (int64_t row = r0; row < r1; ++row) {
     const int64_t j = row % ny, k = row / ny;
     kernels::prepare_row<Bt>(fd, g.origin[1] + double(j) * g.spacing,
                              g.origin[2] + double(k) * g.spacing, x_lo, x_hi, rc, scratch.data());
     float* dst = out + row * nx;
     for (int64_t i = 0; i < nx; i += W) {
-      D x;
-      if constexpr (W == 1) {
-        x = g.origin[0] + double(i) * g.spacing;
-      } else {
-        for (int l = 0; l < W; ++l) {
-          const int64_t il = i + l < nx ? i + l : nx - 1;
-          x[l] = g.origin[0] + double(il) * g.spacing;
-        }
-      }
-      const F v = kernels::field_row<Bt>(fd, x, rc);
+      // x = origin + index * spacing with index = min(i + lane, nx - 1), the same doubles as
+      // GridSpec::point (integers below 2^53 are exact).
+      D index = simd::splat<D>(double(i)) + lanes;
+      if constexpr (W > 1) index = simd::select(index > last, simd::splat<D>(last), index);
+      const D x = g.origin[0] + index * g.spacing;
+      const F v = kernels::field_row<Bt, K>(fd, x, rc);
       const int64_t n = nx - i < W ? nx - i : W;
       std::memcpy(dst + i, &v, sizeof(float) * size_t(n));
     }
+  }
+}
+
+template <class Bt>
+void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
+  switch (fd.kind) {
+    case Kind::Value: return rows_of_kind<Bt, Kind::Value>(fd, g, r0, r1, out);
+    case Kind::Gradient: return rows_of_kind<Bt, Kind::Gradient>(fd, g, r0, r1, out);
+    case Kind::Wavelet: return rows_of_kind<Bt, Kind::Wavelet>(fd, g, r0, r1, out);
   }
 }
 

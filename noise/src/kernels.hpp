@@ -399,7 +399,7 @@ NIMBUS_INLINE typename B::F fractal_sum(const detail::FieldData& fd, OctaveFn&& 
 
 template <class B, class DY, class DZ>
 NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, DY y, DZ z) {
-  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int) {
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int) NIMBUS_INLINE_LAMBDA {
     return octave_noise<B>(fd, o, x, y, z);
   });
 }
@@ -498,45 +498,43 @@ inline void prepare_row(const detail::FieldData& fd, double y, double z, double 
   }
 }
 
-template <class B>
-NIMBUS_INLINE typename B::F broadcast_axis_noise(const detail::FieldData& fd,
-                                                 const detail::OctaveData& o, const RowOctave& r,
-                                                 typename B::D X) {
-  using U = typename B::U;
-  using F = typename B::F;
-  Axis<B> a[4];
-  a[0] = split<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX);
-  a[1] = {splat<U>(r.y.h0), splat<U>(r.y.h1), splat<F>(r.y.t)};
-  a[2] = {splat<U>(r.z.h0), splat<U>(r.z.h1), splat<F>(r.z.t)};
-  if (fd.animated) {
-    a[3] = {splat<U>(r.w.h0), splat<U>(r.w.h1), splat<F>(r.w.t)};
-    return fd.kind == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
-  }
-  return fd.kind == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
-}
-
-// One sample group of a grid row, with the row's context.
-template <class B>
+// One sample group of a grid row, with the row's context. K is fd.kind, fixed at compile time
+// so that each kind's row loop is compiled on its own (a loop holding all three kinds spills
+// registers).
+template <class B, Kind K>
 NIMBUS_INLINE typename B::F field_row(const detail::FieldData& fd, typename B::D x,
                                       const RowContext& rc) {
   using F = typename B::F;
   using I = typename B::I;
-  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int i) -> F {
-    if (fd.kind != Kind::Wavelet) return broadcast_axis_noise<B>(fd, o, rc.oct[i], x * o.freq);
-    if (fd.projected) return octave_noise<B>(fd, o, x, rc.y, rc.z);
-    const Taps<B> tx = bspline_taps<B>(x * o.freq, fd.tile_n);
-    F r = splat<F>(0.0f);
-    for (int s = 0; s < o.slices; ++s) {
-      const float* cols = rc.oct[i].cols[s];
-      F sx = splat<F>(0.0f);
-      for (int a = 0; a < 3; ++a) {
-        const I ix = wrap_add(tx.i[a], o.slice_offset[s][0], fd.tile_n);
-        sx = sx + tx.w[a] * gather<F>(cols, ix);
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int i) NIMBUS_INLINE_LAMBDA -> F {
+    if constexpr (K != Kind::Wavelet) {
+      using U = typename B::U;
+      const RowOctave& r = rc.oct[i];
+      Axis<B> a[4];
+      a[0] = split<B>(x * o.freq, o.period[0], o.iperiod[0], hash::kPrimeX);
+      a[1] = {splat<U>(r.y.h0), splat<U>(r.y.h1), splat<F>(r.y.t)};
+      a[2] = {splat<U>(r.z.h0), splat<U>(r.z.h1), splat<F>(r.z.t)};
+      if (fd.animated) {
+        a[3] = {splat<U>(r.w.h0), splat<U>(r.w.h1), splat<F>(r.w.t)};
+        return K == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
       }
-      if (o.slices == 1) return sx;
-      r = s == 0 ? sx * o.slice_weight[0] : r + o.slice_weight[s] * sx;
+      return K == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
+    } else {
+      if (fd.projected) return octave_noise<B>(fd, o, x, rc.y, rc.z);
+      const Taps<B> tx = bspline_taps<B>(x * o.freq, fd.tile_n);
+      F r = splat<F>(0.0f);
+      for (int s = 0; s < o.slices; ++s) {
+        const float* cols = rc.oct[i].cols[s];
+        F sx = splat<F>(0.0f);
+        for (int a = 0; a < 3; ++a) {
+          const I ix = wrap_add(tx.i[a], o.slice_offset[s][0], fd.tile_n);
+          sx = sx + tx.w[a] * gather<F>(cols, ix);
+        }
+        if (o.slices == 1) return sx;
+        r = s == 0 ? sx * o.slice_weight[0] : r + o.slice_weight[s] * sx;
+      }
+      return r;
     }
-    return r;
   });
 }
 

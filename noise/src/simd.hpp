@@ -42,6 +42,8 @@ struct Batch<1> {
 };
 
 #define NIMBUS_INLINE inline __attribute__((always_inline))
+// Lambdas passed to kernels must inline too: a call would pass wide vectors through memory.
+#define NIMBUS_INLINE_LAMBDA __attribute__((always_inline))
 
 template <class T>
 NIMBUS_INLINE T splat(auto s) {

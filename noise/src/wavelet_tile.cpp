@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -112,6 +113,52 @@ void wavelet_upsample(const float* coarse, float* fine, int n) {
   }
 }
 
+namespace {
+
+typedef float Row8 __attribute__((vector_size(32)));
+
+// out[x] = out[x] + a * in[x] for x < len, in 8-wide chunks then one by one: the same float
+// operations, in the same order, for every x whatever the instruction set.
+void axpy(float* out, float a, const float* in, int len) {
+  int x = 0;
+  for (; x + 8 <= len; x += 8) {
+    Row8 o, i;
+    std::memcpy(&o, out + x, sizeof o);
+    std::memcpy(&i, in + x, sizeof i);
+    o = o + a * i;
+    std::memcpy(out + x, &o, sizeof o);
+  }
+  for (; x < len; ++x) out[x] = out[x] + a * in[x];
+}
+
+}  // namespace
+
+// Rows r = 0..n-1 of `len` floats at base + r * stride hold n lines (one per x position across
+// the rows); replaces them by U(D(line)). scratch holds (n / 2) * len floats.
+void project_rows(float* base, size_t stride, int n, int len, const AnalysisFilter& f,
+                  float* scratch) {
+  const int m = n / 2, taps = static_cast<int>(f.taps.size());
+  for (int k = 0; k < m; ++k) {  // coarse row k = sum_t taps[t] * row(2k + first + t)
+    float* c = scratch + size_t(k) * len;
+    std::fill(c, c + len, 0.0f);
+    int r = ((2 * k + f.first) % n + n) % n;
+    for (int t = 0; t < taps; ++t) {
+      axpy(c, f.taps[t], base + size_t(r) * stride, len);
+      if (++r == n) r = 0;
+    }
+  }
+  for (int k = 0; k < m; ++k) {  // fine rows 2k, 2k+1 from coarse rows k, k+1
+    const float* a = scratch + size_t(k) * len;
+    const float* b = scratch + size_t((k + 1) % m) * len;
+    float* even = base + size_t(2 * k) * stride;
+    float* odd = base + size_t(2 * k + 1) * stride;
+    for (int x = 0; x < len; ++x) {
+      even[x] = 0.75f * a[x] + 0.25f * b[x];
+      odd[x] = 0.25f * a[x] + 0.75f * b[x];
+    }
+  }
+}
+
 WaveletTile::WaveletTile(int n, uint32_t seed) : n_(n), seed_(seed) {
   if (n < 8 || n > 512 || n % 2 != 0)
     throw std::invalid_argument("wavelet tile size " + std::to_string(n) +
@@ -128,24 +175,32 @@ WaveletTile::WaveletTile(int n, uint32_t seed) : n_(n), seed_(seed) {
     }
   });
 
-  // Coarse part: D then U along each axis, line by line.
+  // Coarse part: D then U along x, then y, then z. Each pass works on whole rows that are
+  // contiguous along another axis (the x pass on transposed planes), so every output is the
+  // same sequence of float operations as the one-line formula, vectorised across the row.
   std::vector<float> coarse = white;
   const AnalysisFilter filter = wavelet_analysis_filter(n);
-  const size_t stride[3] = {1, size_t(n), size_t(n) * n};
-  for (int axis = 0; axis < 3; ++axis) {
-    const size_t s = stride[axis];
-    const size_t s1 = stride[(axis + 1) % 3], s2 = stride[(axis + 2) % 3];
-    tbb::parallel_for(0, n, [&](int b) {
-      std::vector<float> line(n), half(n / 2);
-      for (int a = 0; a < n; ++a) {
-        float* base = coarse.data() + a * s1 + b * s2;
-        for (int i = 0; i < n; ++i) line[i] = base[i * s];
-        wavelet_downsample(line.data(), half.data(), n, filter);
-        wavelet_upsample(half.data(), line.data(), n);
-        for (int i = 0; i < n; ++i) base[i * s] = line[i];
-      }
-    });
-  }
+  const size_t plane = size_t(n) * n;
+  // x: transpose each z plane, project its rows (now indexed by x), transpose back.
+  tbb::parallel_for(0, n, [&](int z) {
+    std::vector<float> t(plane), scratch(plane / 2);
+    float* p = coarse.data() + z * plane;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) t[size_t(x) * n + y] = p[size_t(y) * n + x];
+    project_rows(t.data(), size_t(n), n, n, filter, scratch.data());
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) p[size_t(y) * n + x] = t[size_t(x) * n + y];
+  });
+  // y: rows of a z plane.
+  tbb::parallel_for(0, n, [&](int z) {
+    std::vector<float> scratch(plane / 2);
+    project_rows(coarse.data() + z * plane, size_t(n), n, n, filter, scratch.data());
+  });
+  // z: for each y, the rows z * n^2 + y * n.
+  tbb::parallel_for(0, n, [&](int y) {
+    std::vector<float> scratch(plane / 2);
+    project_rows(coarse.data() + size_t(y) * n, plane, n, n, filter, scratch.data());
+  });
   for (size_t i = 0; i < count; ++i) coarse[i] = white[i] - coarse[i];  // band-pass part
 
   // Add a copy shifted by an odd offset on every axis (C&D: evens out the variance of

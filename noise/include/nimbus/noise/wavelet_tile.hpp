@@ -64,4 +64,9 @@ AnalysisFilter wavelet_analysis_filter(int n);
 void wavelet_downsample(const float* fine, float* coarse, int n, const AnalysisFilter& f);
 void wavelet_upsample(const float* coarse, float* fine, int n);
 
+// The same for `len` lines at once: rows r = 0..n-1 of `len` floats at base + r * stride
+// (line x is element x of every row) become U(D(line)). scratch holds (n / 2) * len floats.
+void project_rows(float* base, size_t stride, int n, int len, const AnalysisFilter& f,
+                  float* scratch);
+
 }  // namespace nimbus::noise

@@ -2,28 +2,16 @@
 // that the SIMD paths match the scalar path bit for bit; bad options are usage errors (exit 2).
 #include <gtest/gtest.h>
 
+#include "support/run_nimbus.hpp"
+
 #include <array>
 #include <cstdio>
 #include <string>
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(NIMBUS_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Result = nimbus::test::RunResult;
+Result run(const std::string& args) { return nimbus::test::run_nimbus(args); }
 
 TEST(BenchNoise, QuickRunPrintsEveryKindAndBitIdenticalPaths) {
   const Result r = run("bench noise --quick");

@@ -1,5 +1,7 @@
 // The nimbus command line: exit codes and messages for bad input, and files any VDB tool reads.
 #include <gtest/gtest.h>
+
+#include "support/run_nimbus.hpp"
 #include <openvdb/openvdb.h>
 
 #include <array>
@@ -9,22 +11,8 @@
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(NIMBUS_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Result = nimbus::test::RunResult;
+Result run(const std::string& args) { return nimbus::test::run_nimbus(args); }
 
 std::filesystem::path temp_dir() {
   auto d = std::filesystem::temp_directory_path() / ("nimbus_cli_test_" + std::to_string(::getpid()));

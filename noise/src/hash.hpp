@@ -21,7 +21,7 @@ inline constexpr uint32_t kPrimeW = 0x165667b1u;
 
 // Avalanche mixer (the "lowbias32" constants of C. Wellons' hash-prospector).
 template <class U>
-inline __attribute__((always_inline)) U mix(U h) {
+constexpr inline __attribute__((always_inline)) U mix(U h) {
   h ^= h >> 16;
   h *= 0x7feb352du;
   h ^= h >> 15;
@@ -32,13 +32,7 @@ inline __attribute__((always_inline)) U mix(U h) {
 
 // Seed of octave i, decorrelated from the seeds of other octaves and other fields.
 constexpr uint32_t octave_seed(uint32_t seed, int octave) {
-  uint32_t h = seed * 0x9e3779b9u + static_cast<uint32_t>(octave) * 0x85ebca6bu + 0x27d4eb2fu;
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return h;
+  return mix<uint32_t>(seed * 0x9e3779b9u + static_cast<uint32_t>(octave) * 0x85ebca6bu + 0x27d4eb2fu);
 }
 
 }  // namespace hash

@@ -1,0 +1,85 @@
+// The density field of a cloud or gas: shapes that place it, noise that gives it billows and
+// wisps, and Ebert's gas function that turns the result into density (seed 004). Z is up,
+// units are metres and seconds.
+//
+//   q      = p - wind t + displacement * (fbm_x, fbm_y, fbm_z)(p - wind t)
+//   s      = max over shapes of coverage(q)                        in [0, 1]
+//   z      = fbm(q) / sd(fbm)                                      unit variance
+//   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(q)
+//   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
+// The noise modulates the coverage, so the density is exactly 0 outside the shapes and
+// continuous at their boundary; since |fbm| <= 1, f can be positive only where
+// s > (1 - coverage) / (1 + billow / sd(fbm)), and the noise is evaluated only there.
+#pragma once
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <vector>
+
+#include "nimbus/noise/field.hpp"
+#include "nimbus/volume/gas.hpp"
+#include "nimbus/volume/shape.hpp"
+
+namespace nimbus::volume {
+
+struct CloudParams {
+  std::vector<Shape> shapes;
+  noise::Kind noise = noise::Kind::Gradient;  // billow noise kind
+  double frequency = 1.0 / 400.0;    // billow noise, cycles per metre (first octave)
+  int octaves = 6;                   // at most; fewer where the voxel cannot resolve them
+  double lacunarity = 2.0;
+  double gain = 0.5;
+  double coverage = 0.5;             // [0, 1]: how much of the shapes' volume holds cloud
+  double billow = 0.35;              // noise amplitude, in coverage units per noise sd
+  double erosion = 0.0;              // [0, 1]: detail turbulence eaten from the field
+  double erosion_frequency = 1.0 / 60.0;  // cycles per metre
+  double displacement = 0.0;         // metres: turbulent displacement of the coordinates
+  double displacement_frequency = 1.0 / 800.0;  // cycles per metre
+  GasParams gas;
+  glm::dvec3 wind{0.0};              // metres per second
+  double evolution = 0.0;            // noise lattice units per second (boiling); 0: static
+  uint32_t seed = 0;
+};
+
+// Throws std::invalid_argument naming the parameter.
+void validate(const CloudParams& p);
+
+// One cloud at one time, with noise octaves limited to what `voxel_size` can resolve.
+class CloudModel {
+ public:
+  CloudModel(const CloudParams& params, double voxel_size, double time_seconds);
+
+  const CloudParams& params() const { return params_; }
+  double time() const { return time_; }
+
+  // Density at a world point (scalar path).
+  float density(const glm::dvec3& p) const;
+
+  // Where density can be non-zero (shapes, moved by the wind, grown by the displacement).
+  Aabb bounds() const;
+
+  // The coverage at or below which f cannot become positive whatever the noise.
+  double min_useful_coverage() const { return min_useful_coverage_; }
+
+  // Octaves of the billow noise kept / asked for.
+  int octaves_used() const;
+
+  // Batched: densities at n points (world metres), noise through the SIMD batch path. Points
+  // whose coverage is below min_useful_coverage() cost no noise evaluation. Returns how many
+  // points needed the billow noise.
+  int64_t densities(const glm::dvec3* points, size_t n, float* out) const;
+
+ private:
+  glm::dvec3 moved(const glm::dvec3& p) const;  // wind and displacement applied
+  double coverage_at(const glm::dvec3& q) const;
+  float finish(double s, float billow_noise, float detail) const;
+
+  CloudParams params_;
+  double time_;
+  double threshold_;            // 1 - coverage
+  double inv_sd_;               // 1 / sd(fbm)
+  double min_useful_coverage_;
+  std::unique_ptr<noise::NoiseField> billow_, detail_, disp_[3];
+};
+
+}  // namespace nimbus::volume

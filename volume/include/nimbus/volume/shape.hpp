@@ -1,0 +1,44 @@
+// Primitive shapes that place gas in the world (seed 004, slide "Plazierung"): each gives a
+// coverage in [0, 1] that is 1 well inside, falls smoothly to 0 at its boundary ("fuzzy
+// blobbies"), and is exactly 0 outside its bounding box. World units are metres, Z up.
+#pragma once
+#include <glm/vec3.hpp>
+#include <string>
+
+namespace nimbus::volume {
+
+struct Aabb {
+  glm::dvec3 lo{0.0}, hi{0.0};  // metres; empty when any lo >= hi
+  bool empty() const { return !(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z); }
+  Aabb expanded(double m) const { return {lo - glm::dvec3(m), hi + glm::dvec3(m)}; }
+  Aabb united(const Aabb& o) const;
+  bool overlaps(const Aabb& o) const;
+};
+
+enum class ShapeKind {
+  Ellipsoid,  // centre, semi-axes `size`
+  Capsule,    // segment centre..end, radius size.x
+  Slab,       // box of half extents `size` around centre (a layer: large x, y)
+  Lens,       // radius size.x (= y), half thickness size.z at the centre, thinning to the rim
+};
+
+struct Shape {
+  ShapeKind kind = ShapeKind::Ellipsoid;
+  glm::dvec3 center{0.0};  // metres
+  glm::dvec3 size{1.0};    // metres (see ShapeKind)
+  glm::dvec3 end{0.0};     // capsule: second end of the segment, metres
+  double falloff = 0.3;    // share of the size over which coverage falls from 1 to 0, (0, 1]
+  double weight = 1.0;     // peak coverage, [0, 1]
+};
+
+// Normalised distance u: < 1 inside, 1 on the boundary, > 1 outside.
+double shape_distance(const Shape& s, const glm::dvec3& p);
+// weight * smoothstep from 1 (at u = 1 - falloff) down to 0 (at u = 1).
+double shape_coverage(const Shape& s, const glm::dvec3& p);
+// The box outside which the coverage is exactly 0.
+Aabb shape_bounds(const Shape& s);
+
+// Throws std::invalid_argument naming the field for non-finite or non-positive sizes etc.
+void validate(const Shape& s, const std::string& where);
+
+}  // namespace nimbus::volume

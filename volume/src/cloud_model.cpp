@@ -1,0 +1,153 @@
+// The cloud density field (see cloud_model.hpp for the equations).
+#include "nimbus/volume/cloud_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "nimbus/noise/batch.hpp"
+#include "nimbus/noise/footprint.hpp"
+
+namespace nimbus::volume {
+namespace {
+
+void need(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::unique_ptr<noise::NoiseField> make_field(noise::Kind kind, noise::Fractal fractal, int octaves,
+                                              double frequency, double lacunarity, double gain,
+                                              uint32_t seed, double evolution, double t,
+                                              double voxel_size) {
+  noise::NoiseParams n;
+  n.kind = kind;
+  n.fractal = fractal;
+  n.octaves = octaves;
+  n.frequency = frequency;
+  n.lacunarity = lacunarity;
+  n.gain = gain;
+  n.seed = seed;
+  if (evolution != 0.0) n.time = evolution * t;
+  // Model only what the voxels can show: no octave above their Nyquist limit.
+  return std::make_unique<noise::NoiseField>(noise::limit_octaves(n, voxel_size));
+}
+
+}  // namespace
+
+void validate(const CloudParams& p) {
+  need(!p.shapes.empty(), "shapes: at least one shape is needed");
+  for (size_t i = 0; i < p.shapes.size(); ++i) validate(p.shapes[i], "shapes[" + std::to_string(i) + "]");
+  need(std::isfinite(p.frequency) && p.frequency > 0, "frequency must be finite and > 0 (cycles per metre)");
+  need(p.octaves >= 1 && p.octaves <= noise::kMaxOctaves, "octaves must be in [1, 24]");
+  need(std::isfinite(p.lacunarity) && p.lacunarity > 1 && p.lacunarity <= 16, "lacunarity must be in (1, 16]");
+  need(std::isfinite(p.gain) && p.gain > 0 && p.gain <= 1, "gain must be in (0, 1]");
+  need(p.coverage >= 0 && p.coverage <= 1, "coverage must be in [0, 1]");
+  need(std::isfinite(p.billow) && p.billow >= 0, "billow must be finite and >= 0");
+  need(p.erosion >= 0 && p.erosion <= 1, "erosion must be in [0, 1]");
+  need(std::isfinite(p.erosion_frequency) && p.erosion_frequency > 0, "erosion_frequency must be finite and > 0");
+  need(std::isfinite(p.displacement) && p.displacement >= 0, "displacement must be finite and >= 0 (metres)");
+  need(std::isfinite(p.displacement_frequency) && p.displacement_frequency > 0,
+       "displacement_frequency must be finite and > 0");
+  need(std::isfinite(p.gas.max_density) && p.gas.max_density >= 0, "density must be finite and >= 0");
+  need(std::isfinite(p.gas.exponent) && p.gas.exponent > 0 && p.gas.exponent <= 16, "exponent must be in (0, 16]");
+  need(finite3(p.wind), "wind must be finite (metres per second)");
+  need(std::isfinite(p.evolution), "evolution must be finite");
+}
+
+CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time_seconds)
+    : params_(params), time_(time_seconds) {
+  validate(params_);
+  need(std::isfinite(voxel_size) && voxel_size > 0, "voxel size must be finite and > 0 (metres)");
+  need(std::isfinite(time_seconds), "time must be finite (seconds)");
+  const CloudParams& p = params_;
+  billow_ = make_field(p.noise, noise::Fractal::Fbm, p.octaves, p.frequency, p.lacunarity, p.gain,
+                       p.seed, p.evolution, time_, voxel_size);
+  if (p.erosion > 0)
+    detail_ = make_field(p.noise, noise::Fractal::Turbulence, 3, p.erosion_frequency, 2.0, 0.5,
+                         p.seed + 1, p.evolution, time_, voxel_size);
+  if (p.displacement > 0)
+    for (int a = 0; a < 3; ++a)
+      disp_[a] = make_field(noise::Kind::Gradient, noise::Fractal::Fbm, 3, p.displacement_frequency,
+                            2.0, 0.5, p.seed + 2 + a, p.evolution, time_, voxel_size);
+  threshold_ = 1.0 - p.coverage;
+  inv_sd_ = 1.0 / billow_->expected_sd();
+  min_useful_coverage_ = threshold_ / (1.0 + p.billow * inv_sd_);
+}
+
+int CloudModel::octaves_used() const { return billow_->data().octaves; }
+
+glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
+  glm::dvec3 q = p - params_.wind * time_;
+  if (disp_[0])
+    q += params_.displacement * glm::dvec3(disp_[0]->eval(q.x, q.y, q.z), disp_[1]->eval(q.x, q.y, q.z),
+                                           disp_[2]->eval(q.x, q.y, q.z));
+  return q;
+}
+
+double CloudModel::coverage_at(const glm::dvec3& q) const {
+  double s = 0.0;
+  for (const Shape& shape : params_.shapes) s = std::max(s, shape_coverage(shape, q));
+  return s;
+}
+
+float CloudModel::finish(double s, float billow_noise, float detail) const {
+  const double z = double(billow_noise) * inv_sd_;
+  const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail);
+  return gas_density(static_cast<float>(f), params_.gas);
+}
+
+float CloudModel::density(const glm::dvec3& p) const {
+  const glm::dvec3 q = moved(p);
+  const double s = coverage_at(q);
+  if (!(s > min_useful_coverage_)) return 0.0f;
+  const float n = billow_->eval(q.x, q.y, q.z);
+  const float d = detail_ ? detail_->eval(q.x, q.y, q.z) : 0.0f;
+  return finish(s, n, d);
+}
+
+Aabb CloudModel::bounds() const {
+  Aabb b;
+  for (const Shape& s : params_.shapes) b = b.united(shape_bounds(s));
+  const glm::dvec3 shift = params_.wind * time_;
+  return Aabb{b.lo + shift, b.hi + shift}.expanded(params_.displacement);
+}
+
+int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
+  const noise::BatchOptions serial{std::nullopt, false};  // callers parallelise over blocks
+  std::vector<std::array<double, 3>> q(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3 m = points[i] - params_.wind * time_;
+    q[i] = {m.x, m.y, m.z};
+  }
+  if (disp_[0]) {
+    std::vector<float> d[3];
+    for (int a = 0; a < 3; ++a) {
+      d[a].resize(n);
+      noise::evaluate_points(*disp_[a], q, d[a], serial);
+    }
+    for (size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(d[a][i]);
+  }
+  std::vector<double> s(n);
+  std::vector<std::array<double, 3>> busy;
+  std::vector<uint32_t> where;
+  for (size_t i = 0; i < n; ++i) {
+    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]});
+    out[i] = 0.0f;
+    if (s[i] > min_useful_coverage_) {
+      busy.push_back(q[i]);
+      where.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  if (busy.empty()) return 0;
+  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f);
+  noise::evaluate_points(*billow_, busy, nb, serial);
+  if (detail_) noise::evaluate_points(*detail_, busy, nd, serial);
+  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k]);
+  return static_cast<int64_t>(busy.size());
+}
+
+}  // namespace nimbus::volume

@@ -1,0 +1,125 @@
+// Sparse generation of density grids, leaf block by leaf block.
+#include "nimbus/volume/generate.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "nimbus/noise/memory.hpp"
+
+namespace nimbus::volume {
+namespace {
+
+using Leaf = openvdb::FloatTree::LeafNodeType;
+constexpr int kLeaf = 8;  // Leaf::DIM
+
+int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+int64_t to_index(double world, double voxel, bool up) {
+  const double i = up ? std::ceil(world / voxel) : std::floor(world / voxel);
+  if (!(std::fabs(i) < double(1 << 30)))
+    throw std::invalid_argument("cloud bounds are too large for the voxel size (index beyond 2^30)");
+  return static_cast<int64_t>(i);
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& o,
+                                         GenerateStats* stats) {
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+  const auto t0 = std::chrono::steady_clock::now();
+  const CloudModel model(params, o.voxel_size, o.time);
+  const double vs = o.voxel_size;
+  const Aabb b = model.bounds();
+  int64_t lo[3], hi[3], voxels = 1;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = to_index(b.lo[a], vs, false);
+    hi[a] = to_index(b.hi[a], vs, true);
+    voxels *= hi[a] - lo[a] + 1;
+  }
+  // The upper bound of what the grid could hold must fit in memory.
+  ensure_fits_in_memory(static_cast<uint64_t>(voxels), sizeof(float), "the cloud's bounding box at this voxel size");
+
+  // Leaf blocks covering the bounds, and the shapes' boxes (moved like the model) to test them.
+  int64_t blo[3], bn[3];
+  for (int a = 0; a < 3; ++a) {
+    blo[a] = floor_div(lo[a], kLeaf);
+    bn[a] = floor_div(hi[a], kLeaf) - blo[a] + 1;
+  }
+  std::vector<Aabb> boxes;
+  const glm::dvec3 shift = params.wind * o.time;
+  for (const Shape& s : params.shapes) {
+    const Aabb sb = shape_bounds(s);
+    boxes.push_back(Aabb{sb.lo + shift, sb.hi + shift}.expanded(params.displacement));
+  }
+
+  tbb::enumerable_thread_specific<std::vector<Leaf*>> leaves;
+  tbb::enumerable_thread_specific<GenerateStats> counts;
+  const int64_t blocks = bn[0] * bn[1] * bn[2];
+  tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
+    const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
+    const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
+    if (o.sparse) {
+      // Voxel centres of this block span [origin, origin + 7] * vs; skip it if no shape is near.
+      const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs,
+                     glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs};
+      bool near = false;
+      for (const Aabb& s : boxes) near |= s.overlaps(box.expanded(1e-9 * vs));
+      if (!near) return;
+    }
+    glm::dvec3 p[kLeaf * kLeaf * kLeaf];
+    float d[kLeaf * kLeaf * kLeaf];
+    int n = 0;
+    for (int z = 0; z < kLeaf; ++z)
+      for (int y = 0; y < kLeaf; ++y)
+        for (int x = 0; x < kLeaf; ++x)
+          p[n++] = glm::dvec3(origin.x() + x, origin.y() + y, origin.z() + z) * vs;
+    GenerateStats& c = counts.local();
+    c.voxels_visited += n;
+    if (o.sparse) {
+      c.noise_evaluations += model.densities(p, size_t(n), d);
+    } else {
+      for (int i = 0; i < n; ++i) d[i] = model.density(p[i]);
+      c.noise_evaluations += n;
+    }
+    Leaf* leaf = nullptr;
+    for (int i = 0; i < n; ++i) {
+      if (!(d[i] > 0.0f)) continue;
+      if (!leaf) leaf = new Leaf(origin, 0.0f, false);
+      leaf->setValueOn(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
+                                      origin.z() + i / (kLeaf * kLeaf)),
+                       d[i]);
+      ++c.active_voxels;
+    }
+    if (leaf) leaves.local().push_back(leaf);
+  });
+
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(vs));
+  for (auto& list : leaves)
+    for (Leaf* leaf : list) grid->tree().addLeaf(leaf);
+
+  if (stats) {
+    GenerateStats s;
+    for (const GenerateStats& c : counts) {
+      s.voxels_visited += c.voxels_visited;
+      s.noise_evaluations += c.noise_evaluations;
+      s.active_voxels += c.active_voxels;
+    }
+    s.voxels_in_bounds = voxels;
+    s.octaves_used = model.octaves_used();
+    s.octaves_requested = params.octaves;
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *stats = s;
+  }
+  return grid;
+}
+
+}  // namespace nimbus::volume

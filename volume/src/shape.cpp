@@ -1,0 +1,79 @@
+// Distances, coverage and bounds of the primitive shapes.
+#include "nimbus/volume/shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <stdexcept>
+
+namespace nimbus::volume {
+
+Aabb Aabb::united(const Aabb& o) const {
+  if (empty()) return o;
+  if (o.empty()) return *this;
+  return {glm::min(lo, o.lo), glm::max(hi, o.hi)};
+}
+
+bool Aabb::overlaps(const Aabb& o) const {
+  return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y && lo.z < o.hi.z &&
+         o.lo.z < hi.z;
+}
+
+double shape_distance(const Shape& s, const glm::dvec3& p) {
+  const glm::dvec3 d = p - s.center;
+  switch (s.kind) {
+    case ShapeKind::Ellipsoid: return glm::length(d / s.size);
+    case ShapeKind::Capsule: {
+      const glm::dvec3 ab = s.end - s.center;
+      const double len2 = glm::dot(ab, ab);
+      const double t = len2 > 0.0 ? std::clamp(glm::dot(d, ab) / len2, 0.0, 1.0) : 0.0;
+      return glm::length(d - t * ab) / s.size.x;
+    }
+    case ShapeKind::Slab: {
+      const glm::dvec3 q = glm::abs(d) / s.size;
+      return std::max({q.x, q.y, q.z});
+    }
+    case ShapeKind::Lens: {
+      // Thickness (1 - r^2) * size.z at radius r (in units of size.x): a lens with a sharp rim.
+      const double r = std::sqrt(d.x * d.x + d.y * d.y) / s.size.x;
+      const double h = std::max(1.0 - r * r, 1e-9) * s.size.z;
+      return std::max(r, std::fabs(d.z) / h);
+    }
+  }
+  return 2.0;
+}
+
+double shape_coverage(const Shape& s, const glm::dvec3& p) {
+  const double u = shape_distance(s, p);
+  if (!(u < 1.0)) return 0.0;
+  const double x = std::clamp((1.0 - u) / s.falloff, 0.0, 1.0);  // 0 at the boundary
+  return s.weight * x * x * (3.0 - 2.0 * x);
+}
+
+Aabb shape_bounds(const Shape& s) {
+  switch (s.kind) {
+    case ShapeKind::Ellipsoid:
+    case ShapeKind::Slab: return {s.center - s.size, s.center + s.size};
+    case ShapeKind::Capsule: {
+      const glm::dvec3 r(s.size.x);
+      return {glm::min(s.center, s.end) - r, glm::max(s.center, s.end) + r};
+    }
+    case ShapeKind::Lens: {
+      const glm::dvec3 r(s.size.x, s.size.x, s.size.z);
+      return {s.center - r, s.center + r};
+    }
+  }
+  return {};
+}
+
+void validate(const Shape& s, const std::string& where) {
+  auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(s.center)) throw std::invalid_argument(where + ".center must be finite");
+  if (!finite(s.size) || !(s.size.x > 0 && s.size.y > 0 && s.size.z > 0))
+    throw std::invalid_argument(where + ".size must be finite and > 0 on every axis");
+  if (s.kind == ShapeKind::Capsule && !finite(s.end)) throw std::invalid_argument(where + ".end must be finite");
+  if (!(s.falloff > 0.0 && s.falloff <= 1.0)) throw std::invalid_argument(where + ".falloff must be in (0, 1]");
+  if (!(s.weight >= 0.0 && s.weight <= 1.0)) throw std::invalid_argument(where + ".weight must be in [0, 1]");
+}
+
+}  // namespace nimbus::volume

@@ -40,6 +40,8 @@ std::unique_ptr<noise::NoiseField> make_field(noise::Kind kind, noise::Fractal f
 void validate(const CloudParams& p) {
   need(!p.shapes.empty(), "shapes: at least one shape is needed");
   for (size_t i = 0; i < p.shapes.size(); ++i) validate(p.shapes[i], "shapes[" + std::to_string(i) + "]");
+  need(std::isfinite(p.base_altitude), "base_altitude must be finite (metres)");
+  need(std::isfinite(p.base_softness) && p.base_softness > 0, "base_softness must be finite and > 0 (metres)");
   need(std::isfinite(p.frequency) && p.frequency > 0, "frequency must be finite and > 0 (cycles per metre)");
   need(p.octaves >= 1 && p.octaves <= noise::kMaxOctaves, "octaves must be in [1, 24]");
   need(std::isfinite(p.lacunarity) && p.lacunarity > 1 && p.lacunarity <= 16, "lacunarity must be in (1, 16]");
@@ -90,6 +92,10 @@ glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
 double CloudModel::coverage_at(const glm::dvec3& q) const {
   double s = 0.0;
   for (const Shape& shape : params_.shapes) s = std::max(s, shape_coverage(shape, q));
+  if (s > 0.0 && q.z < params_.base_altitude + params_.base_softness) {
+    const double x = std::clamp((q.z - params_.base_altitude) / params_.base_softness, 0.0, 1.0);
+    s *= x * x * (3.0 - 2.0 * x);
+  }
   return s;
 }
 

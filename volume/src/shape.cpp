@@ -47,7 +47,13 @@ double shape_coverage(const Shape& s, const glm::dvec3& p) {
   const double u = shape_distance(s, p);
   if (!(u < 1.0)) return 0.0;
   const double x = std::clamp((1.0 - u) / s.falloff, 0.0, 1.0);  // 0 at the boundary
-  return s.weight * x * x * (3.0 - 2.0 * x);
+  double c = s.weight * x * x * (3.0 - 2.0 * x);
+  if (s.fade_up > 0.0) {
+    const Aabb b = shape_bounds(s);
+    const double h = std::clamp((b.hi.z - p.z) / (b.hi.z - b.lo.z), 0.0, 1.0);
+    c *= std::pow(h, s.fade_up);
+  }
+  return c;
 }
 
 Aabb shape_bounds(const Shape& s) {
@@ -74,6 +80,7 @@ void validate(const Shape& s, const std::string& where) {
   if (s.kind == ShapeKind::Capsule && !finite(s.end)) throw std::invalid_argument(where + ".end must be finite");
   if (!(s.falloff > 0.0 && s.falloff <= 1.0)) throw std::invalid_argument(where + ".falloff must be in (0, 1]");
   if (!(s.weight >= 0.0 && s.weight <= 1.0)) throw std::invalid_argument(where + ".weight must be in [0, 1]");
+  if (!(s.fade_up >= 0.0 && s.fade_up <= 16.0)) throw std::invalid_argument(where + ".fade_up must be in [0, 16]");
 }
 
 }  // namespace nimbus::volume

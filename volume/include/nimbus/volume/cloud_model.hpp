@@ -3,7 +3,7 @@
 // units are metres and seconds.
 //
 //   q      = p - wind t + displacement * (fbm_x, fbm_y, fbm_z)(p - wind t)
-//   s      = max over shapes of coverage(q)                        in [0, 1]
+//   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
 //   z      = fbm(q) / sd(fbm)                                      unit variance
 //   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(q)
 //   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
@@ -24,6 +24,10 @@ namespace nimbus::volume {
 
 struct CloudParams {
   std::vector<Shape> shapes;
+  // Cloud base: coverage rises from 0 at base_altitude to full at base_altitude +
+  // base_softness (metres, along z), which flattens the base as convection does.
+  double base_altitude = -1e30;
+  double base_softness = 50.0;
   noise::Kind noise = noise::Kind::Gradient;  // billow noise kind
   double frequency = 1.0 / 400.0;    // billow noise, cycles per metre (first octave)
   int octaves = 6;                   // at most; fewer where the voxel cannot resolve them

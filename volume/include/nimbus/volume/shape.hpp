@@ -29,6 +29,9 @@ struct Shape {
   glm::dvec3 end{0.0};     // capsule: second end of the segment, metres
   double falloff = 0.3;    // share of the size over which coverage falls from 1 to 0, (0, 1]
   double weight = 1.0;     // peak coverage, [0, 1]
+  // Altitude profile: coverage times ((top - z) / (top - bottom))^fade_up over the shape's
+  // height (0: none). Steam and smoke thin out as they rise (seed 004, teacup).
+  double fade_up = 0.0;
 };
 
 // Normalised distance u: < 1 inside, 1 on the boundary, > 1 outside.

@@ -1,0 +1,228 @@
+// Preset documents: the shipped JSON files, their mapping to CloudParams, and overrides.
+#include "nimbus/volume/preset.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "nimbus/noise/params.hpp"
+
+namespace nimbus::volume {
+
+// Generated at configure time from volume/presets/*.json (see volume/CMakeLists.txt).
+struct EmbeddedPreset {
+  const char* name;
+  const char* text;
+};
+extern const EmbeddedPreset kEmbeddedPresets[];
+extern const size_t kEmbeddedPresetCount;
+
+namespace {
+
+using json = nlohmann::json;
+
+[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
+
+json parse(const std::string& text, const std::string& source) {
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    bad(source + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+}
+
+double number(const json& j, const std::string& key) {
+  if (!j.is_number()) bad(key + " must be a number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) bad(key + " must be finite");
+  return v;
+}
+
+glm::dvec3 vec3(const json& j, const std::string& key) {
+  if (!j.is_array() || j.size() != 3) bad(key + " must be an array of 3 numbers");
+  return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
+}
+
+const char* kind_name(ShapeKind k) {
+  switch (k) {
+    case ShapeKind::Ellipsoid: return "ellipsoid";
+    case ShapeKind::Capsule: return "capsule";
+    case ShapeKind::Slab: return "slab";
+    case ShapeKind::Lens: return "lens";
+  }
+  return "?";
+}
+
+Shape shape_from_json(const json& j, const std::string& where) {
+  if (!j.is_object()) bad(where + " must be an object");
+  Shape s;
+  for (const auto& [k, v] : j.items()) {
+    const std::string key = where + "." + k;
+    if (k == "kind") {
+      const std::string n = v.is_string() ? v.get<std::string>() : "";
+      if (n == "ellipsoid") s.kind = ShapeKind::Ellipsoid;
+      else if (n == "capsule") s.kind = ShapeKind::Capsule;
+      else if (n == "slab") s.kind = ShapeKind::Slab;
+      else if (n == "lens") s.kind = ShapeKind::Lens;
+      else bad(key + " must be ellipsoid, capsule, slab or lens");
+    } else if (k == "center") s.center = vec3(v, key);
+    else if (k == "size") s.size = vec3(v, key);
+    else if (k == "end") s.end = vec3(v, key);
+    else if (k == "falloff") s.falloff = number(v, key);
+    else if (k == "weight") s.weight = number(v, key);
+    else if (k == "fade_up") s.fade_up = number(v, key);
+    else bad(key + ": unknown key");
+  }
+  validate(s, where);
+  return s;
+}
+
+json shape_to_json(const Shape& s) {
+  json j = {{"kind", kind_name(s.kind)},
+            {"center", {s.center.x, s.center.y, s.center.z}},
+            {"size", {s.size.x, s.size.y, s.size.z}},
+            {"falloff", s.falloff},
+            {"weight", s.weight}};
+  if (s.kind == ShapeKind::Capsule) j["end"] = {s.end.x, s.end.y, s.end.z};
+  if (s.fade_up > 0) j["fade_up"] = s.fade_up;
+  return j;
+}
+
+}  // namespace
+
+std::vector<PresetInfo> list_presets() {
+  std::vector<PresetInfo> out;
+  for (size_t i = 0; i < kEmbeddedPresetCount; ++i) {
+    const json j = parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
+    out.push_back({kEmbeddedPresets[i].name, j.value("genus", ""), j.value("description", "")});
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  return out;
+}
+
+json load_preset(std::string_view name) {
+  for (size_t i = 0; i < kEmbeddedPresetCount; ++i)
+    if (name == kEmbeddedPresets[i].name)
+      return parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
+  std::string known;
+  for (const auto& p : list_presets()) known += (known.empty() ? "" : ", ") + p.name;
+  bad("unknown preset '" + std::string(name) + "' (known: " + known + ")");
+}
+
+CloudParams cloud_from_json(const json& c, const std::string& where) {
+  if (!c.is_object()) bad(where + " must be an object");
+  CloudParams p;
+  for (const auto& [k, v] : c.items()) {
+    const std::string key = where + "." + k;
+    if (k == "shapes") {
+      if (!v.is_array()) bad(key + " must be an array of shapes");
+      for (size_t i = 0; i < v.size(); ++i) p.shapes.push_back(shape_from_json(v[i], key + "[" + std::to_string(i) + "]"));
+    } else if (k == "noise") {
+      const auto kind = v.is_string() ? noise::parse_kind(v.get<std::string>()) : std::nullopt;
+      if (!kind) bad(key + " must be value, gradient or wavelet");
+      p.noise = *kind;
+    } else if (k == "octaves") {
+      if (!v.is_number_integer()) bad(key + " must be an integer");
+      p.octaves = v.get<int>();
+    } else if (k == "seed") {
+      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      p.seed = v.get<uint32_t>();
+    } else if (k == "sine") {
+      if (!v.is_boolean()) bad(key + " must be true or false");
+      p.gas.sine = v.get<bool>();
+    } else if (k == "wind") p.wind = vec3(v, key);
+    else if (k == "frequency") p.frequency = number(v, key);
+    else if (k == "base_altitude") p.base_altitude = number(v, key);
+    else if (k == "base_softness") p.base_softness = number(v, key);
+    else if (k == "lacunarity") p.lacunarity = number(v, key);
+    else if (k == "gain") p.gain = number(v, key);
+    else if (k == "coverage") p.coverage = number(v, key);
+    else if (k == "billow") p.billow = number(v, key);
+    else if (k == "erosion") p.erosion = number(v, key);
+    else if (k == "erosion_frequency") p.erosion_frequency = number(v, key);
+    else if (k == "displacement") p.displacement = number(v, key);
+    else if (k == "displacement_frequency") p.displacement_frequency = number(v, key);
+    else if (k == "density") p.gas.max_density = static_cast<float>(number(v, key));
+    else if (k == "exponent") p.gas.exponent = static_cast<float>(number(v, key));
+    else if (k == "evolution") p.evolution = number(v, key);
+    else bad(key + ": unknown key");
+  }
+  try {
+    validate(p);
+  } catch (const std::invalid_argument& e) {
+    bad(where + ": " + e.what());
+  }
+  return p;
+}
+
+json cloud_to_json(const CloudParams& p) {
+  json shapes = json::array();
+  for (const Shape& s : p.shapes) shapes.push_back(shape_to_json(s));
+  return {{"base_altitude", p.base_altitude},
+          {"base_softness", p.base_softness},
+          {"noise", std::string(noise::to_string(p.noise))},
+          {"frequency", p.frequency},
+          {"octaves", p.octaves},
+          {"lacunarity", p.lacunarity},
+          {"gain", p.gain},
+          {"coverage", p.coverage},
+          {"billow", p.billow},
+          {"erosion", p.erosion},
+          {"erosion_frequency", p.erosion_frequency},
+          {"displacement", p.displacement},
+          {"displacement_frequency", p.displacement_frequency},
+          {"density", p.gas.max_density},
+          {"exponent", p.gas.exponent},
+          {"sine", p.gas.sine},
+          {"wind", {p.wind.x, p.wind.y, p.wind.z}},
+          {"evolution", p.evolution},
+          {"seed", p.seed},
+          {"shapes", shapes}};
+}
+
+void set_key(json& cloud, std::string_view key_eq_value) {
+  const size_t eq = key_eq_value.find('=');
+  if (eq == std::string_view::npos || eq == 0) bad("--set '" + std::string(key_eq_value) + "': expected key=value");
+  const std::string key(key_eq_value.substr(0, eq));
+  const std::string text(key_eq_value.substr(eq + 1));
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::exception&) {
+    value = text;  // a plain string, e.g. noise=wavelet
+  }
+  json* node = &cloud;
+  size_t start = 0;
+  while (true) {
+    const size_t dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    json* next = nullptr;
+    if (node->is_object() && node->contains(part)) {
+      next = &(*node)[part];
+    } else if (node->is_array() && !part.empty() && part.find_first_not_of("0123456789") == std::string::npos &&
+               std::stoul(part) < node->size()) {
+      next = &(*node)[std::stoul(part)];
+    }
+    if (!next) bad("--set " + key + ": unknown key '" + part + "'");
+    node = next;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  *node = value;
+}
+
+void merge_params_file(json& preset, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) bad("--params " + path + ": cannot read the file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const json j = parse(text, "--params " + path);
+  if (!j.is_object()) bad("--params " + path + ": must hold a JSON object");
+  if (j.contains("cloud")) {
+    preset.merge_patch(j);
+  } else {
+    preset["cloud"].merge_patch(j);
+  }
+}
+
+}  // namespace nimbus::volume

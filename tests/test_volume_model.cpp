@@ -264,3 +264,29 @@ TEST(VolumeGenerate, BoundsBeyondMemoryAreRefusedBeforeAllocating) {
 
 }  // namespace
 }  // namespace nimbus::volume
+
+namespace nimbus::volume {
+namespace {
+
+TEST(VolumeGenerate, TemperatureCoolsWithHeightOnTheDensityVoxels) {
+  CloudParams p = test_cloud();
+  p.temperature_base = 900.0;
+  p.temperature_height = 1200.0;
+  GenerateOptions o;
+  o.voxel_size = 50.0;
+  const auto d = generate_density(p, o);
+  const auto t = generate_temperature(p, *d);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->getName(), "temperature");
+  EXPECT_TRUE(t->tree().hasSameTopology(d->tree()));
+  EXPECT_EQ(t->transform(), d->transform());
+  for (auto it = t->cbeginValueOn(); it; ++it) {
+    const double z = t->indexToWorld(it.getCoord()).z();
+    ASSERT_NEAR(*it, std::clamp(1.0 - (z - 900.0) / 1200.0, 0.0, 1.0), 1e-6);
+  }
+  p.temperature_height = 0.0;
+  EXPECT_FALSE(generate_temperature(p, *d));
+}
+
+}  // namespace
+}  // namespace nimbus::volume

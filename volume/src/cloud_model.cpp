@@ -57,6 +57,9 @@ void validate(const CloudParams& p) {
   need(std::isfinite(p.gas.exponent) && p.gas.exponent > 0 && p.gas.exponent <= 16, "exponent must be in (0, 16]");
   need(finite3(p.wind), "wind must be finite (metres per second)");
   need(std::isfinite(p.evolution), "evolution must be finite");
+  need(std::isfinite(p.temperature_base), "temperature_base must be finite (metres)");
+  need(std::isfinite(p.temperature_height) && p.temperature_height >= 0,
+       "temperature_height must be finite and >= 0 (metres; 0: no temperature grid)");
 }
 
 CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time_seconds)

@@ -4,6 +4,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -120,6 +121,22 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     *stats = s;
   }
   return grid;
+}
+
+openvdb::FloatGrid::Ptr generate_temperature(const CloudParams& params, const openvdb::FloatGrid& density) {
+  if (!(params.temperature_height > 0.0)) return nullptr;
+  auto t = openvdb::FloatGrid::create(0.0f);
+  t->setName("temperature");
+  t->setGridClass(openvdb::GRID_FOG_VOLUME);
+  t->setTransform(density.transform().copy());
+  // Same topology as the density, then values from the altitude of each voxel.
+  t->tree().topologyUnion(density.tree());
+  for (auto it = t->beginValueOn(); it; ++it) {
+    const openvdb::Vec3d w = t->indexToWorld(it.getCoord());
+    const double h = (w.z() - params.temperature_base) / params.temperature_height;
+    it.setValue(static_cast<float>(std::clamp(1.0 - h, 0.0, 1.0)));
+  }
+  return t;
 }
 
 }  // namespace nimbus::volume

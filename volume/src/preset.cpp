@@ -146,6 +146,8 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "density") p.gas.max_density = static_cast<float>(number(v, key));
     else if (k == "exponent") p.gas.exponent = static_cast<float>(number(v, key));
     else if (k == "evolution") p.evolution = number(v, key);
+    else if (k == "temperature_base") p.temperature_base = number(v, key);
+    else if (k == "temperature_height") p.temperature_height = number(v, key);
     else bad(key + ": unknown key");
   }
   try {
@@ -178,6 +180,8 @@ json cloud_to_json(const CloudParams& p) {
           {"wind", {p.wind.x, p.wind.y, p.wind.z}},
           {"evolution", p.evolution},
           {"seed", p.seed},
+          {"temperature_base", p.temperature_base},
+          {"temperature_height", p.temperature_height},
           {"shapes", shapes}};
 }
 

@@ -43,6 +43,11 @@ struct CloudParams {
   glm::dvec3 wind{0.0};              // metres per second
   double evolution = 0.0;            // noise lattice units per second (boiling); 0: static
   uint32_t seed = 0;
+  // Hot gases (smoke, steam): a temperature grid on the density's voxels, 1 at
+  // temperature_base and cooling linearly to 0 over temperature_height metres above it
+  // (Blender reads 0..1 as 0..1000 K). temperature_height 0: no temperature grid.
+  double temperature_base = 0.0;
+  double temperature_height = 0.0;
 };
 
 // Throws std::invalid_argument naming the parameter.

@@ -32,4 +32,9 @@ struct GenerateStats {
 openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& options,
                                          GenerateStats* stats = nullptr);
 
+// The temperature grid "temperature" of a hot gas, on exactly the density grid's active
+// voxels and transform (see CloudParams::temperature_height); nullptr when the parameters
+// ask for none. Values in [0, 1].
+openvdb::FloatGrid::Ptr generate_temperature(const CloudParams& params, const openvdb::FloatGrid& density);
+
 }  // namespace nimbus::volume

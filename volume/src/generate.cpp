@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -62,7 +63,10 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   tbb::enumerable_thread_specific<std::vector<Leaf*>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
   const int64_t blocks = bn[0] * bn[1] * bn[2];
+  std::atomic<int64_t> done{0};
+  const int64_t report_every = std::max<int64_t>(1, blocks / 100);
   tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
+    if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(blocks));
     const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
     const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
     if (o.sparse) {
@@ -90,7 +94,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     }
     Leaf* leaf = nullptr;
     for (int i = 0; i < n; ++i) {
-      if (!(d[i] > 0.0f)) continue;
+      if (!(d[i] >= kMinDensity)) continue;
       if (!leaf) leaf = new Leaf(origin, 0.0f, false);
       leaf->setValueOn(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
                                       origin.z() + i / (kLeaf * kLeaf)),

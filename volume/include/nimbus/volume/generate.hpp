@@ -1,27 +1,35 @@
 // Density grids from a cloud model: a sparse OpenVDB FloatGrid whose active voxels are exactly
-// those with density > 0. Only leaf blocks (8^3 voxels) that overlap the shapes are visited,
+// those with density >= kMinDensity. Only leaf blocks (8^3 voxels) that overlap the shapes are visited,
 // only voxels whose coverage can still produce density evaluate the noise, and the noise
 // keeps only the octaves the voxel size resolves.
 #pragma once
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
+#include <functional>
 
 #include "nimbus/volume/cloud_model.hpp"
 
 namespace nimbus::volume {
 
+// Below this a voxel is empty: half floats round densities under 2^-24 to 0, and a file should
+// never hold active voxels of value 0.
+inline constexpr float kMinDensity = 1e-6f;
+
 struct GenerateOptions {
   double voxel_size = 25.0;  // metres; voxel (i, j, k) is centred at (i, j, k) * voxel_size
   double time = 0.0;         // seconds
   bool sparse = true;        // false: evaluate every voxel of the bounds (the naive anchor)
+  // Called now and then with the share of leaf blocks done, from any thread (the callee
+  // serialises); may be empty.
+  std::function<void(double)> progress;
 };
 
 struct GenerateStats {
   int64_t voxels_in_bounds = 0;   // voxels of the model's bounding box
   int64_t voxels_visited = 0;     // voxels of the leaf blocks that overlap a shape
   int64_t noise_evaluations = 0;  // voxels that needed the billow noise
-  int64_t active_voxels = 0;      // voxels with density > 0
+  int64_t active_voxels = 0;      // voxels with density >= kMinDensity
   int octaves_used = 0;
   int octaves_requested = 0;
   double seconds = 0.0;

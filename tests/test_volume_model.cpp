@@ -160,6 +160,8 @@ TEST(VolumeModel, BadParametersNameTheParameter) {
   q = p; q.erosion = -0.1; expect_throw(q, "erosion");
   q = p; q.wind.x = INFINITY; expect_throw(q, "wind");
   q = p; q.octaves = 0; expect_throw(q, "octaves");
+  q = p; q.furrows = 1.5; expect_throw(q, "furrows");
+  q = p; q.furrow_frequency = 0; expect_throw(q, "furrow_frequency");
 }
 
 bool same_grids(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b) {
@@ -260,6 +262,42 @@ TEST(VolumeGenerate, BoundsBeyondMemoryAreRefusedBeforeAllocating) {
   GenerateOptions o;
   o.voxel_size = 1.0;
   EXPECT_THROW(generate_density(p, o), std::invalid_argument);
+}
+
+// Furrows (ridged noise subtracted, the cumulonimbus's deep grooves): the batched path still
+// equals the scalar path bit for bit, the furrows only ever remove density (so the bound that
+// skips the noise still holds), they cut a real share of the cloud away, and furrows = 0 is
+// the plain field.
+TEST(VolumeModel, FurrowsOnlyCarveAndKeepBatchedEqualToScalar) {
+  CloudParams plain = test_cloud();
+  CloudParams furrowed = plain;
+  furrowed.furrows = 0.6;
+  furrowed.furrow_frequency = 1.0 / 700.0;
+  const CloudModel a(plain, 15.0, 0.0), b(furrowed, 15.0, 0.0);
+  std::vector<glm::dvec3> pts;
+  for (int i = 0; i < 20000; ++i) pts.push_back({-800 + 0.083 * i, 37.0 - 0.01 * i, 900 + 0.041 * i});
+  std::vector<float> batch(pts.size());
+  b.densities(pts.data(), pts.size(), batch.data());
+  int carved = 0, inside = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    ASSERT_EQ(batch[i], b.density(pts[i])) << i;
+    const float da = a.density(pts[i]);
+    ASSERT_LE(batch[i], da) << i;
+    inside += da > 0.0f;
+    carved += da > 0.0f && batch[i] == 0.0f;
+  }
+  ASSERT_GT(inside, 1000);
+  EXPECT_GT(carved, inside / 20) << "the furrows cut into the cloud";
+  EXPECT_LT(carved, inside) << "and leave lumps between them";
+  CloudParams zero = furrowed;
+  zero.furrows = 0.0;
+  const CloudModel z(zero, 15.0, 0.0);
+  for (size_t i = 0; i < pts.size(); i += 7) ASSERT_EQ(z.density(pts[i]), a.density(pts[i]));
+  GenerateOptions o;
+  o.voxel_size = 40.0;
+  const auto sparse = generate_density(furrowed, o);
+  o.sparse = false;
+  EXPECT_TRUE(same_grids(*sparse, *generate_density(furrowed, o)));
 }
 
 }  // namespace

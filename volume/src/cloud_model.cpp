@@ -50,6 +50,8 @@ void validate(const CloudParams& p) {
   need(std::isfinite(p.billow) && p.billow >= 0, "billow must be finite and >= 0");
   need(p.erosion >= 0 && p.erosion <= 1, "erosion must be in [0, 1]");
   need(std::isfinite(p.erosion_frequency) && p.erosion_frequency > 0, "erosion_frequency must be finite and > 0");
+  need(p.furrows >= 0 && p.furrows <= 1, "furrows must be in [0, 1]");
+  need(std::isfinite(p.furrow_frequency) && p.furrow_frequency > 0, "furrow_frequency must be finite and > 0");
   need(std::isfinite(p.displacement) && p.displacement >= 0, "displacement must be finite and >= 0 (metres)");
   need(std::isfinite(p.displacement_frequency) && p.displacement_frequency > 0,
        "displacement_frequency must be finite and > 0");
@@ -73,6 +75,9 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   if (p.erosion > 0)
     detail_ = make_field(p.noise, noise::Fractal::Turbulence, 3, p.erosion_frequency, 2.0, 0.5,
                          p.seed + 1, p.evolution, time_, voxel_size);
+  if (p.furrows > 0)
+    furrow_ = make_field(p.noise, noise::Fractal::Ridged, 3, p.furrow_frequency, 2.0, 0.5, p.seed + 5,
+                         p.evolution, time_, voxel_size);
   if (p.displacement > 0)
     for (int a = 0; a < 3; ++a)
       disp_[a] = make_field(noise::Kind::Gradient, noise::Fractal::Fbm, 3, p.displacement_frequency,
@@ -102,9 +107,10 @@ double CloudModel::coverage_at(const glm::dvec3& q) const {
   return s;
 }
 
-float CloudModel::finish(double s, float billow_noise, float detail) const {
+float CloudModel::finish(double s, float billow_noise, float detail, float furrow) const {
   const double z = double(billow_noise) * inv_sd_;
-  const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail);
+  const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail) -
+                   params_.furrows * double(furrow);
   return gas_density(static_cast<float>(f), params_.gas);
 }
 
@@ -114,7 +120,8 @@ float CloudModel::density(const glm::dvec3& p) const {
   if (!(s > min_useful_coverage_)) return 0.0f;
   const float n = billow_->eval(q.x, q.y, q.z);
   const float d = detail_ ? detail_->eval(q.x, q.y, q.z) : 0.0f;
-  return finish(s, n, d);
+  const float r = furrow_ ? furrow_->eval(q.x, q.y, q.z) : 0.0f;
+  return finish(s, n, d, r);
 }
 
 Aabb CloudModel::bounds() const {
@@ -152,10 +159,11 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     }
   }
   if (busy.empty()) return 0;
-  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f);
+  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f), nr(busy.size(), 0.0f);
   noise::evaluate_points(*billow_, busy, nb, serial);
   if (detail_) noise::evaluate_points(*detail_, busy, nd, serial);
-  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k]);
+  if (furrow_) noise::evaluate_points(*furrow_, busy, nr, serial);
+  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k], nr[k]);
   return static_cast<int64_t>(busy.size());
 }
 

@@ -141,6 +141,8 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "billow") p.billow = number(v, key);
     else if (k == "erosion") p.erosion = number(v, key);
     else if (k == "erosion_frequency") p.erosion_frequency = number(v, key);
+    else if (k == "furrows") p.furrows = number(v, key);
+    else if (k == "furrow_frequency") p.furrow_frequency = number(v, key);
     else if (k == "displacement") p.displacement = number(v, key);
     else if (k == "displacement_frequency") p.displacement_frequency = number(v, key);
     else if (k == "density") p.gas.max_density = static_cast<float>(number(v, key));
@@ -172,6 +174,8 @@ json cloud_to_json(const CloudParams& p) {
           {"billow", p.billow},
           {"erosion", p.erosion},
           {"erosion_frequency", p.erosion_frequency},
+          {"furrows", p.furrows},
+          {"furrow_frequency", p.furrow_frequency},
           {"displacement", p.displacement},
           {"displacement_frequency", p.displacement_frequency},
           {"density", p.gas.max_density},

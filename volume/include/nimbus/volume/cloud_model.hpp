@@ -6,10 +6,14 @@
 //   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
 //   z      = fbm(q) / sd(fbm)                                      unit variance
 //   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(q)
+//            - furrows * ridged(q)
 //   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
 // The noise modulates the coverage, so the density is exactly 0 outside the shapes and
 // continuous at their boundary; since |fbm| <= 1, f can be positive only where
 // s > (1 - coverage) / (1 + billow / sd(fbm)), and the noise is evaluated only there.
+// ridged = sum a_i (1 - |n_i|)^2 / sum a_i peaks sharply where the noise crosses zero (the
+// seed's cumulonimbus: turbulence "folded at the middle"), so subtracting it cuts deep, narrow
+// furrows between large smooth lumps; it is in [0, 1] and only lowers f, so the bound holds.
 #pragma once
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -37,6 +41,8 @@ struct CloudParams {
   double billow = 0.35;              // noise amplitude, in coverage units per noise sd
   double erosion = 0.0;              // [0, 1]: detail turbulence eaten from the field
   double erosion_frequency = 1.0 / 60.0;  // cycles per metre
+  double furrows = 0.0;              // [0, 1]: ridged noise subtracted (cumulonimbus furrows); 0: none
+  double furrow_frequency = 1.0 / 1500.0;  // cycles per metre; lumps are about half a cycle across
   double displacement = 0.0;         // metres: turbulent displacement of the coordinates
   double displacement_frequency = 1.0 / 800.0;  // cycles per metre
   GasParams gas;
@@ -81,14 +87,14 @@ class CloudModel {
  private:
   glm::dvec3 moved(const glm::dvec3& p) const;  // wind and displacement applied
   double coverage_at(const glm::dvec3& q) const;
-  float finish(double s, float billow_noise, float detail) const;
+  float finish(double s, float billow_noise, float detail, float furrow) const;
 
   CloudParams params_;
   double time_;
   double threshold_;            // 1 - coverage
   double inv_sd_;               // 1 / sd(fbm)
   double min_useful_coverage_;
-  std::unique_ptr<noise::NoiseField> billow_, detail_, disp_[3];
+  std::unique_ptr<noise::NoiseField> billow_, detail_, furrow_, disp_[3];
 };
 
 }  // namespace nimbus::volume

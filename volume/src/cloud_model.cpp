@@ -138,21 +138,40 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     const glm::dvec3 m = points[i] - params_.wind * time_;
     q[i] = {m.x, m.y, m.z};
   }
+  // A point farther than `displacement` from every shape cannot be displaced into one: its
+  // density is 0, so it needs no displacement noise (and no other noise).
+  std::vector<uint8_t> far(n, 0);
   if (disp_[0]) {
+    size_t kept = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const glm::dvec3 m(q[i][0], q[i][1], q[i][2]);
+      bool is_far = true;
+      for (const Shape& s : params_.shapes) is_far = is_far && shape_distance_bound(s, m) > params_.displacement;
+      far[i] = is_far;
+      kept += !is_far;
+    }
+    std::vector<std::array<double, 3>> near;
+    near.reserve(kept);
+    for (size_t i = 0; i < n; ++i)
+      if (!far[i]) near.push_back(q[i]);
     std::vector<float> d[3];
     for (int a = 0; a < 3; ++a) {
-      d[a].resize(n);
-      noise::evaluate_points(*disp_[a], q, d[a], serial);
+      d[a].resize(near.size());
+      noise::evaluate_points(*disp_[a], near, d[a], serial);
     }
-    for (size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(d[a][i]);
+    for (size_t i = 0, k = 0; i < n; ++i) {
+      if (far[i]) continue;
+      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(d[a][k]);
+      ++k;
+    }
   }
   std::vector<double> s(n);
   std::vector<std::array<double, 3>> busy;
   std::vector<uint32_t> where;
   for (size_t i = 0; i < n; ++i) {
-    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]});
     out[i] = 0.0f;
+    if (far[i]) continue;
+    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]});
     if (s[i] > min_useful_coverage_) {
       busy.push_back(q[i]);
       where.push_back(static_cast<uint32_t>(i));

@@ -35,7 +35,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
   const auto t0 = std::chrono::steady_clock::now();
-  const CloudModel model(params, o.voxel_size, o.time);
+  // The model's voxel size is the footprint that limits the noise octaves; a vanishing one
+  // keeps them all.
+  const CloudModel model(params, o.octave_limit ? o.voxel_size : 1e-12, o.time);
   const double vs = o.voxel_size;
   const Aabb b = model.bounds();
   int64_t lo[3], hi[3], voxels = 1;

@@ -43,6 +43,25 @@ double shape_distance(const Shape& s, const glm::dvec3& p) {
   return 2.0;
 }
 
+double shape_distance_bound(const Shape& s, const glm::dvec3& p) {
+  const double u = shape_distance(s, p);
+  if (!(u > 1.0)) return 0.0;
+  switch (s.kind) {
+    // u scales the offset by 1/size per axis, so a Euclidean step of length l changes u by at
+    // most l / min(size): the boundary u = 1 is at least (u - 1) min(size) away.
+    case ShapeKind::Ellipsoid:
+    case ShapeKind::Slab: return (u - 1.0) * std::min({s.size.x, s.size.y, s.size.z});
+    case ShapeKind::Capsule: return (u - 1.0) * s.size.x;  // u is distance / radius
+    case ShapeKind::Lens: {
+      // Outside the rim cylinder the horizontal distance bounds it; above or below the lens
+      // no cheap bound is used.
+      const double r = std::sqrt((p.x - s.center.x) * (p.x - s.center.x) + (p.y - s.center.y) * (p.y - s.center.y));
+      return r > s.size.x ? r - s.size.x : 0.0;
+    }
+  }
+  return 0.0;
+}
+
 double shape_coverage(const Shape& s, const glm::dvec3& p) {
   const double u = shape_distance(s, p);
   if (!(u < 1.0)) return 0.0;

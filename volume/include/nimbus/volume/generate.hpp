@@ -20,6 +20,7 @@ struct GenerateOptions {
   double voxel_size = 25.0;  // metres; voxel (i, j, k) is centred at (i, j, k) * voxel_size
   double time = 0.0;         // seconds
   bool sparse = true;        // false: evaluate every voxel of the bounds (the naive anchor)
+  bool octave_limit = true;  // false: keep every octave, even those the voxels cannot resolve
   // Called now and then with the share of leaf blocks done, from any thread (the callee
   // serialises); may be empty.
   std::function<void(double)> progress;

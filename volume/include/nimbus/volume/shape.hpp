@@ -34,6 +34,10 @@ struct Shape {
   double fade_up = 0.0;
 };
 
+// A lower bound, in metres, of the distance from p to where the shape's coverage is non-zero
+// (0 when p may be inside, or when no cheap bound is known).
+double shape_distance_bound(const Shape& s, const glm::dvec3& p);
+
 // Normalised distance u: < 1 inside, 1 on the boundary, > 1 outside.
 double shape_distance(const Shape& s, const glm::dvec3& p);
 // weight * smoothstep from 1 (at u = 1 - falloff) down to 0 (at u = 1).

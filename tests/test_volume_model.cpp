@@ -63,7 +63,9 @@ TEST(VolumeShape, CoverageIsWeightInsideZeroOutsideAndWithinBounds) {
       ASSERT_GE(c, 0.0);
       ASSERT_LE(c, s.weight);
       const bool in_box = p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
-      if (c > 0.0) ASSERT_TRUE(in_box) << "kind " << int(k) << " coverage outside its bounds";
+      if (c > 0.0) {
+        ASSERT_TRUE(in_box) << "kind " << int(k) << " coverage outside its bounds";
+      }
       inside += c > 0.0;
     }
     EXPECT_GT(inside, 100) << int(k);
@@ -121,7 +123,9 @@ TEST(VolumeModel, DensityIsFiniteNonNegativeAndZeroOutsideTheBounds) {
     ASSERT_TRUE(std::isfinite(d));
     ASSERT_GE(d, 0.0f);
     const bool in_box = q.x >= b.lo.x && q.x <= b.hi.x && q.y >= b.lo.y && q.y <= b.hi.y && q.z >= b.lo.z && q.z <= b.hi.z;
-    if (d > 0.0f) ASSERT_TRUE(in_box);
+    if (d > 0.0f) {
+      ASSERT_TRUE(in_box);
+    }
     positive += d > 0.0f;
   }
   EXPECT_GT(positive, 1000);

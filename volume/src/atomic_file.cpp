@@ -1,6 +1,7 @@
 // Temporary-file-then-rename writes.
 #include "nimbus/volume/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,6 +9,19 @@
 #include <string>
 
 namespace nimbus::volume {
+namespace {
+
+// Flushes a file's (or directory's) data to the disk, so that after a crash the renamed file
+// holds the complete content rather than an empty or partial one.
+bool sync_path(const std::filesystem::path& p, int flags) {
+  const int fd = ::open(p.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+}  // namespace
 
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& write) {
@@ -23,7 +37,9 @@ void write_atomically(const std::filesystem::path& path,
                                  std::to_string(::getpid()) + "." + std::to_string(counter++));
   try {
     write(tmp);
+    if (!sync_path(tmp, O_RDONLY)) throw std::runtime_error("cannot flush " + path.string() + " to disk");
     fs::rename(tmp, path);
+    sync_path(parent, O_RDONLY | O_DIRECTORY);  // makes the rename durable; best effort
   } catch (...) {
     fs::remove(tmp, ec);
     throw;

@@ -1,26 +1,45 @@
-// OpenVDB output of dense grids.
+// OpenVDB output of dense sample grids, and the sealed, atomic file write every writer uses.
 #include "nimbus/volume/vdb_io.hpp"
 
-#include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
 
 #include "nimbus/volume/atomic_file.hpp"
+#include "vdb_common.hpp"
+#include "vdb_seal.hpp"
 
 namespace nimbus::volume {
-namespace {
-void init_openvdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
+
+const char* library_version() { return NIMBUS_VERSION; }
+
+namespace detail {
+
+void write_sealed_vdb(const std::filesystem::path& path, const openvdb::GridCPtrVec& grids,
+                      openvdb::MetaMap meta) {
+  init_openvdb();
+  if (meta[kChecksumKey]) meta.removeMeta(kChecksumKey);
+  meta.insertMeta(kChecksumKey, openvdb::StringMetadata(checksum_placeholder()));
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::string uuid;
+    try {
+      openvdb::io::File file(tmp.string());
+      file.write(grids, meta);  // the library's default compression: Blosc + active mask
+      uuid = file.getUniqueTag();
+      file.close();
+    } catch (const std::exception& e) {
+      throw std::runtime_error("cannot write " + path.string() + ": " + one_line(e.what()));
+    }
+    seal_vdb_file(tmp, uuid, path);
+  });
 }
-}  // namespace
+
+}  // namespace detail
 
 void write_dense_vdb(const std::filesystem::path& path, const DenseGridDesc& desc,
                      std::span<const float> values) {
-  init_openvdb();
+  detail::init_openvdb();
   const int64_t count = desc.res[0] * desc.res[1] * desc.res[2];
   if (static_cast<int64_t>(values.size()) != count)
     throw std::invalid_argument("grid " + desc.name + ": value count does not match resolution");
@@ -46,18 +65,7 @@ void write_dense_vdb(const std::filesystem::path& path, const DenseGridDesc& des
   grid->setGridClass(desc.grid_class == GridClass::FogVolume ? openvdb::GRID_FOG_VOLUME
                                                               : openvdb::GRID_UNKNOWN);
   grid->setSaveFloatAsHalf(desc.half_float);
-
-  openvdb::MetaMap meta;
-  for (const auto& [key, value] : desc.metadata) {
-    if (const auto* s = std::get_if<std::string>(&value)) meta.insertMeta(key, openvdb::StringMetadata(*s));
-    else if (const auto* d = std::get_if<double>(&value)) meta.insertMeta(key, openvdb::DoubleMetadata(*d));
-    else meta.insertMeta(key, openvdb::Int64Metadata(std::get<int64_t>(value)));
-  }
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    openvdb::io::File file(tmp.string());
-    file.write({grid}, meta);
-    file.close();
-  });
+  detail::write_sealed_vdb(path, {grid}, detail::to_meta_map(desc.metadata));
 }
 
 }  // namespace nimbus::volume

@@ -6,9 +6,10 @@
 
 namespace nimbus::volume {
 
-// Calls write(tmp_path) to produce the file, then renames tmp_path to `path`. Creates missing
-// parent directories. On any exception the temporary file is removed and the exception
-// propagates; `path` is untouched.
+// Calls write(tmp_path) to produce the file, flushes it to disk (fsync), then renames tmp_path
+// to `path` and flushes the directory, so a crash leaves either the old file or the complete
+// new one. Creates missing parent directories. On any exception the temporary file is removed
+// and the exception propagates; `path` is untouched.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& write);
 

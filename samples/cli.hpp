@@ -17,6 +17,7 @@ struct UsageError : std::invalid_argument {
 using Action = std::function<int()>;
 void add_noise_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
+void add_info_command(CLI::App& app, Action& action);
 
 // Benchmarks, each a `nimbus bench NAME` subcommand.
 void add_bench_noise(CLI::App& bench, Action& action);

@@ -7,6 +7,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   CLI::App* bench = app.add_subcommand("bench", "Run a benchmark and print its table");
   bench->require_subcommand(1);
   add_bench_noise(*bench, action);
+  add_bench_volume(*bench, action);
 }
 
 }  // namespace nimbus::cli

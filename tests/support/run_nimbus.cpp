@@ -8,9 +8,10 @@
 
 namespace nimbus::test {
 
-RunResult run_nimbus(const std::string& args) {
-  const std::string cmd = std::string(NIMBUS_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
+RunResult run_nimbus(const std::string& args) { return run_command(std::string(NIMBUS_BINARY) + " " + args); }
+
+RunResult run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return {-1, ""};
   std::string out;
   std::array<char, 4096> buf;

@@ -30,7 +30,5 @@ void write_bytes(const std::filesystem::path& file, const std::string& bytes);
 // Files in `dir` whose name contains ".tmp" (write_atomically's temporary files).
 int count_temp_files(const std::filesystem::path& dir);
 
-// Runs a shell command line; stdout and stderr together.
-RunResult run_command(const std::string& command);
 
 }  // namespace nimbus::test

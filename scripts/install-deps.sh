@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config git python3
   libtbb-dev libopenvdb-dev libboost-iostreams-dev libblosc-dev zlib1g-dev
-  libopenexr-dev libglm-dev libglfw3-dev libepoxy-dev libegl-dev
+  libopenexr-dev libglm-dev libglfw3-dev libepoxy-dev libegl-dev glslang-tools libgl1-mesa-dri
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev libkissfft-dev
   libnoise-dev
   libopenvdb-tools python3-openvdb

@@ -1,0 +1,56 @@
+// The GPU light-shaft renderer: the scene's surfaces lit with shadow maps and attenuated by the
+// medium, plus the single-scattered airlight of each light by ray marching, the analytic
+// airlight or shadow-volume intervals (shaft_method.hpp). Draws into the current GL 4.5 context.
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "nimbus/render/camera.hpp"
+#include "nimbus/render/image.hpp"
+#include "nimbus/render/scene.hpp"
+#include "nimbus/render/shaft_method.hpp"
+
+namespace nimbus::render {
+
+struct ShaftSettings {
+  int point_shadow_res = 1024;    // texels per cube face side
+  int sun_shadow_res = 2048;      // texels per side of the sun's orthographic map
+  double ground_extent_m = 1000;  // half-size of the ground quad standing for the infinite plane
+  double march_cutoff_optical = 9.21;  // rays hitting nothing are marched to this optical depth (e^-9.21 = 1e-4)
+  double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
+  std::size_t max_skirt_quads = 1u << 20;  // per light; beyond it the whole ray is sampled
+  unsigned jitter_seed = 1;
+};
+
+// Per-frame costs (GPU time per pass, ms) and what the shadow-volume pass built.
+struct ShaftFrameStats {
+  double shadow_maps_ms = 0, surfaces_ms = 0, shadow_volume_ms = 0, shafts_ms = 0, total_ms = 0;
+  std::size_t skirt_quads = 0;   // summed over lights
+  bool skirt_overflow = false;   // a light's skirts exceeded max_skirt_quads
+  std::string timing;            // how the times were taken
+};
+
+class ShaftRenderer {
+ public:
+  // Validates the scene (std::invalid_argument) and uploads its geometry. Needs a current GL
+  // 4.5 context; at most 4 point lights and one sun.
+  ShaftRenderer(const Scene& scene, const ShaftSettings& settings = {});
+  ~ShaftRenderer();
+  ShaftRenderer(const ShaftRenderer&) = delete;
+  ShaftRenderer& operator=(const ShaftRenderer&) = delete;
+
+  // One frame. `method` must not be Reference (that is render_reference, on the CPU); the
+  // analytic table form covers the isotropic phase only (std::invalid_argument otherwise).
+  Image render(const Camera& camera, const ShaftMethod& method, ShaftFrameStats* stats = nullptr);
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Image metadata describing a frame (camera, lights, medium, method), shared with the reference.
+void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method);
+
+}  // namespace nimbus::render

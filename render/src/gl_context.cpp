@@ -275,6 +275,18 @@ void GlContext::make_current() {
 }
 
 std::unique_ptr<GlContext> GlContext::create_headless() {
+  // NIMBUS_EGL_DEVICE: "" (choose), "software", or a device index; a bad value is named first.
+  const char* forced = std::getenv("NIMBUS_EGL_DEVICE");
+  const std::string forced_value = forced != nullptr ? forced : "";
+  long forced_index = -1;
+  if (!forced_value.empty() && forced_value != "software") {
+    char* end = nullptr;
+    forced_index = std::strtol(forced_value.c_str(), &end, 10);
+    if (end == forced_value.c_str() || *end != '\0' || forced_index < 0) {
+      throw GlUnavailable(kUnavailable + ("NIMBUS_EGL_DEVICE='" + forced_value +
+                                          "' is neither a device index nor 'software'"));
+    }
+  }
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (client == nullptr || *client == '\0') {
     // glvnd answers with an empty list when it loaded no vendor library at all.
@@ -290,9 +302,8 @@ std::unique_ptr<GlContext> GlContext::create_headless() {
     return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));
   };
 
-  const char* forced = std::getenv("NIMBUS_EGL_DEVICE");
-  if (forced != nullptr && *forced != '\0') {
-    const std::string value = forced;
+  if (!forced_value.empty()) {
+    const std::string& value = forced_value;
     if (value == "software") {
       if (auto impl = try_surfaceless(f, why)) return done(std::move(impl));
       failures.push_back(why);
@@ -303,12 +314,7 @@ std::unique_ptr<GlContext> GlContext::create_headless() {
       }
       throw GlUnavailable(kUnavailable + ("NIMBUS_EGL_DEVICE=software: " + join(failures)));
     }
-    char* end = nullptr;
-    const long index = std::strtol(value.c_str(), &end, 10);
-    if (end == value.c_str() || *end != '\0' || index < 0) {
-      throw GlUnavailable(kUnavailable + ("NIMBUS_EGL_DEVICE='" + value +
-                                          "' is neither a device index nor 'software'"));
-    }
+    const long index = forced_index;
     if (static_cast<std::size_t>(index) >= devices.size()) {
       throw GlUnavailable(kUnavailable + ("NIMBUS_EGL_DEVICE=" + value + " is out of range: " +
                                           std::to_string(devices.size()) + " EGL device(s), numbered from 0"));

@@ -80,6 +80,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// "#line N' K" where N' = K * kShaderLineBase + line (see shader_source.hpp).
+std::string line_directive(int line, std::size_t index) {
+  const long long n = static_cast<long long>(index) * kShaderLineBase + line;
+  return "#line " + std::to_string(n) + " " + std::to_string(index) + "\n";
+}
+
 class Expander {
  public:
   Expander(const std::vector<ShaderFile>& extra) : extra_(extra) {}
@@ -104,7 +110,7 @@ class Expander {
     out_.text += lines[version_line] + "\n";
     if (!defines.empty()) {
       out_.files.push_back(kDefinesName);
-      out_.text += "#line 1 1\n" + defines;
+      out_.text += line_directive(1, 1) + defines;
       if (defines.back() != '\n') out_.text += "\n";
     }
     seen_.push_back(name);
@@ -118,8 +124,12 @@ class Expander {
     static const std::regex include_re(R"re(^\s*#\s*include\s+"([^"]+)"\s*(//.*)?$)re");
     static const std::regex pragma_once_re(R"(^\s*#\s*pragma\s+once\s*$)");
     static const std::regex version_re(R"(^\s*#\s*version\b.*$)");
+    if (lines.size() >= static_cast<std::size_t>(kShaderLineBase)) {
+      throw std::invalid_argument("shader '" + name + "' has " + std::to_string(lines.size()) + " lines (at most " +
+                                  std::to_string(kShaderLineBase - 1) + ")");
+    }
     stack_.push_back(name);
-    out_.text += "#line 1 " + std::to_string(index) + "\n";
+    out_.text += line_directive(1, index);
     for (std::size_t i = 0; i < lines.size(); ++i) {
       std::smatch m;
       if (i == skip || std::regex_match(lines[i], pragma_once_re) ||
@@ -128,7 +138,7 @@ class Expander {
       } else if (std::regex_match(lines[i], m, include_re) && ends_with(m[1].str(), ".glsl")) {
         include(name, m[1].str(), static_cast<int>(i + 1));
         // Back in this file: the next line is i + 2.
-        out_.text += "#line " + std::to_string(i + 2) + " " + std::to_string(index) + "\n";
+        out_.text += line_directive(static_cast<int>(i + 2), index);
       } else {
         out_.text += lines[i] + "\n";
       }
@@ -201,19 +211,25 @@ std::string map_shader_log(const std::string& log, const std::vector<std::string
   static const std::regex mesa_re(R"(^\s*(\d+):(\d+)\(\d+\):\s*(.*)$)");
   static const std::regex glslang_re(R"(^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$)");
   static const std::regex nvidia_re(R"(^\s*(\d+)\((\d+)\)\s*:\s*(.*)$)");
-  const auto file_name = [&](const std::string& k) -> std::string {
-    const unsigned long i = std::stoul(k);
-    return i < files.size() ? shader_display_path(files[i]) : "<source " + k + ">";
+  // "path:line" for a reported source string and line; a line >= kShaderLineBase names its file.
+  const auto location = [&](const std::string& source, const std::string& line_text) -> std::string {
+    unsigned long long k = std::stoull(source), line = std::stoull(line_text);
+    if (line >= static_cast<unsigned long long>(kShaderLineBase)) {
+      k = line / kShaderLineBase;
+      line %= kShaderLineBase;
+    }
+    const std::string path = k < files.size() ? shader_display_path(files[k]) : "<source " + std::to_string(k) + ">";
+    return path + ":" + std::to_string(line);
   };
   std::string out;
   for (const std::string& line : split_lines(log)) {
     std::smatch m;
     std::string mapped = line;
     if (std::regex_match(line, m, mesa_re) || std::regex_match(line, m, nvidia_re)) {
-      mapped = file_name(m[1].str()) + ":" + m[2].str() + ": " + m[3].str();
+      mapped = location(m[1].str(), m[2].str()) + ": " + m[3].str();
     } else if (std::regex_match(line, m, glslang_re)) {
       std::string kind = m[1].str() == "ERROR" ? "error" : "warning";
-      mapped = file_name(m[2].str()) + ":" + m[3].str() + ": " + kind + ": " + m[4].str();
+      mapped = location(m[2].str(), m[3].str()) + ": " + kind + ": " + m[4].str();
     }
     if (!mapped.empty()) out += (out.empty() ? "" : "\n") + mapped;
   }

@@ -18,6 +18,11 @@ struct ShaderFile {
   std::string text;
 };
 
+// Lines of files[K] are numbered K * kShaderLineBase + N in the expanded text ("#line
+// K*100000+N K"; the stage file, K = 0, keeps its own numbers): Mesa reports source string 0
+// for errors inside expressions, whatever #line said, so the line number alone must tell the file.
+inline constexpr int kShaderLineBase = 100000;
+
 struct ExpandedShader {
   std::string text;                // ready for glShaderSource
   std::vector<std::string> files;  // files[K] is source-string number K in "#line N K"
@@ -33,8 +38,9 @@ ExpandedShader expand_shader(const std::string& name, const std::string& defines
                              const std::vector<ShaderFile>& extra_files);
 
 // A driver's or glslangValidator's info log with every "K:LINE" / "K(LINE)" location rewritten
-// as "shaders/<files[K]>:LINE: message" (Mesa "0:12(5): error: ...", NVIDIA "0(12) : error ...",
-// glslang/AMD "ERROR: 0:12: ..."). Lines it cannot parse are kept as they are.
+// as "shaders/<file>:<line>: message" (Mesa "0:12(5): error: ...", NVIDIA "0(12) : error ...",
+// glslang/AMD "ERROR: 0:12: ..."); LINE >= kShaderLineBase names its file itself. Lines it cannot
+// parse are kept as they are.
 std::string map_shader_log(const std::string& log, const std::vector<std::string>& files);
 
 // The display path of files[k]: "shaders/<name>", or "(defines)" for the defines.

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev libkissfft-dev
   libnoise-dev
   libopenvdb-tools python3-openvdb
+  libpng-dev openexr
 )
 
 missing=()

@@ -1,0 +1,177 @@
+// The named light-shaft scenes of `nimbus render --scene NAME` (metres, y up, fog per metre),
+// each with a default 1280x720 camera.
+#include <cmath>
+#include <stdexcept>
+
+#include "nimbus/render/scene.hpp"
+
+namespace nimbus::render {
+namespace {
+
+Camera camera(glm::dvec3 eye, glm::dvec3 look_at, double fov_deg) {
+  Camera c;
+  c.eye = eye;
+  c.look_at = look_at;
+  c.up = {0.0, 1.0, 0.0};
+  c.fov_deg = fov_deg;
+  c.width = 1280;
+  c.height = 720;
+  c.near_m = 0.05;
+  c.far_m = 2000.0;
+  return c;
+}
+
+Medium medium(double extinction_per_m, double albedo, Phase phase) {
+  Medium m;
+  m.extinction_per_m = extinction_per_m;
+  m.albedo = albedo;
+  m.phase = phase;
+  return m;
+}
+
+Box box(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 albedo) { return Box{lo, hi, Material{albedo}}; }
+
+// Sun et al. fig. 8: three identical street lamps at 0, 16 and 32 m down a street, houses on
+// the left, a garden wall on the right, a kiosk and a bench that cast shadows into the fog.
+Scene lamps() {
+  Scene s;
+  s.name = "lamps";
+  s.medium = medium(0.04, 1.0, Phase{PhaseKind::Isotropic, 0.0});
+  s.ground = GroundPlane{0.0, Material{{0.3, 0.3, 0.3}}};
+  const glm::dvec3 grey{0.45, 0.45, 0.45};
+  for (const double z : {0.0, -16.0, -32.0}) {
+    // A 0.16 m square post up to 4.85 m; the bulb (r = 0.12 m) is centred 5 m up.
+    s.boxes.push_back(box({3.12, 0.0, z - 0.08}, {3.28, 4.85, z + 0.08}, {0.2, 0.2, 0.2}));
+    s.point_lights.push_back(PointLight{{3.2, 5.0, z}, glm::dvec3{1.0, 0.85, 0.6} * 150.0, 0.12});
+  }
+  s.boxes.push_back(box({-14.0, 0.0, -45.0}, {-7.0, 12.0, -20.0}, {0.55, 0.5, 0.45}));  // houses
+  s.boxes.push_back(box({-14.0, 0.0, -17.0}, {-7.0, 9.0, 2.0}, {0.5, 0.45, 0.4}));
+  s.boxes.push_back(box({7.0, 0.0, -40.0}, {7.6, 3.0, 5.0}, grey));                       // wall
+  s.boxes.push_back(box({1.2, 0.0, -17.2}, {2.4, 2.5, -15.0}, {0.35, 0.45, 0.35}));      // kiosk
+  s.boxes.push_back(box({2.0, 0.0, -1.0}, {2.6, 0.5, 1.0}, {0.4, 0.3, 0.2}));             // bench
+  s.camera = camera({-1.0, 1.7, 12.0}, {1.0, 2.6, -30.0}, 60.0);
+  return s;
+}
+
+// Nine 0.8 m square pillars 2.5 m apart along x under a roof slab.
+void add_colonnade(Scene& s) {
+  const glm::dvec3 stone{0.6, 0.57, 0.5};
+  for (int i = -4; i <= 4; ++i) {
+    const double x = 2.5 * i;
+    s.boxes.push_back(box({x - 0.4, 0.0, -0.4}, {x + 0.4, 6.0, 0.4}, stone));
+  }
+  s.boxes.push_back(box({-11.0, 6.0, -6.5}, {11.0, 6.6, 0.6}, stone));
+}
+
+// The colonnade as the front of a hall lit from inside: light leaves only between the
+// pillars, in shafts toward the camera; HG g = 0.3 (forward scattering toward the viewer).
+Scene colonnade() {
+  Scene s;
+  s.name = "colonnade";
+  s.medium = medium(0.05, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.3});
+  s.ground = GroundPlane{0.0, Material{{0.5, 0.5, 0.5}}};
+  add_colonnade(s);
+  const glm::dvec3 wall{0.5, 0.48, 0.45};
+  s.boxes.push_back(box({-11.0, 0.0, -6.5}, {11.0, 6.0, -6.0}, wall));   // back
+  s.boxes.push_back(box({-11.0, 0.0, -6.0}, {-10.4, 6.0, 0.4}, wall));   // left
+  s.boxes.push_back(box({10.4, 0.0, -6.0}, {11.0, 6.0, 0.4}, wall));     // right
+  s.point_lights.push_back(PointLight{{0.0, 3.0, -3.2}, glm::dvec3{1.0, 0.9, 0.75} * 400.0, 0.1});
+  s.camera = camera({3.0, 1.7, 16.0}, {0.0, 3.0, 0.0}, 60.0);
+  return s;
+}
+
+// The open colonnade (no walls) with a low sun (16 degrees up) behind it: parallel shafts.
+Scene colonnade_sun() {
+  Scene s;
+  s.name = "colonnade-sun";
+  s.medium = medium(0.05, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.3});
+  s.ground = GroundPlane{0.0, Material{{0.5, 0.5, 0.5}}};
+  add_colonnade(s);
+  s.sun = SunLight{glm::normalize(glm::dvec3{-0.35, 0.3, -1.0}), glm::dvec3{1.0, 0.95, 0.85} * 8.0};
+  s.camera = camera({3.0, 1.7, 16.0}, {0.0, 3.0, 0.0}, 60.0);
+  return s;
+}
+
+// Spheres floating around a point light: curved shadow silhouettes in the fog.
+Scene spheres() {
+  Scene s;
+  s.name = "spheres";
+  s.medium = medium(0.06, 0.9, Phase{PhaseKind::Schlick, 0.3});
+  s.ground = GroundPlane{0.0, Material{{0.5, 0.5, 0.5}}};
+  s.spheres = {
+      Sphere{{-1.8, 3.2, 0.8}, 0.9, Material{{0.7, 0.3, 0.25}}},
+      Sphere{{1.6, 2.4, -1.0}, 0.7, Material{{0.25, 0.5, 0.7}}},
+      Sphere{{0.3, 4.8, -0.6}, 0.8, Material{{0.6, 0.6, 0.6}}},
+      Sphere{{0.6, 1.3, 1.6}, 0.5, Material{{0.3, 0.65, 0.3}}},
+      Sphere{{-0.8, 2.0, -2.2}, 0.6, Material{{0.7, 0.65, 0.3}}},
+  };
+  s.point_lights.push_back(PointLight{{0.0, 3.0, 0.0}, glm::dvec3{1.0, 0.95, 0.9} * 300.0, 0.08});
+  s.camera = camera({0.0, 2.2, 11.0}, {0.0, 2.6, 0.0}, 55.0);
+  return s;
+}
+
+// Smooth deterministic hills (metres): a ridge of three hills 150-170 m behind the origin
+// with a gap between them, a low mound in front, and gentle undulation.
+double terrain_height(double x, double z) {
+  auto bump = [](double dx, double dz, double rx, double rz) {
+    return std::exp(-(dx * dx) / (rx * rx) - (dz * dz) / (rz * rz));
+  };
+  return 3.0 + 28.0 * bump(x + 70.0, z + 150.0, 90.0, 60.0) + 34.0 * bump(x - 90.0, z + 170.0, 70.0, 70.0) +
+         18.0 * bump(x - 10.0, z + 60.0, 50.0, 45.0) + 2.5 * std::sin(x / 31.0) * std::cos(z / 43.0);
+}
+
+// 65 x 65 heightfield, 8 m apart (512 m square), a low sun (about 9 degrees up) behind the
+// hills: shafts through the gap and over the ridges toward the camera.
+Scene terrain() {
+  Scene s;
+  s.name = "terrain";
+  s.medium = medium(0.008, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.4});
+  Heightfield h;
+  h.nx = h.nz = 65;
+  h.spacing_m = 8.0;
+  h.x0_m = h.z0_m = -256.0;
+  h.heights_m.resize(static_cast<std::size_t>(h.nx) * h.nz);
+  for (int iz = 0; iz < h.nz; ++iz) {
+    for (int ix = 0; ix < h.nx; ++ix) {
+      h.heights_m[static_cast<std::size_t>(iz) * h.nx + ix] =
+          terrain_height(h.x0_m + ix * h.spacing_m, h.z0_m + iz * h.spacing_m);
+    }
+  }
+  h.material = Material{{0.35, 0.4, 0.3}};
+  s.terrain = h;
+  s.sun = SunLight{glm::normalize(glm::dvec3{0.15, 0.16, -1.0}), glm::dvec3{1.0, 0.92, 0.8} * 6.0};
+  // Eye 10 m above the (smooth) ground near the south edge, looking north at the ridge.
+  s.camera = camera({0.0, terrain_height(0.0, 200.0) + 10.0, 200.0}, {0.0, 15.0, -150.0}, 60.0);
+  return s;
+}
+
+// One point light and nothing else: the airlight is Sun et al.'s, unoccluded, so ray marching
+// must converge to the analytic value.
+Scene open_scene() {
+  Scene s;
+  s.name = "open";
+  s.medium = medium(0.05, 1.0, Phase{PhaseKind::Isotropic, 0.0});
+  s.point_lights.push_back(PointLight{{0.0, 3.0, 0.0}, glm::dvec3{100.0}, 0.05});
+  s.camera = camera({0.0, 1.7, 10.0}, {1.0, 2.5, 0.0}, 60.0);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> scene_names() {
+  return {"lamps", "colonnade", "colonnade-sun", "spheres", "terrain", "open"};
+}
+
+Scene make_scene(const std::string& name) {
+  if (name == "lamps") return lamps();
+  if (name == "colonnade") return colonnade();
+  if (name == "colonnade-sun") return colonnade_sun();
+  if (name == "spheres") return spheres();
+  if (name == "terrain") return terrain();
+  if (name == "open") return open_scene();
+  std::string known;
+  for (const std::string& n : scene_names()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("scene: unknown name '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace nimbus::render

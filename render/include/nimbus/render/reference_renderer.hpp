@@ -1,0 +1,45 @@
+// The exact CPU reference of the light-shaft scene: one ray per pixel centre, analytic
+// ray-scene intersection, lit intervals found by shadow rays and bisection, and adaptive
+// Gauss-Kronrod quadrature of the single-scattered airlight, all in double precision.
+#pragma once
+#include <functional>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/camera.hpp"
+#include "nimbus/render/image.hpp"
+#include "nimbus/render/scene.hpp"
+
+namespace nimbus::render {
+
+struct ReferenceSettings {
+  double rel_tol = 1e-4;  // relative tolerance of each light's airlight integral, in (0, 0.1]
+  int threads = 0;        // 0 = all cores (TBB's default)
+  // Shadow rays per point light and view ray used to find visibility changes, spread evenly
+  // in the angle seen from the light (a shadow feature narrower than about pi / N radians as
+  // seen from the light can be missed); a quarter as many again evenly in distance. For the
+  // sun, N evenly over the part of the ray whose sun rays can meet an occluder's bounds.
+  int visibility_samples = 1024;
+  std::function<void(double)> progress;  // fraction of rows done, in [0, 1]; may be empty
+};
+
+// Throws std::invalid_argument naming the field.
+void validate(const ReferenceSettings& settings);
+
+// Renders `scene` (validated; std::invalid_argument naming the field) through `camera`
+// (validated): RGB = radiance (W sr^-1 m^-2), premultiplied by alpha; alpha = 1 where a
+// surface or bulb is hit, else 1 - e^(-sigma_t inf) (1 in fog, 0 in vacuum). Metadata:
+// "method" = "reference", "camera", "medium", "lights", "scene", "rel_tol".
+// Throws std::runtime_error if a pixel came out NaN or infinite.
+Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings = {});
+
+// Radiance (RGB) and alpha of the single view ray from the camera's eye along unit `dir`;
+// what render_reference computes for each pixel centre.
+struct ReferenceSample {
+  glm::dvec3 radiance{0.0};
+  double alpha = 0.0;
+};
+ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const glm::dvec3& dir,
+                              const ReferenceSettings& settings = {});
+
+}  // namespace nimbus::render

@@ -1,0 +1,350 @@
+// The exact CPU reference: per pixel-centre ray, in double precision,
+//   L = L_surface(P) e^(-sigma_t t_P) + sum over lights of the airlight over [0, t_P]
+// (thesis eq. 23 without emission; t_P = inf for rays that escape), with the surface lit by
+// Lambert's law (thesis eq. 24) and the airlight of a point light
+//   int sigma_s p(theta) I0 e^(-sigma_t d(x)) / d(x)^2 e^(-sigma_t x) V(x) dx
+// (thesis eq. 25 / Sun et al. eq. 5 with visibility V), of the sun
+//   int sigma_s p(theta) E e^(-sigma_t x) V(x) dx  (closed form on each lit interval).
+#include "nimbus/render/reference_renderer.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/intersect.hpp"
+#include "nimbus/render/reference_quadrature.hpp"
+
+namespace nimbus::render {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Escaping rays are integrated to where the view-ray transmittance is e^-35 (6e-16) beyond
+// the light; the rest is far below the quadrature tolerance.
+constexpr double kTailOpticalDepth = 35.0;
+// Visibility changes are located by bisection to this relative precision in x.
+constexpr double kBisectRel = 1e-9;
+
+using Intervals = std::vector<std::pair<double, double>>;
+
+// Lit intervals of [0, x_end] from visibility samples (sorted, first 0, last just below x_end):
+// where two neighbours differ, the change is bisected to kBisectRel. The last sample's state
+// extends to x_end (the end point itself lies on a surface, where a shadow ray is ill-posed).
+template <class Visible>
+Intervals lit_intervals(const Visible& visible, const std::vector<double>& samples, double x_end) {
+  Intervals out;
+  bool prev = visible(samples[0]);
+  double start = 0.0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const bool cur = visible(samples[i]);
+    if (cur == prev) continue;
+    double lo = samples[i - 1], hi = samples[i];
+    while (hi - lo > kBisectRel * std::max(hi, 1.0)) {
+      const double mid = 0.5 * (lo + hi);
+      if (!(mid > lo && mid < hi)) break;
+      (visible(mid) == prev ? lo : hi) = mid;
+    }
+    const double change = 0.5 * (lo + hi);
+    if (prev) {
+      out.emplace_back(start, change);
+    } else {
+      start = change;
+    }
+    prev = cur;
+  }
+  if (prev) out.emplace_back(start, x_end);
+  return out;
+}
+
+// Sorted samples with 0 and the last point just below x_end always present.
+std::vector<double> finish_samples(std::vector<double> xs, double x_end) {
+  const double last = x_end - kBisectRel * std::max(x_end, 1.0);
+  xs.push_back(0.0);
+  if (last > 0.0) xs.push_back(last);
+  for (double& x : xs) x = std::clamp(x, 0.0, std::max(last, 0.0));
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  return xs;
+}
+
+// Range of x >= 0 for which the ray from o + x d toward the unit direction u (s >= 0) meets
+// the box [lo, hi]: Fourier-Motzkin elimination of s from
+//   lo_i <= o_i + d_i x + u_i s <= hi_i,  s >= 0.
+bool sun_shadow_range(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& u, const glm::dvec3& lo,
+                      const glm::dvec3& hi, double& xa, double& xb) {
+  struct Row {
+    double a, b, c;  // a x + b s <= c
+  };
+  std::vector<Row> rows{{0.0, -1.0, 0.0}};
+  for (int i = 0; i < 3; ++i) {
+    rows.push_back({d[i], u[i], hi[i] - o[i]});
+    rows.push_back({-d[i], -u[i], o[i] - lo[i]});
+  }
+  xa = -kInf;
+  xb = kInf;
+  auto on_x = [&](double a, double c) {  // a x <= c
+    if (a > 0.0) {
+      xb = std::min(xb, c / a);
+    } else if (a < 0.0) {
+      xa = std::max(xa, c / a);
+    } else if (c < 0.0) {
+      xa = kInf;  // infeasible
+    }
+  };
+  std::vector<std::pair<double, double>> lower, upper;  // s >= or <= alpha + beta x
+  for (const Row& r : rows) {
+    if (r.b > 0.0) {
+      upper.emplace_back(r.c / r.b, -r.a / r.b);
+    } else if (r.b < 0.0) {
+      lower.emplace_back(r.c / r.b, -r.a / r.b);
+    } else {
+      on_x(r.a, r.c);
+    }
+  }
+  for (const auto& [al, bl] : lower) {
+    for (const auto& [au, bu] : upper) on_x(bl - bu, au - al);
+  }
+  return xa <= xb;
+}
+
+struct RayContext {
+  const SceneTracer& tracer;
+  const ReferenceSettings& settings;
+  glm::dvec3 o, d;   // eye, unit direction
+  double t_end;      // surface or bulb distance, or +inf
+};
+
+// Airlight of one point light per unit intensity (multiply by I0).
+double point_airlight(const RayContext& ray, const PointLight& light) {
+  const Medium& m = ray.tracer.scene().medium;
+  const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
+  const glm::dvec3 v = light.position_m - ray.o;
+  const double xc = glm::dot(v, ray.d);                  // closest approach along the ray
+  const double h = glm::length(glm::cross(v, ray.d));    // its distance from the light
+  const double x_end = std::isfinite(ray.t_end) ? ray.t_end : std::max(0.0, xc) + kTailOpticalDepth / sigma_t;
+
+  // Visibility samples evenly in the angle seen from the light (x = xc + h tan phi), plus a
+  // quarter as many evenly in x (which covers h -> 0).
+  const int n = ray.settings.visibility_samples;
+  std::vector<double> xs;
+  xs.reserve(static_cast<std::size_t>(n + n / 4 + 4));
+  const double phi0 = std::atan2(-xc, h), phi1 = std::atan2(x_end - xc, h);
+  for (int k = 0; k <= n; ++k) xs.push_back(xc + h * std::tan(phi0 + (phi1 - phi0) * k / n));
+  for (int k = 0; k <= n / 4; ++k) xs.push_back(x_end * k / (n / 4));
+  xs = finish_samples(std::move(xs), x_end);
+  const auto visible = [&](double x) { return !ray.tracer.occluded(ray.o + x * ray.d, light.position_m); };
+  const Intervals lit = lit_intervals(visible, xs, x_end);
+  if (lit.empty()) return 0.0;
+
+  // Resolve the peak at the closest approach: cut at xc and at xc +- h 4^k, so that each piece
+  // sees the 1 / (h^2 + (x - xc)^2) profile vary smoothly.
+  std::vector<double> cuts{xc};
+  if (h > 0.0) {
+    for (double w = 0.25 * h; w < 4.0 * (x_end + std::abs(xc)); w *= 4.0) {
+      cuts.push_back(xc - w);
+      cuts.push_back(xc + w);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  Intervals pieces;
+  for (const auto& [a, b] : lit) {
+    double start = a;
+    for (const double c : cuts) {
+      if (c > start && c < b) {
+        pieces.emplace_back(start, c);
+        start = c;
+      }
+    }
+    pieces.emplace_back(start, b);
+  }
+  const Phase phase = m.phase;
+  const auto integrand = [&](double x) {
+    const double dist = std::hypot(h, x - xc);
+    const double cos_theta = (xc - x) / dist;  // light's travel direction vs. toward the eye
+    return sigma_s * phase_value(phase, cos_theta) * std::exp(-sigma_t * (x + dist)) / (dist * dist);
+  };
+  return integrate_adaptive(integrand, pieces, ray.settings.rel_tol).value;
+}
+
+// Airlight of the sun per unit irradiance (multiply by E): closed form per lit interval.
+double sun_airlight(const RayContext& ray, const SunLight& sun) {
+  const Medium& m = ray.tracer.scene().medium;
+  const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
+  const glm::dvec3 u = glm::normalize(sun.direction_to_sun);
+  const bool escapes = !std::isfinite(ray.t_end);
+  const double x_end = escapes ? kTailOpticalDepth / sigma_t : ray.t_end;
+  std::vector<double> xs;
+  glm::dvec3 lo, hi;
+  double xa, xb;
+  if (ray.tracer.finite_bounds(lo, hi) && sun_shadow_range(ray.o, ray.d, u, lo, hi, xa, xb)) {
+    xa = std::max(xa, 0.0);
+    xb = std::min(xb, x_end);
+    const int n = ray.settings.visibility_samples;
+    if (xa < xb) {
+      for (int k = 0; k <= n; ++k) xs.push_back(xa + (xb - xa) * k / n);
+    }
+  }
+  xs = finish_samples(std::move(xs), x_end);
+  const auto visible = [&](double x) { return !ray.tracer.occluded_toward(ray.o + x * ray.d, u); };
+  const Intervals lit = lit_intervals(visible, xs, x_end);
+  // Light travels along -u, scatters toward the eye along -d: cos(theta) = u . d.
+  const double p = phase_value(m.phase, glm::dot(u, ray.d));
+  double sum = 0.0;
+  for (const auto& [a, b] : lit) {
+    // int_a^b e^(-sigma_t x) dx = e^(-sigma_t a) (1 - e^(-sigma_t (b - a))) / sigma_t
+    const double span = (escapes && b == x_end) ? kInf : b - a;
+    sum += std::exp(-sigma_t * a) * -std::expm1(-sigma_t * span) / sigma_t;
+  }
+  return sigma_s * p * sum;
+}
+
+// Lambert surface radiance at P (thesis eq. 24): albedo / pi * sum of the irradiances.
+glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm::dvec3 n,
+                            const glm::dvec3& view_dir, const glm::dvec3& albedo) {
+  const Scene& s = tracer.scene();
+  if (glm::dot(n, view_dir) > 0.0) n = -n;  // the side the eye sees
+  const double scale = 1.0 + std::max({std::abs(P.x), std::abs(P.y), std::abs(P.z)});
+  const glm::dvec3 start = P + (1e-8 * scale) * n;  // off the surface for shadow rays
+  glm::dvec3 irradiance{0.0};
+  for (const PointLight& l : s.point_lights) {
+    const glm::dvec3 to_light = l.position_m - P;
+    const double dist = glm::length(to_light);
+    const double cos_i = glm::dot(n, to_light) / dist;
+    if (cos_i <= 0.0 || tracer.occluded(start, l.position_m)) continue;
+    irradiance += l.intensity_w_sr * (cos_i * std::exp(-s.medium.extinction_per_m * dist) / (dist * dist));
+  }
+  if (s.sun) {
+    const glm::dvec3 u = glm::normalize(s.sun->direction_to_sun);
+    const double cos_i = glm::dot(n, u);
+    if (cos_i > 0.0 && !tracer.occluded_toward(start, u)) irradiance += s.sun->irradiance_w_m2 * cos_i;
+  }
+  return albedo / M_PI * irradiance;
+}
+
+ReferenceSample trace(const SceneTracer& tracer, const glm::dvec3& eye, const glm::dvec3& dir,
+                      const ReferenceSettings& settings) {
+  const Scene& s = tracer.scene();
+  const double sigma_t = s.medium.extinction_per_m;
+  const std::optional<Hit> hit = tracer.intersect(eye, dir);
+  const std::optional<BulbHit> bulb = tracer.intersect_bulbs(eye, dir, hit ? hit->t : kInf);
+  ReferenceSample out;
+  double t_end = kInf;
+  if (bulb) {
+    const PointLight& l = s.point_lights[bulb->light];
+    t_end = bulb->t;
+    out.radiance = l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m) * std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else if (hit) {
+    t_end = hit->t;
+    out.radiance = surface_radiance(tracer, eye + t_end * dir, hit->normal, dir, hit->albedo) *
+                   std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else {
+    out.alpha = sigma_t > 0.0 ? 1.0 : 0.0;
+  }
+  if (s.medium.scattering_per_m() > 0.0) {
+    const RayContext ray{tracer, settings, eye, dir, t_end};
+    for (const PointLight& l : s.point_lights) out.radiance += l.intensity_w_sr * point_airlight(ray, l);
+    if (s.sun) out.radiance += s.sun->irradiance_w_m2 * sun_airlight(ray, *s.sun);
+  }
+  return out;
+}
+
+std::string vec(const glm::dvec3& v) {
+  std::ostringstream os;
+  os.precision(9);
+  os << v.x << "," << v.y << "," << v.z;
+  return os.str();
+}
+
+void describe(Image& image, const Scene& s, const Camera& c, const ReferenceSettings& settings) {
+  std::ostringstream cam, med, lights;
+  cam.precision(9);
+  med.precision(9);
+  cam << "eye=" << vec(c.eye) << " look_at=" << vec(c.look_at) << " up=" << vec(c.up) << " fov_deg=" << c.fov_deg
+      << " size=" << c.width << "x" << c.height;
+  med << "extinction_per_m=" << s.medium.extinction_per_m << " albedo=" << s.medium.albedo
+      << " phase=" << to_string(s.medium.phase);
+  for (const PointLight& l : s.point_lights) {
+    lights << (lights.tellp() > 0 ? "; " : "") << "point position_m=" << vec(l.position_m)
+           << " intensity_w_sr=" << vec(l.intensity_w_sr) << " bulb_radius_m=" << l.bulb_radius_m;
+  }
+  if (s.sun) {
+    lights << (lights.tellp() > 0 ? "; " : "") << "sun direction_to_sun=" << vec(glm::normalize(s.sun->direction_to_sun))
+           << " irradiance_w_m2=" << vec(s.sun->irradiance_w_m2);
+  }
+  image.metadata["method"] = "reference";
+  image.metadata["scene"] = s.name;
+  image.metadata["camera"] = cam.str();
+  image.metadata["medium"] = med.str();
+  image.metadata["lights"] = lights.str();
+  std::ostringstream tol;
+  tol << settings.rel_tol;
+  image.metadata["rel_tol"] = tol.str();
+  image.metadata["visibility_samples"] = std::to_string(settings.visibility_samples);
+}
+
+}  // namespace
+
+void validate(const ReferenceSettings& s) {
+  if (!std::isfinite(s.rel_tol) || !(s.rel_tol > 0.0) || !(s.rel_tol <= 0.1)) {
+    throw std::invalid_argument("reference rel_tol: must be in (0, 0.1], got " + std::to_string(s.rel_tol));
+  }
+  if (s.threads < 0) throw std::invalid_argument("reference threads: must be >= 0 (0 = all cores)");
+  if (s.visibility_samples < 16 || s.visibility_samples > (1 << 20)) {
+    throw std::invalid_argument("reference visibility_samples: must be in [16, 1048576], got " +
+                                std::to_string(s.visibility_samples));
+  }
+}
+
+ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const glm::dvec3& dir,
+                              const ReferenceSettings& settings) {
+  validate(scene);
+  validate(settings);
+  const SceneTracer tracer(scene);
+  return trace(tracer, eye, glm::normalize(dir), settings);
+}
+
+Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings) {
+  validate(scene);
+  validate(camera);
+  validate(settings);
+  const SceneTracer tracer(scene);
+  Image image(camera.width, camera.height);
+  describe(image, scene, camera, settings);
+  int rows_done = 0;
+  std::mutex progress_mutex;
+  const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < camera.width; ++x) {
+        const ReferenceSample px = trace(tracer, camera.eye, pixel_ray(camera, x, y), settings);
+        const double v[4] = {px.radiance.x, px.radiance.y, px.radiance.z, px.alpha};
+        float* out = image.pixel(x, y);
+        for (int c = 0; c < 4; ++c) {
+          const float f = static_cast<float>(v[c]);
+          if (!std::isfinite(f)) {
+            throw std::runtime_error("reference: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                     ") is not finite");
+          }
+          out[c] = f;
+        }
+      }
+      if (settings.progress) {  // under the lock, so the reported fractions only grow
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        settings.progress(static_cast<double>(++rows_done) / camera.height);
+      }
+    }
+  };
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), render_rows); });
+  return image;
+}
+
+}  // namespace nimbus::render

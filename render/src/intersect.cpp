@@ -253,6 +253,44 @@ SceneTracer::SceneTracer(const Scene& scene) : scene_(scene) {
     lo_ -= pad;
     hi_ += pad;
   }
+  auto add = [&](Occluder::Kind kind, std::size_t index, glm::dvec3 lo, glm::dvec3 hi) {
+    const glm::dvec3 pad = 1e-6 + 1e-9 * (glm::abs(lo) + glm::abs(hi));
+    occluders_.push_back({kind, index, lo - pad, hi + pad});
+  };
+  for (std::size_t i = 0; i < scene.boxes.size(); ++i) add(Occluder::BoxK, i, scene.boxes[i].min_m, scene.boxes[i].max_m);
+  for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    add(Occluder::SphereK, i, s.centre_m - s.radius_m, s.centre_m + s.radius_m);
+  }
+  if (scene.terrain) {
+    const Heightfield& h = *scene.terrain;
+    add(Occluder::TerrainK, 0, {h.x0_m, terrain_min_, h.z0_m},
+        {h.x0_m + (h.nx - 1) * h.spacing_m, terrain_max_, h.z0_m + (h.nz - 1) * h.spacing_m});
+  }
+}
+
+void SceneTracer::occluder_bounds(std::size_t k, glm::dvec3& lo, glm::dvec3& hi) const {
+  lo = occluders_[k].lo;
+  hi = occluders_[k].hi;
+}
+
+bool SceneTracer::occluder_hit(std::size_t k, const glm::dvec3& o, const glm::dvec3& d, double tmax) const {
+  const Occluder& oc = occluders_[k];
+  switch (oc.kind) {
+    case Occluder::BoxK:
+      return intersect_box(scene_.boxes[oc.index], o, d, 0.0, tmax).has_value();
+    case Occluder::SphereK: {
+      const Sphere& s = scene_.spheres[oc.index];
+      return intersect_sphere(s.centre_m, s.radius_m, o, d, 0.0, tmax).has_value();
+    }
+    case Occluder::TerrainK:
+      return terrain_hit(o, d, 0.0, tmax, true).has_value();
+  }
+  return false;
+}
+
+bool SceneTracer::ground_hit(const glm::dvec3& o, const glm::dvec3& d, double tmax) const {
+  return scene_.ground && intersect_plane(*scene_.ground, o, d, 0.0, tmax).has_value();
 }
 
 bool SceneTracer::finite_bounds(glm::dvec3& lo, glm::dvec3& hi) const {

@@ -21,6 +21,7 @@
 
 #include "nimbus/render/intersect.hpp"
 #include "nimbus/render/reference_quadrature.hpp"
+#include "nimbus/render/reference_visibility.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -29,92 +30,26 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Escaping rays are integrated to where the view-ray transmittance is e^-35 (6e-16) beyond
 // the light; the rest is far below the quadrature tolerance.
 constexpr double kTailOpticalDepth = 35.0;
-// Visibility changes are located by bisection to this relative precision in x.
-constexpr double kBisectRel = 1e-9;
 
-using Intervals = std::vector<std::pair<double, double>>;
-
-// Lit intervals of [0, x_end] from visibility samples (sorted, first 0, last just below x_end):
-// where two neighbours differ, the change is bisected to kBisectRel. The last sample's state
-// extends to x_end (the end point itself lies on a surface, where a shadow ray is ill-posed).
-template <class Visible>
-Intervals lit_intervals(const Visible& visible, const std::vector<double>& samples, double x_end) {
-  Intervals out;
-  bool prev = visible(samples[0]);
-  double start = 0.0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
-    const bool cur = visible(samples[i]);
-    if (cur == prev) continue;
-    double lo = samples[i - 1], hi = samples[i];
-    while (hi - lo > kBisectRel * std::max(hi, 1.0)) {
-      const double mid = 0.5 * (lo + hi);
-      if (!(mid > lo && mid < hi)) break;
-      (visible(mid) == prev ? lo : hi) = mid;
-    }
-    const double change = 0.5 * (lo + hi);
-    if (prev) {
-      out.emplace_back(start, change);
-    } else {
-      start = change;
-    }
-    prev = cur;
-  }
-  if (prev) out.emplace_back(start, x_end);
-  return out;
-}
-
-// Sorted samples with 0 and the last point just below x_end always present.
-std::vector<double> finish_samples(std::vector<double> xs, double x_end) {
-  const double last = x_end - kBisectRel * std::max(x_end, 1.0);
-  xs.push_back(0.0);
-  if (last > 0.0) xs.push_back(last);
-  for (double& x : xs) x = std::clamp(x, 0.0, std::max(last, 0.0));
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-  return xs;
-}
-
-// Range of x >= 0 for which the ray from o + x d toward the unit direction u (s >= 0) meets
-// the box [lo, hi]: Fourier-Motzkin elimination of s from
-//   lo_i <= o_i + d_i x + u_i s <= hi_i,  s >= 0.
-bool sun_shadow_range(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& u, const glm::dvec3& lo,
-                      const glm::dvec3& hi, double& xa, double& xb) {
-  struct Row {
-    double a, b, c;  // a x + b s <= c
-  };
-  std::vector<Row> rows{{0.0, -1.0, 0.0}};
-  for (int i = 0; i < 3; ++i) {
-    rows.push_back({d[i], u[i], hi[i] - o[i]});
-    rows.push_back({-d[i], -u[i], o[i] - lo[i]});
-  }
-  xa = -kInf;
-  xb = kInf;
-  auto on_x = [&](double a, double c) {  // a x <= c
-    if (a > 0.0) {
-      xb = std::min(xb, c / a);
-    } else if (a < 0.0) {
-      xa = std::max(xa, c / a);
-    } else if (c < 0.0) {
-      xa = kInf;  // infeasible
-    }
-  };
-  std::vector<std::pair<double, double>> lower, upper;  // s >= or <= alpha + beta x
-  for (const Row& r : rows) {
-    if (r.b > 0.0) {
-      upper.emplace_back(r.c / r.b, -r.a / r.b);
-    } else if (r.b < 0.0) {
-      lower.emplace_back(r.c / r.b, -r.a / r.b);
-    } else {
-      on_x(r.a, r.c);
+// The scene prepared for rendering: intersection, and each point light's shadow regions of
+// each occluder (reference_visibility.hpp).
+struct Prepared {
+  explicit Prepared(const Scene& scene) : tracer(scene) {
+    for (const PointLight& l : scene.point_lights) {
+      std::vector<ShadowRegion>& r = regions.emplace_back();
+      for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
+        glm::dvec3 lo, hi;
+        tracer.occluder_bounds(k, lo, hi);
+        r.push_back(point_shadow_region(l.position_m, lo, hi));
+      }
     }
   }
-  for (const auto& [al, bl] : lower) {
-    for (const auto& [au, bu] : upper) on_x(bl - bu, au - al);
-  }
-  return xa <= xb;
-}
+  SceneTracer tracer;
+  std::vector<std::vector<ShadowRegion>> regions;  // [light][occluder]
+};
 
 struct RayContext {
+  const Prepared& prepared;
   const SceneTracer& tracer;
   const ReferenceSettings& settings;
   glm::dvec3 o, d;   // eye, unit direction
@@ -122,7 +57,8 @@ struct RayContext {
 };
 
 // Airlight of one point light per unit intensity (multiply by I0).
-double point_airlight(const RayContext& ray, const PointLight& light) {
+double point_airlight(const RayContext& ray, std::size_t index) {
+  const PointLight& light = ray.tracer.scene().point_lights[index];
   const Medium& m = ray.tracer.scene().medium;
   const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
   const glm::dvec3 v = light.position_m - ray.o;
@@ -130,17 +66,8 @@ double point_airlight(const RayContext& ray, const PointLight& light) {
   const double h = glm::length(glm::cross(v, ray.d));    // its distance from the light
   const double x_end = std::isfinite(ray.t_end) ? ray.t_end : std::max(0.0, xc) + kTailOpticalDepth / sigma_t;
 
-  // Visibility samples evenly in the angle seen from the light (x = xc + h tan phi), plus a
-  // quarter as many evenly in x (which covers h -> 0).
-  const int n = ray.settings.visibility_samples;
-  std::vector<double> xs;
-  xs.reserve(static_cast<std::size_t>(n + n / 4 + 4));
-  const double phi0 = std::atan2(-xc, h), phi1 = std::atan2(x_end - xc, h);
-  for (int k = 0; k <= n; ++k) xs.push_back(xc + h * std::tan(phi0 + (phi1 - phi0) * k / n));
-  for (int k = 0; k <= n / 4; ++k) xs.push_back(x_end * k / (n / 4));
-  xs = finish_samples(std::move(xs), x_end);
-  const auto visible = [&](double x) { return !ray.tracer.occluded(ray.o + x * ray.d, light.position_m); };
-  const Intervals lit = lit_intervals(visible, xs, x_end);
+  const Intervals lit = point_light_lit_intervals(ray.tracer, ray.prepared.regions[index], light.position_m,
+                                                  ray.o, ray.d, x_end, ray.settings.visibility_samples);
   if (lit.empty()) return 0.0;
 
   // Resolve the peak at the closest approach: cut at xc and at xc +- h 4^k, so that each piece
@@ -180,20 +107,7 @@ double sun_airlight(const RayContext& ray, const SunLight& sun) {
   const glm::dvec3 u = glm::normalize(sun.direction_to_sun);
   const bool escapes = !std::isfinite(ray.t_end);
   const double x_end = escapes ? kTailOpticalDepth / sigma_t : ray.t_end;
-  std::vector<double> xs;
-  glm::dvec3 lo, hi;
-  double xa, xb;
-  if (ray.tracer.finite_bounds(lo, hi) && sun_shadow_range(ray.o, ray.d, u, lo, hi, xa, xb)) {
-    xa = std::max(xa, 0.0);
-    xb = std::min(xb, x_end);
-    const int n = ray.settings.visibility_samples;
-    if (xa < xb) {
-      for (int k = 0; k <= n; ++k) xs.push_back(xa + (xb - xa) * k / n);
-    }
-  }
-  xs = finish_samples(std::move(xs), x_end);
-  const auto visible = [&](double x) { return !ray.tracer.occluded_toward(ray.o + x * ray.d, u); };
-  const Intervals lit = lit_intervals(visible, xs, x_end);
+  const Intervals lit = sun_lit_intervals(ray.tracer, u, ray.o, ray.d, x_end, ray.settings.visibility_samples);
   // Light travels along -u, scatters toward the eye along -d: cos(theta) = u . d.
   const double p = phase_value(m.phase, glm::dot(u, ray.d));
   double sum = 0.0;
@@ -228,8 +142,9 @@ glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm:
   return albedo / M_PI * irradiance;
 }
 
-ReferenceSample trace(const SceneTracer& tracer, const glm::dvec3& eye, const glm::dvec3& dir,
+ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm::dvec3& dir,
                       const ReferenceSettings& settings) {
+  const SceneTracer& tracer = prepared.tracer;
   const Scene& s = tracer.scene();
   const double sigma_t = s.medium.extinction_per_m;
   const std::optional<Hit> hit = tracer.intersect(eye, dir);
@@ -250,8 +165,10 @@ ReferenceSample trace(const SceneTracer& tracer, const glm::dvec3& eye, const gl
     out.alpha = sigma_t > 0.0 ? 1.0 : 0.0;
   }
   if (s.medium.scattering_per_m() > 0.0) {
-    const RayContext ray{tracer, settings, eye, dir, t_end};
-    for (const PointLight& l : s.point_lights) out.radiance += l.intensity_w_sr * point_airlight(ray, l);
+    const RayContext ray{prepared, tracer, settings, eye, dir, t_end};
+    for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
+      out.radiance += s.point_lights[i].intensity_w_sr * point_airlight(ray, i);
+    }
     if (s.sun) out.radiance += s.sun->irradiance_w_m2 * sun_airlight(ray, *s.sun);
   }
   return out;
@@ -308,15 +225,15 @@ ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const g
                               const ReferenceSettings& settings) {
   validate(scene);
   validate(settings);
-  const SceneTracer tracer(scene);
-  return trace(tracer, eye, glm::normalize(dir), settings);
+  const Prepared prepared(scene);
+  return trace(prepared, eye, glm::normalize(dir), settings);
 }
 
 Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings) {
   validate(scene);
   validate(camera);
   validate(settings);
-  const SceneTracer tracer(scene);
+  const Prepared prepared(scene);
   Image image(camera.width, camera.height);
   describe(image, scene, camera, settings);
   int rows_done = 0;
@@ -324,7 +241,7 @@ Image render_reference(const Scene& scene, const Camera& camera, const Reference
   const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < camera.width; ++x) {
-        const ReferenceSample px = trace(tracer, camera.eye, pixel_ray(camera, x, y), settings);
+        const ReferenceSample px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
         const double v[4] = {px.radiance.x, px.radiance.y, px.radiance.z, px.alpha};
         float* out = image.pixel(x, y);
         for (int c = 0; c < 4; ++c) {

@@ -59,7 +59,21 @@ class SceneTracer {
   // are none (only the ground plane, or nothing).
   bool finite_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
 
+  // The finite occluders one by one (boxes, then spheres, then the terrain), for culling:
+  // their bounds padded outward (1e-6 m + 1e-9 relative), and any hit with 0 < t < tmax.
+  std::size_t occluder_count() const { return occluders_.size(); }
+  void occluder_bounds(std::size_t k, glm::dvec3& lo, glm::dvec3& hi) const;
+  bool occluder_hit(std::size_t k, const glm::dvec3& o, const glm::dvec3& d, double tmax) const;
+  // Any hit of the ground plane with 0 < t < tmax.
+  bool ground_hit(const glm::dvec3& o, const glm::dvec3& d, double tmax) const;
+
  private:
+  struct Occluder {
+    enum Kind { BoxK, SphereK, TerrainK } kind;
+    std::size_t index;
+    glm::dvec3 lo, hi;
+  };
+  std::vector<Occluder> occluders_;
   bool any_hit(const glm::dvec3& o, const glm::dvec3& d, double tmax) const;
   std::optional<Hit> terrain_hit(const glm::dvec3& o, const glm::dvec3& d, double tmin, double tmax,
                                  bool any) const;

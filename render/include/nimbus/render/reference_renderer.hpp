@@ -15,10 +15,12 @@ namespace nimbus::render {
 struct ReferenceSettings {
   double rel_tol = 1e-4;  // relative tolerance of each light's airlight integral, in (0, 0.1]
   int threads = 0;        // 0 = all cores (TBB's default)
-  // Shadow rays per point light and view ray used to find visibility changes, spread evenly
-  // in the angle seen from the light (a shadow feature narrower than about pi / N radians as
-  // seen from the light can be missed); a quarter as many again evenly in distance. For the
-  // sun, N evenly over the part of the ray whose sun rays can meet an occluder's bounds.
+  // N: the sample grid along each view ray on which visibility changes are looked for
+  // (reference_visibility.hpp). For a point light N + 1 points evenly in the angle seen from
+  // the light (a shadow feature narrower than about pi / N radians as seen from the light can
+  // be missed) and N / 4 + 1 evenly in distance; for the sun N + 1 evenly over the part of the
+  // ray whose sun rays can meet an occluder. Only the points inside some occluder's shadow
+  // region are traced.
   int visibility_samples = 1024;
   std::function<void(double)> progress;  // fraction of rows done, in [0, 1]; may be empty
 };

@@ -10,6 +10,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "nimbus/render/phase.hpp"
 
@@ -65,6 +66,12 @@ struct SegmentQuery {
 double segment_airlight_quadrature(const SegmentQuery& q);  // double reference
 double segment_airlight_stable(const SegmentQuery& q);      // float path (shader source)
 
+// The shader's phase function (shaders/lib/phase.glsl) and its directional-light segment
+// airlight sigma_s p E (e^{-sigma_t x0} - e^{-sigma_t x1}) / sigma_t, in float, for tests.
+double phase_value_float(const Phase& phase, double cos_theta);
+double sun_segment_airlight_stable(double sigma_t, double sigma_s, double E, double cos_theta, double x0,
+                                   double x1, const Phase& phase);
+
 // "quadrature", "stable", "table:N", "raymarch:N" -> evaluator; throws std::invalid_argument
 // naming the text when malformed.
 struct AirlightMethod {
@@ -72,5 +79,13 @@ struct AirlightMethod {
   int n = 0;  // table size or steps
 };
 AirlightMethod parse_airlight_method(const std::string& text);
+std::string to_string(const AirlightMethod& method);
+
+// Evaluates every query with one method on the CPU (validating each; the table is built once).
+std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method);
+// The same through the GLSL functions on an OpenGL 4.5 context (shaders/airlight_eval.comp.glsl):
+// a headless context is created for the call. Quadrature has no GL form (std::invalid_argument);
+// throws GlUnavailable when no context can be made.
+std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method);
 
 }  // namespace nimbus::render

@@ -1,0 +1,48 @@
+#version 450 core
+// Evaluates one airlight method per query with the shaders' own GLSL functions, for
+// `nimbus airlight --device gl` and the tests (render/src/airlight_gl.cpp): queries in, La out.
+#include "lib/airlight.glsl"
+#include "lib/airlight_table.glsl"
+
+layout(local_size_x = 64) in;
+
+struct Query {
+  float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma;
+  float march_length;  // raymarch: Dvp, or the cut-off of an infinite ray (computed on the CPU)
+  float unused;
+};
+layout(std430, binding = 0) readonly buffer Queries { Query queries[]; };
+layout(std430, binding = 1) writeonly buffer Results { float results[]; };
+
+layout(binding = 0) uniform sampler2D u_F_table;
+uniform int u_method;  // 0 stable, 1 table:N, 2 raymarch:N
+uniform int u_n;       // table size or steps
+uniform int u_count;
+uniform int u_offset;
+
+// N midpoint samples of Sun eq. 5 over [0, len] in float (the thesis' Algorithm 1, no occlusion).
+float airlight_raymarch(float beta, float I0, float Dsv, float cos_gamma, float len, int steps) {
+  if (!(beta > 0.0) || !(len > 0.0)) return 0.0;
+  float dx = len / float(steps);
+  float sum = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    float x = (float(k) + 0.5) * dx;
+    float d2 = Dsv * Dsv + x * x - 2.0 * x * Dsv * cos_gamma;
+    sum += exp(-beta * (x + sqrt(d2))) / d2;
+  }
+  return beta * I0 * 0.0795774715 * sum * dx;
+}
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x) + u_offset;
+  if (i >= u_count) return;
+  Query q = queries[i];
+  float La;
+  if (u_method == 1)
+    La = airlight_table(u_F_table, u_n, q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
+  else if (u_method == 2)
+    La = airlight_raymarch(q.beta, q.I0, q.Dsv, q.cos_gamma, q.march_length, u_n);
+  else
+    La = airlight_stable(q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
+  results[i] = La;
+}

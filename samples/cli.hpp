@@ -20,6 +20,7 @@ void add_bench_command(CLI::App& app, Action& action);
 void add_info_command(CLI::App& app, Action& action);
 void add_generate_command(CLI::App& app, Action& action);
 void add_presets_command(CLI::App& app, Action& action);
+void add_airlight_command(CLI::App& app, Action& action);
 
 // Benchmarks, each a `nimbus bench NAME` subcommand.
 void add_bench_noise(CLI::App& bench, Action& action);

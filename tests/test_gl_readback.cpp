@@ -84,7 +84,8 @@ TEST(GlReadback, EveryUniformSetterReachesTheShader) {
   draw_fullscreen_triangle(vao);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   check_gl("uniform pass");
-  const float* a = read_rgba(fb, 2, 2, GL_COLOR_ATTACHMENT0).pixel(1, 0);
+  const Image out0 = read_rgba(fb, 2, 2, GL_COLOR_ATTACHMENT0);
+  const float* a = out0.pixel(1, 0);
   EXPECT_EQ(a[0], -7.0f);
   EXPECT_EQ(a[1], 0.25f);
   EXPECT_EQ(a[2], 11.0f);

@@ -105,7 +105,12 @@ GpuTiming gpu_time(const std::function<void()>& draw) {
   if (bits > 0) {
     GlQuery query = make_query(GL_TIME_ELAPSED);
     glBeginQuery(GL_TIME_ELAPSED, query.id());
-    draw();
+    try {
+      draw();
+    } catch (...) {
+      glEndQuery(GL_TIME_ELAPSED);  // a query left open would fail the next one
+      throw;
+    }
     glEndQuery(GL_TIME_ELAPSED);
     GLuint64 ns = 0;
     glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);  // waits for the result

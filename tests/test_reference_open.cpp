@@ -1,10 +1,12 @@
 // The reference's airlight of a point light where nothing occludes, against independent
-// values: the beta -> 0 closed form of Sun et al.'s integral, and brute-force composite
-// Simpson with 1e6 intervals for a thick anisotropic medium.
+// values: the beta -> 0 closed form of Sun et al.'s integral, brute-force composite Simpson
+// with 1e6 intervals for a thick anisotropic medium, and airlight.hpp's segment quadrature
+// (a separate implementation in the scattering-angle variable).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "nimbus/render/airlight.hpp"
 #include "nimbus/render/phase.hpp"
 #include "nimbus/render/reference_renderer.hpp"
 
@@ -126,4 +128,33 @@ TEST(ReferenceOpen, BulbIsAttenuatedAndAddsTheAirlightInFrontOfIt) {
   const nr::ReferenceSample bf = nr::reference_ray(f, f.camera.eye, to_bulb, settings);
   const double air = (bf.radiance.y - b.radiance.y) / 50.0;
   EXPECT_NEAR(air, simpson(f, glm::normalize(to_bulb), t, 1000000), 1e-6 * air);
+}
+
+TEST(ReferenceOpen, AgreesWithTheSegmentAirlightQuadrature) {
+  nr::ReferenceSettings settings;
+  settings.rel_tol = 1e-10;
+  for (const nr::Phase phase : {nr::Phase{nr::PhaseKind::Schlick, -0.4}, nr::Phase{nr::PhaseKind::Rayleigh, 0.0},
+                                nr::Phase{nr::PhaseKind::HenyeyGreenstein, 0.8}}) {
+    for (const bool wall : {true, false}) {
+      const nr::Scene s = open_scene(0.04, 0.7, phase, wall);
+      for (const glm::dvec3 target : {glm::dvec3{1.0, 2.5, -4.0}, glm::dvec3{-2, 1, 4}, glm::dvec3{0, 0, 30}}) {
+        const glm::dvec3 dir = glm::normalize(target - s.camera.eye);
+        const Geometry g = geometry(s, dir, wall);
+        if (wall && !(dir.z < 0.0)) continue;
+        nr::SegmentQuery q;
+        q.sigma_t = s.medium.extinction_per_m;
+        q.sigma_s = s.medium.scattering_per_m();
+        q.I0 = 1.0;
+        q.Dsv = g.dsv;
+        q.cos_gamma = std::cos(g.gamma);
+        q.sin_gamma = std::sin(g.gamma);
+        q.x0 = 0.0;
+        q.x1 = g.d_end;
+        q.phase = phase;
+        const double expect = nr::segment_airlight_quadrature(q);
+        const nr::ReferenceSample r = nr::reference_ray(s, s.camera.eye, dir, settings);
+        EXPECT_NEAR(r.radiance.x / 100.0, expect, 1e-8 * expect) << nr::to_string(phase) << " wall " << wall;
+      }
+    }
+  }
 }

@@ -33,6 +33,7 @@ Box box(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 albedo) { return Box{lo, hi, Ma
 
 // Sun et al. fig. 8: three identical street lamps at 0, 16 and 32 m down a street, houses on
 // the left, a garden wall on the right, a kiosk and a bench that cast shadows into the fog.
+// Boxes 0-5 are the lamps (post, arm) in order.
 Scene lamps() {
   Scene s;
   s.name = "lamps";
@@ -40,9 +41,12 @@ Scene lamps() {
   s.ground = GroundPlane{0.0, Material{{0.3, 0.3, 0.3}}};
   const glm::dvec3 grey{0.45, 0.45, 0.45};
   for (const double z : {0.0, -16.0, -32.0}) {
-    // A 0.16 m square post up to 4.85 m; the bulb (r = 0.12 m) is centred 5 m up.
-    s.boxes.push_back(box({3.12, 0.0, z - 0.08}, {3.28, 4.85, z + 0.08}, {0.2, 0.2, 0.2}));
-    s.point_lights.push_back(PointLight{{3.2, 5.0, z}, glm::dvec3{1.0, 0.85, 0.6} * 150.0, 0.12});
+    // A 0.16 m square post 5.3 m high beside the street and an arm over it; the bulb
+    // (r = 0.12 m) hangs 5 m up under the arm's end, so the arm shadows the fog above it.
+    const glm::dvec3 dark{0.2, 0.2, 0.2};
+    s.boxes.push_back(box({3.72, 0.0, z - 0.08}, {3.88, 5.3, z + 0.08}, dark));
+    s.boxes.push_back(box({2.95, 5.2, z - 0.05}, {3.72, 5.3, z + 0.05}, dark));
+    s.point_lights.push_back(PointLight{{3.0, 5.0, z}, glm::dvec3{1.0, 0.85, 0.6} * 150.0, 0.12});
   }
   s.boxes.push_back(box({-14.0, 0.0, -45.0}, {-7.0, 12.0, -20.0}, {0.55, 0.5, 0.45}));  // houses
   s.boxes.push_back(box({-14.0, 0.0, -17.0}, {-7.0, 9.0, 2.0}, {0.5, 0.45, 0.4}));

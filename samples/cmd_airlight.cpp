@@ -1,6 +1,6 @@
-// `nimbus airlight --method table:N|stable|raymarch:N|quadrature [--device cpu|gl]`: Sun et al.'s
-// airlight for CSV rows `beta,I0,Dsv,Dvp,gamma` read from stdin (Dvp may be inf), one La per
-// line (%.9g). A malformed row is a usage error (exit 2) naming its line and field.
+// `nimbus airlight --method table:N|stable|raymarch:N|quadrature [--device cpu|gl] [--phase P]`:
+// Sun et al.'s airlight for CSV rows `beta,I0,Dsv,Dvp,gamma` read from stdin (Dvp may be inf),
+// one La per line (%.9g). A malformed row is a usage error (exit 2) naming its line and field.
 #include <charconv>
 #include <cstdio>
 #include <iostream>
@@ -16,6 +16,7 @@ namespace {
 struct AirlightOptions {
   std::string method = "stable";
   std::string device = "cpu";
+  std::string phase = "isotropic";
 };
 
 constexpr const char* kFields[5] = {"beta", "I0", "Dsv", "Dvp", "gamma"};
@@ -66,12 +67,20 @@ int run_airlight(const AirlightOptions& o) {
   }
   if (o.device == "gl" && method.kind == render::AirlightMethod::Quadrature)
     throw UsageError("--method quadrature is CPU only (double precision); use --device cpu");
+  render::Phase phase;
+  try {
+    phase = render::parse_phase(o.phase);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--phase: ") + e.what());
+  }
+  if (method.kind == render::AirlightMethod::Table && phase.kind != render::PhaseKind::Isotropic)
+    throw UsageError("--phase " + o.phase + ": the table method is isotropic only (Sun's F(u, v))");
   std::vector<render::AirlightQuery> queries;
   std::string line;
   long number = 0;
   while (std::getline(std::cin, line)) queries.push_back(parse_row(line, ++number));
   const std::vector<double> la =
-      o.device == "gl" ? render::evaluate_airlight_gl(queries, method) : render::evaluate_airlight(queries, method);
+      o.device == "gl" ? render::evaluate_airlight_gl(queries, method, phase) : render::evaluate_airlight(queries, method, phase);
   for (double v : la) std::printf("%.9g\n", v);
   return 0;
 }
@@ -86,6 +95,9 @@ void add_airlight_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--device", o->device, "cpu, or gl: evaluate the GLSL functions on an OpenGL 4.5 context")
       ->check(CLI::IsMember({"cpu", "gl"}))
+      ->capture_default_str();
+  cmd->add_option("--phase", o->phase,
+                  "isotropic, hg:G, schlick:G or rayleigh: replaces Sun's 1/(4 pi) (stable, raymarch:N, quadrature)")
       ->capture_default_str();
   cmd->callback([&action, o] { action = [o] { return run_airlight(*o); }; });
 }

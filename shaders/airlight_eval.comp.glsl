@@ -19,8 +19,11 @@ uniform int u_method;  // 0 stable, 1 table:N, 2 raymarch:N
 uniform int u_n;       // table size or steps
 uniform int u_count;
 uniform int u_offset;
+uniform int u_phase_kind;  // PHASE_* of lib/phase.glsl (stable and raymarch)
+uniform float u_phase_g;
 
-// N midpoint samples of Sun eq. 5 over [0, len] in float (the thesis' Algorithm 1, no occlusion).
+// N midpoint samples of Sun eq. 5 (thesis eq. 33 with a phase function) over [0, len] in float
+// (the thesis' Algorithm 1 without occlusion).
 float airlight_raymarch(float beta, float I0, float Dsv, float cos_gamma, float len, int steps) {
   if (!(beta > 0.0) || !(len > 0.0)) return 0.0;
   float dx = len / float(steps);
@@ -28,9 +31,11 @@ float airlight_raymarch(float beta, float I0, float Dsv, float cos_gamma, float 
   for (int k = 0; k < steps; ++k) {
     float x = (float(k) + 0.5) * dx;
     float d2 = Dsv * Dsv + x * x - 2.0 * x * Dsv * cos_gamma;
-    sum += exp(-beta * (x + sqrt(d2))) / d2;
+    float d = sqrt(d2);
+    float p = phase_value(u_phase_kind, u_phase_g, (Dsv * cos_gamma - x) / d);
+    sum += p * exp(-beta * (x + d)) / d2;
   }
-  return beta * I0 * 0.0795774715 * sum * dx;
+  return beta * I0 * sum * dx;
 }
 
 void main() {
@@ -43,6 +48,7 @@ void main() {
   else if (u_method == 2)
     La = airlight_raymarch(q.beta, q.I0, q.Dsv, q.cos_gamma, q.march_length, u_n);
   else
-    La = airlight_stable(q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
+    La = point_segment_airlight(q.beta, q.beta, q.I0, q.Dsv, q.cos_gamma, q.sin_gamma, 0.0, q.Dvp, u_phase_kind,
+                                u_phase_g);
   results[i] = La;
 }

@@ -109,6 +109,28 @@ TEST(AirlightCli, BadRowsAreUsageErrorsNamingLineAndField) {
   }
 }
 
+TEST(AirlightCli, PhaseOptionReplacesTheIsotropicPhase) {
+  const auto input = write_input("phase.csv", kRows);
+  const nimbus::render::Phase hg{nimbus::render::PhaseKind::HenyeyGreenstein, 0.9};
+  for (const char* method : {"stable", "quadrature", "raymarch:300"}) {
+    const auto r = run_nimbus("airlight --phase hg:0.9 --method " + std::string(method) + " < " + input.string());
+    ASSERT_EQ(r.code, 0) << method << ": " << r.output;
+    const auto m = nimbus::render::parse_airlight_method(method);
+    EXPECT_EQ(r.output, expected_output(nimbus::render::evaluate_airlight(rows(), m, hg))) << method;
+  }
+  // Forward scattering brightens the glow around a lamp seen straight ahead (row 3: gamma =
+  // 1e-3) and dims the light scattered back from a lamp behind the viewer (row 2: gamma = 3.13).
+  const auto iso = nimbus::render::evaluate_airlight(rows(), {nimbus::render::AirlightMethod::Quadrature, 0});
+  const auto fwd = nimbus::render::evaluate_airlight(rows(), {nimbus::render::AirlightMethod::Quadrature, 0}, hg);
+  EXPECT_GT(fwd[2], 2.0 * iso[2]);
+  EXPECT_LT(fwd[1], 0.1 * iso[1]);
+  for (const char* args : {"--phase hg:0.9 --method table:64", "--phase hg:1.5", "--phase mie"}) {
+    const auto r = run_nimbus("airlight " + std::string(args) + " < " + input.string());
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("--phase"), std::string::npos) << r.output;
+  }
+}
+
 TEST(AirlightCli, EmptyInputGivesEmptyOutput) {
   const auto input = write_input("empty.csv", "");
   const auto r = run_nimbus("airlight < " + input.string());

@@ -72,6 +72,25 @@ TEST(AirlightGl, StableShaderMeetsTheTargetOnTheGpuContext) {
   EXPECT_LE(worst_cpu, 1e-4);  // same source, the driver's exp/log/atan instead of libm's
 }
 
+TEST(AirlightGl, AnisotropicPhasesOnTheGpuContext) {
+  REQUIRE_GL();
+  std::vector<AirlightQuery> grid;  // every third query of the target grid
+  const auto all = target_grid();
+  for (size_t i = 0; i < all.size(); i += 3) grid.push_back(all[i]);
+  const nimbus::render::Phase phases[] = {{nimbus::render::PhaseKind::HenyeyGreenstein, 0.9},
+                                          {nimbus::render::PhaseKind::Schlick, -0.5},
+                                          {nimbus::render::PhaseKind::Rayleigh, 0.0}};
+  for (const auto& phase : phases) {
+    const auto gl = nimbus::render::evaluate_airlight_gl(grid, {AirlightMethod::Stable, 0}, phase);
+    const auto ref = nimbus::render::evaluate_airlight(grid, {AirlightMethod::Quadrature, 0}, phase);
+    double worst = 0.0;
+    for (size_t i = 0; i < grid.size(); ++i) worst = std::max(worst, std::abs(gl[i] / ref[i] - 1.0));
+    std::printf("GL stable %s: %zu queries, max relative error %.3g\n", nimbus::render::to_string(phase).c_str(),
+                grid.size(), worst);
+    EXPECT_LE(worst, 2e-3) << nimbus::render::to_string(phase);
+  }
+}
+
 TEST(AirlightGl, FiniteAndNonNegativeForDegenerateAndHugeInputs) {
   REQUIRE_GL();
   std::vector<AirlightQuery> qs;

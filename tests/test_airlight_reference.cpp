@@ -130,9 +130,6 @@ TEST(AirlightReference, FiniteAndContinuousAtGammaZeroAndPi) {
     ASSERT_TRUE(std::isfinite(at_pi) && at_pi > 0.0) << Tsv;
     EXPECT_NEAR(near_pi / at_pi, 1.0, 1e-9) << Tsv;
     // gamma = pi: int_0^inf beta I0 e^{-beta (Dsv + 2x)} / (4 pi (Dsv + x)^2) dx, by Simpson in 1/(Dsv + x).
-    SegmentQuery s = segment(1.0, Tsv, kPi, 0.0, kInf);
-    s.sigma_s = 1.0;
-    s.I0 = 1.0;
     const int n = 20000;
     double sum = 0.0;
     for (int k = 0; k <= n; ++k) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "airlight_detail.hpp"
@@ -22,14 +23,32 @@ struct GpuQuery {  // std430 layout of `Query` in airlight_eval.comp.glsl
 };
 static_assert(sizeof(GpuQuery) == 32);
 
+// PHASE_* of shaders/lib/phase.glsl.
+int phase_kind_index(PhaseKind kind) {
+  switch (kind) {
+    case PhaseKind::Isotropic:
+      return 0;
+    case PhaseKind::HenyeyGreenstein:
+      return 1;
+    case PhaseKind::Schlick:
+      return 2;
+    case PhaseKind::Rayleigh:
+      return 3;
+  }
+  return 0;
+}
+
 constexpr int kGroupSize = 64;         // local_size_x
 constexpr int kMaxGroupsPerCall = 16384;
 
 }  // namespace
 
-std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method) {
+std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,
+                                         const Phase& phase) {
   if (method.kind == AirlightMethod::Quadrature)
     throw std::invalid_argument("airlight method 'quadrature' is CPU only (double precision); use --device cpu");
+  if (method.kind == AirlightMethod::Table && phase.kind != PhaseKind::Isotropic)
+    throw std::invalid_argument("airlight method '" + to_string(method) + "' is isotropic only (Sun's F(u, v))");
   std::vector<GpuQuery> input;
   input.reserve(queries.size());
   for (const AirlightQuery& q : queries) {
@@ -63,6 +82,8 @@ std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queri
   program.set("u_method", method_index);
   program.set("u_n", method.n);
   program.set("u_count", count);
+  program.set("u_phase_kind", phase_kind_index(phase.kind));
+  program.set("u_phase_g", float(phase.g));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
   const int per_call = kGroupSize * kMaxGroupsPerCall;

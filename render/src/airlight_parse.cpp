@@ -1,6 +1,7 @@
 // Airlight methods by name ("quadrature", "stable", "table:N", "raymarch:N") and the CPU
 // evaluation of a batch of queries with one of them.
 #include <charconv>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,24 +51,42 @@ std::string to_string(const AirlightMethod& m) {
   return "stable";
 }
 
-std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method) {
+std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,
+                                      const Phase& phase) {
+  const bool isotropic = phase.kind == PhaseKind::Isotropic;
+  if (method.kind == AirlightMethod::Table && !isotropic)
+    throw std::invalid_argument("airlight method '" + to_string(method) + "' is isotropic only (Sun's F(u, v)); phase '" +
+                                to_string(phase) + "' needs stable, raymarch:N or quadrature");
   std::vector<double> out;
   out.reserve(queries.size());
   std::unique_ptr<FTable> table;
   if (method.kind == AirlightMethod::Table) table = std::make_unique<FTable>(method.n);
+  auto segment = [&](const AirlightQuery& q) {  // Sun's query as a segment from the eye
+    validate(q);
+    SegmentQuery s;
+    s.sigma_t = s.sigma_s = q.beta;
+    s.I0 = q.I0;
+    s.Dsv = q.Dsv;
+    s.cos_gamma = std::cos(q.gamma);
+    s.sin_gamma = std::sin(q.gamma);
+    s.x0 = 0.0;
+    s.x1 = q.Dvp;
+    s.phase = phase;
+    return s;
+  };
   for (const AirlightQuery& q : queries) {
     switch (method.kind) {
       case AirlightMethod::Quadrature:
-        out.push_back(airlight_quadrature(q));
+        out.push_back(isotropic ? airlight_quadrature(q) : segment_airlight_quadrature(segment(q)));
         break;
       case AirlightMethod::Stable:
-        out.push_back(airlight_stable(q));
+        out.push_back(isotropic ? airlight_stable(q) : segment_airlight_stable(segment(q)));
         break;
       case AirlightMethod::Table:
         out.push_back(airlight_table(q, *table));
         break;
       case AirlightMethod::RayMarch:
-        out.push_back(airlight_raymarch(q, method.n));
+        out.push_back(airlight_raymarch(q, method.n, phase));
         break;
     }
   }

@@ -37,21 +37,24 @@ double detail::raymarch_length(const AirlightQuery& q) {
   return cut_off(q.beta, q.Dsv, q.gamma);
 }
 
-double airlight_raymarch(const AirlightQuery& q, int steps) {
+double airlight_raymarch(const AirlightQuery& q, int steps, const Phase& phase) {
   validate(q);
   if (steps < 1) throw std::invalid_argument("raymarch steps must be >= 1 (got " + std::to_string(steps) + ")");
   if (q.beta == 0.0 || q.I0 == 0.0 || q.Dvp == 0.0) return 0.0;
   const double length = detail::raymarch_length(q);
   const double dx = length / steps;
   const double cg = std::cos(q.gamma);
+  const bool isotropic = phase.kind == PhaseKind::Isotropic;
   double sum = 0.0;
   for (int k = 0; k < steps; ++k) {
     const double x = (k + 0.5) * dx;
     const double d2 = q.Dsv * q.Dsv + x * x - 2.0 * x * q.Dsv * cg;  // cosine rule (Sun eq. 4)
     const double d = std::sqrt(d2);
-    sum += std::exp(-q.beta * (x + d)) / d2;
+    // cos(theta) = dot(unit(point - light), -view) = (Dsv cos(gamma) - x) / d
+    const double weight = isotropic ? 1.0 : 4.0 * std::numbers::pi * phase_value(phase, (q.Dsv * cg - x) / d);
+    sum += weight * std::exp(-q.beta * (x + d)) / d2;
   }
-  return q.beta * q.I0 / (4.0 * std::numbers::pi) * sum * dx;  // Sun eq. 5
+  return q.beta * q.I0 / (4.0 * std::numbers::pi) * sum * dx;  // Sun eq. 5 (thesis eq. 33)
 }
 
 }  // namespace nimbus::render

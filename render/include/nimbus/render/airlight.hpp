@@ -33,7 +33,8 @@ double airlight_quadrature(const AirlightQuery& q);
 // The float32 stable evaluation (same source as the shader).
 double airlight_stable(const AirlightQuery& q);
 // N midpoint samples over [0, min(Dvp, a finite cut-off beyond which the rest is < 1e-9)].
-double airlight_raymarch(const AirlightQuery& q, int steps);
+// With a phase function p, each sample is weighted by 4 pi p(theta) (isotropic: 1).
+double airlight_raymarch(const AirlightQuery& q, int steps, const Phase& phase = {});
 
 // Sun eq. 10: F(u, v) = integral_0^v exp(-u tan xi) dxi, tabulated on an N x N grid over
 // u in [0, 10], v in [0, pi/2], read with bilinear interpolation (clamped outside).
@@ -82,10 +83,14 @@ AirlightMethod parse_airlight_method(const std::string& text);
 std::string to_string(const AirlightMethod& method);
 
 // Evaluates every query with one method on the CPU (validating each; the table is built once).
-std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method);
+// A phase function other than isotropic replaces Sun's 1/(4 pi) (the segment form from the eye
+// with sigma_t = sigma_s = beta); the table method is isotropic only (std::invalid_argument).
+std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,
+                                      const Phase& phase = {});
 // The same through the GLSL functions on an OpenGL 4.5 context (shaders/airlight_eval.comp.glsl):
 // a headless context is created for the call. Quadrature has no GL form (std::invalid_argument);
 // throws GlUnavailable when no context can be made.
-std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method);
+std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,
+                                         const Phase& phase = {});
 
 }  // namespace nimbus::render

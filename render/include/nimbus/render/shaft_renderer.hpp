@@ -19,7 +19,7 @@ struct ShaftSettings {
   double ground_extent_m = 1000;  // half-size of the ground quad standing for the infinite plane
   double march_cutoff_optical = 9.21;  // rays hitting nothing are marched to this optical depth (e^-9.21 = 1e-4)
   double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
-  std::size_t max_skirt_quads = 1u << 20;  // per light; beyond it the whole ray is sampled
+  std::size_t max_skirt_quads = 1u << 19;  // per light; beyond it the whole ray is sampled
   unsigned jitter_seed = 1;
 };
 

@@ -1,0 +1,621 @@
+// The GPU light-shaft renderer (shaft_renderer.hpp). Per frame: shadow maps (distance cube maps
+// for point lights, an orthographic distance map for the sun), a surface pass (radiance leaving
+// each visible surface and its distance), for shadow-volume intervals the skirts built from the
+// shadow maps and their nearest/farthest crossing per pixel, and a full-screen shaft pass
+// (shaders/shafts.frag.glsl) that adds the airlight by the chosen method.
+#include "nimbus/render/shaft_renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "nimbus/render/airlight.hpp"
+#include "nimbus/render/blue_noise.hpp"
+#include "nimbus/render/gl_readback.hpp"
+#include "nimbus/render/gl_resources.hpp"
+#include "nimbus/render/scene_mesh.hpp"
+#include "nimbus/render/shader_program.hpp"
+
+namespace nimbus::render {
+namespace {
+
+constexpr int kMaxPointLights = 4;
+constexpr float kFarDistanceM = 1.0e5f;  // what a shadow map stores where nothing occludes
+
+// A mesh uploaded for drawing with shaders/lib/scene_vertex.glsl.
+struct GpuMesh {
+  GlBuffer vertices, indices;
+  GlVertexArray vao;
+  GLsizei count = 0;
+};
+
+GpuMesh upload(const SceneMesh& mesh) {
+  GpuMesh g;
+  g.count = static_cast<GLsizei>(mesh.indices.size());
+  g.vao = make_vertex_array();
+  if (g.count == 0) return g;
+  g.vertices = make_buffer(static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)), mesh.vertices.data(), 0);
+  g.indices = make_buffer(static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0);
+  const GLuint vao = g.vao.id();
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(MeshVertex));
+  glVertexArrayElementBuffer(vao, g.indices.id());
+  const GLuint offsets[3] = {offsetof(MeshVertex, position), offsetof(MeshVertex, normal), offsetof(MeshVertex, albedo)};
+  for (GLuint a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(vao, a);
+    glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, offsets[a]);
+    glVertexArrayAttribBinding(vao, a, 0);
+  }
+  check_gl("uploading a scene mesh");
+  return g;
+}
+
+void draw(const GpuMesh& m) {
+  if (m.count == 0) return;
+  glBindVertexArray(m.vao.id());
+  glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
+}
+
+glm::mat4 to_float(const glm::dmat4& m) { return glm::mat4(m); }
+glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
+
+// GL 4.5 table 8.19 face order +X, -X, +Y, -Y, +Z, -Z, with the "up" that makes a face rendered
+// through a framebuffer match cube-map sampling.
+const std::array<glm::dvec3, 6> kFaceDir = {glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0),
+                                            glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)};
+const std::array<glm::dvec3, 6> kFaceUp = {glm::dvec3(0, -1, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1),
+                                           glm::dvec3(0, 0, -1), glm::dvec3(0, -1, 0), glm::dvec3(0, -1, 0)};
+
+// Wall time of GL work, glFinish before and after: the same clock on llvmpipe and on a GPU
+// (llvmpipe's timer queries are unreliable across framebuffer changes).
+template <class F>
+double timed_ms(F&& f) {
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  glFinish();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string fmt3(const glm::dvec3& v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v.x << "," << v.y << "," << v.z;
+  return s.str();
+}
+
+}  // namespace
+
+void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method) {
+  std::ostringstream s;
+  s.precision(9);
+  image.metadata["scene"] = scene.name;
+  image.metadata["method"] = method;
+  image.metadata["camera"] = "eye " + fmt3(camera.eye) + " look_at " + fmt3(camera.look_at) + " up " +
+                             fmt3(camera.up) + " fov_deg " + std::to_string(camera.fov_deg);
+  s << "extinction_per_m " << scene.medium.extinction_per_m << " albedo " << scene.medium.albedo << " phase "
+    << to_string(scene.medium.phase);
+  image.metadata["medium"] = s.str();
+  std::string lights;
+  for (const PointLight& l : scene.point_lights) {
+    lights += (lights.empty() ? "" : "; ") + std::string("point ") + fmt3(l.position_m) + " I_w_sr " + fmt3(l.intensity_w_sr);
+  }
+  if (scene.sun) {
+    lights += (lights.empty() ? "" : "; ") + std::string("sun towards ") + fmt3(scene.sun->direction_to_sun) +
+              " E_w_m2 " + fmt3(scene.sun->irradiance_w_m2);
+  }
+  image.metadata["lights"] = lights;
+}
+
+struct ShaftRenderer::Impl {
+  Scene scene;
+  ShaftSettings settings;
+  GpuMesh occluders, ground;
+  std::vector<GpuMesh> bulbs;
+  GlVertexArray empty_vao;
+  ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
+  ShaderProgram surface_program{{"surface.vert.glsl", "surface.frag.glsl"}};
+  ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};
+  ShaderProgram skirt_interval_program{{"shadow_volume_interval.vert.glsl", "shadow_volume_interval.frag.glsl"}};
+  std::map<std::string, ShaderProgram> shaft_programs;
+
+  // Shadow maps.
+  int n_point = 0;
+  GlTexture point_maps;  // cube map array, R32F, 6 layers per light
+  GlRenderbuffer point_depth;
+  std::vector<GlFramebuffer> point_fbos;  // light * 6 + face
+  GlTexture sun_map;
+  GlRenderbuffer sun_depth;
+  GlFramebuffer sun_fbo;
+  glm::dvec3 sun_origin{0.0}, sun_axis_x{1, 0, 0}, sun_axis_y{0, 0, 1}, sun_dir{0, -1, 0};
+  glm::dmat4 sun_view_proj{1.0};
+  double sun_texel_m = 1.0;
+  bool shadow_maps_ready = false;
+
+  // Shadow-volume skirts per light (point lights, then the sun), built once from the maps.
+  struct Skirts {
+    GlBuffer quads;  // 6 vec4 vertices per quad, metres
+    GlVertexArray vao;
+    std::size_t count = 0;
+    bool overflow = false;
+  };
+  std::vector<Skirts> skirts;
+  bool skirts_ready = false;
+
+  // Jitter and the F table.
+  GlTexture jitter_tex;
+  std::map<int, GlTexture> f_tables;
+
+  Impl(const Scene& s, const ShaftSettings& st) : scene(s), settings(st) {}
+
+  void build_meshes();
+  void build_shadow_maps();
+  // Skirts end where the airlight behind them is negligible: the march cut-off beyond the
+  // farthest the camera can be from a light (the scene's extent).
+  double max_skirt_distance_m = 1.0e4;
+  void build_skirts();
+  void bind_lights(const ShaderProgram& p) const;
+  const ShaderProgram& shaft_program(const ShaftMethod& m);
+};
+
+void ShaftRenderer::Impl::build_meshes() {
+  Scene occ = scene;
+  occ.ground.reset();
+  occluders = upload(build_scene_mesh(occ, settings.ground_extent_m));
+  if (scene.ground) {
+    Scene g;
+    g.ground = scene.ground;
+    ground = upload(build_scene_mesh(g, settings.ground_extent_m));
+  }
+  for (const PointLight& l : scene.point_lights) {
+    bulbs.push_back(upload(build_bulb_mesh(l)));
+  }
+  empty_vao = make_vertex_array();
+}
+
+void ShaftRenderer::Impl::build_shadow_maps() {
+  n_point = static_cast<int>(scene.point_lights.size());
+  const int res = settings.point_shadow_res;
+  const float clear_far[4] = {kFarDistanceM, 0, 0, 0};
+  const float clear_depth = 1.0f;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  shadow_program.use();
+  if (n_point > 0) {
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &tex);
+    point_maps.reset(tex);
+    glTextureStorage3D(tex, 1, GL_R32F, res, res, 6 * n_point);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    GLuint rb = 0;
+    glCreateRenderbuffers(1, &rb);
+    point_depth.reset(rb);
+    glNamedRenderbufferStorage(rb, GL_DEPTH_COMPONENT32F, res, res);
+    glViewport(0, 0, res, res);
+    const glm::dmat4 proj = glm::perspective(M_PI / 2.0, 1.0, 0.01, static_cast<double>(kFarDistanceM));
+    shadow_program.set("u_mode", 0);
+    for (int i = 0; i < n_point; ++i) {
+      const glm::dvec3 pos = scene.point_lights[static_cast<std::size_t>(i)].position_m;
+      shadow_program.set("u_origin", to_float(pos));
+      for (int f = 0; f < 6; ++f) {
+        GLuint fbo = 0;
+        glCreateFramebuffers(1, &fbo);
+        point_fbos.emplace_back(fbo);
+        glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, tex, 0, i * 6 + f);
+        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
+        glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+        if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+          throw GlError("point shadow framebuffer incomplete");
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear_far);
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+        const glm::dmat4 view = glm::lookAt(pos, pos + kFaceDir[static_cast<std::size_t>(f)], kFaceUp[static_cast<std::size_t>(f)]);
+        shadow_program.set("u_view_proj", to_float(proj * view));
+        draw(occluders);
+      }
+    }
+  }
+  if (scene.sun) {
+    const int sres = settings.sun_shadow_res;
+    sun_dir = -glm::normalize(scene.sun->direction_to_sun);
+    glm::dvec3 helper = std::abs(sun_dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(helper, sun_dir));
+    const glm::dvec3 v = glm::cross(sun_dir, u);
+    // Bounds of the occluders along u, v and the propagation direction.
+    glm::dvec3 lo(1e300), hi(-1e300);
+    bool any = false;
+    auto extend = [&](const glm::dvec3& p) {
+      const glm::dvec3 c(glm::dot(p, u), glm::dot(p, v), glm::dot(p, sun_dir));
+      lo = glm::min(lo, c);
+      hi = glm::max(hi, c);
+      any = true;
+    };
+    for (const Box& b : scene.boxes)
+      for (int k = 0; k < 8; ++k)
+        extend(glm::dvec3(k & 1 ? b.max_m.x : b.min_m.x, k & 2 ? b.max_m.y : b.min_m.y, k & 4 ? b.max_m.z : b.min_m.z));
+    for (const Sphere& s : scene.spheres)
+      for (int k = 0; k < 8; ++k)
+        extend(s.centre_m + s.radius_m * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+    if (scene.terrain) {
+      const Heightfield& h = *scene.terrain;
+      for (int iz = 0; iz < h.nz; ++iz)
+        for (int ix = 0; ix < h.nx; ++ix)
+          extend(glm::dvec3(h.x0_m + ix * h.spacing_m, h.heights_m[static_cast<std::size_t>(iz * h.nx + ix)], h.z0_m + iz * h.spacing_m));
+    }
+    if (!any) lo = hi = glm::dvec3(0.0);
+    const glm::dvec3 pad = 0.01 * (hi - lo) + glm::dvec3(0.5);
+    lo -= pad;
+    hi += pad;
+    sun_origin = lo.x * u + lo.y * v + lo.z * sun_dir;
+    sun_axis_x = (hi.x - lo.x) * u;
+    sun_axis_y = (hi.y - lo.y) * v;
+    sun_texel_m = std::max(hi.x - lo.x, hi.y - lo.y) / sres;
+    const double depth = hi.z - lo.z;
+    // World -> clip: x, y from the map's axes, z from the distance along the propagation direction.
+    glm::dmat4 m(0.0);
+    const glm::dvec3 rx = 2.0 * u / (hi.x - lo.x), ry = 2.0 * v / (hi.y - lo.y), rz = 2.0 * sun_dir / depth;
+    for (int c = 0; c < 3; ++c) {
+      m[c][0] = rx[c];
+      m[c][1] = ry[c];
+      m[c][2] = rz[c];
+    }
+    m[3][0] = -glm::dot(rx, sun_origin) - 1.0;
+    m[3][1] = -glm::dot(ry, sun_origin) - 1.0;
+    m[3][2] = -glm::dot(rz, sun_origin) - 1.0;
+    m[3][3] = 1.0;
+    sun_view_proj = m;
+    sun_map = make_texture_2d(GL_R32F, sres, sres, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
+    GLuint rb = 0;
+    glCreateRenderbuffers(1, &rb);
+    sun_depth.reset(rb);
+    glNamedRenderbufferStorage(rb, GL_DEPTH_COMPONENT32F, sres, sres);
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    sun_fbo.reset(fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, sun_map.id(), 0);
+    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("sun shadow framebuffer incomplete");
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, sres, sres);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear_far);
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+    shadow_program.set("u_mode", 1);
+    shadow_program.set("u_origin", to_float(sun_origin));
+    shadow_program.set("u_dir", to_float(sun_dir));
+    shadow_program.set("u_view_proj", to_float(sun_view_proj));
+    draw(occluders);
+  }
+  check_gl("rendering shadow maps");
+  shadow_maps_ready = true;
+}
+
+// The shadow volume of each light, from its shadow map (shaders/shadow_volume_build.comp.glsl):
+// the skirts are kept in a buffer of their own size and drawn every frame.
+void ShaftRenderer::Impl::build_skirts() {
+  const int layers = n_point + (scene.sun ? 1 : 0);
+  const std::size_t max_quads = settings.max_skirt_quads;
+  GlBuffer scratch = make_buffer(static_cast<GLsizeiptr>(max_quads * 6 * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  GlBuffer counter = make_buffer(2 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const ShaderProgram& b = skirt_build_program;
+  b.use();
+  b.set("u_rel_threshold", static_cast<float>(settings.silhouette_jump));
+  b.set("u_max_distance", static_cast<float>(max_skirt_distance_m));
+  if (GLint loc = b.uniform_location("u_max_quads"); loc >= 0)
+    glProgramUniform1ui(b.id(), loc, static_cast<GLuint>(max_quads));
+  b.set("u_cube", 1);
+  b.set("u_map", 2);
+  if (point_maps) glBindTextureUnit(1, point_maps.id());
+  if (sun_map) glBindTextureUnit(2, sun_map.id());
+  skirts.clear();
+  for (int layer = 0; layer < layers; ++layer) {
+    const bool is_sun = layer >= n_point;
+    const GLuint zero2[2] = {0, 0};
+    glNamedBufferSubData(counter.id(), 0, sizeof(zero2), zero2);
+    b.set("u_mode", is_sun ? 1 : 0);
+    b.set("u_layer", layer);
+    int res = 0;
+    if (is_sun) {
+      res = settings.sun_shadow_res;
+      b.set("u_origin", to_float(sun_origin));
+      b.set("u_axis_x", to_float(sun_axis_x));
+      b.set("u_axis_y", to_float(sun_axis_y));
+      b.set("u_dir", to_float(sun_dir));
+    } else {
+      res = settings.point_shadow_res;
+      b.set("u_origin", to_float(scene.point_lights[static_cast<std::size_t>(layer)].position_m));
+    }
+    b.set("u_res", res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, scratch.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter.id());
+    const GLuint groups = static_cast<GLuint>((res + 7) / 8);
+    glDispatchCompute(groups, groups, is_sun ? 1u : 6u);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    GLuint got[2] = {0, 0};
+    glGetNamedBufferSubData(counter.id(), 0, sizeof(got), got);
+    Skirts sk;
+    sk.overflow = got[1] != 0;
+    sk.count = sk.overflow ? 0 : std::min<std::size_t>(got[0], max_quads);
+    sk.vao = make_vertex_array();
+    if (sk.count > 0) {
+      const auto bytes = static_cast<GLsizeiptr>(sk.count * 6 * sizeof(glm::vec4));
+      sk.quads = make_buffer(bytes, nullptr, 0);
+      glCopyNamedBufferSubData(scratch.id(), sk.quads.id(), 0, 0, bytes);
+      glEnableVertexArrayAttrib(sk.vao.id(), 0);
+      glVertexArrayAttribFormat(sk.vao.id(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(sk.vao.id(), 0, 0);
+      glVertexArrayVertexBuffer(sk.vao.id(), 0, sk.quads.id(), 0, sizeof(glm::vec4));
+    }
+    skirts.push_back(std::move(sk));
+  }
+  check_gl("building shadow-volume skirts");
+  skirts_ready = true;
+}
+
+// Uniforms of shaders/lib/lights.glsl; texture units 1 (point maps) and 2 (sun map).
+void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
+  p.set("u_num_point_lights", n_point);
+  std::array<glm::vec3, kMaxPointLights> pos{}, inten{};
+  for (int i = 0; i < n_point; ++i) {
+    pos[static_cast<std::size_t>(i)] = to_float(scene.point_lights[static_cast<std::size_t>(i)].position_m);
+    inten[static_cast<std::size_t>(i)] = to_float(scene.point_lights[static_cast<std::size_t>(i)].intensity_w_sr);
+  }
+  if (GLint loc = p.uniform_location("u_light_pos[0]"); loc >= 0) glProgramUniform3fv(p.id(), loc, kMaxPointLights, &pos[0].x);
+  if (GLint loc = p.uniform_location("u_light_intensity[0]"); loc >= 0)
+    glProgramUniform3fv(p.id(), loc, kMaxPointLights, &inten[0].x);
+  p.set("u_has_sun", scene.sun ? 1 : 0);
+  if (scene.sun) {
+    p.set("u_sun_to", to_float(glm::normalize(scene.sun->direction_to_sun)));
+    p.set("u_sun_irradiance", to_float(scene.sun->irradiance_w_m2));
+  }
+  p.set("u_sun_origin", to_float(sun_origin));
+  p.set("u_sun_axis_x", to_float(sun_axis_x));
+  p.set("u_sun_axis_y", to_float(sun_axis_y));
+  p.set("u_point_shadow_bias", 1.0e-4f);
+  p.set("u_sun_shadow_bias", static_cast<float>(1.0e-4 * glm::length(sun_axis_x)));
+  p.set("u_point_texel_angle", 2.0f / static_cast<float>(settings.point_shadow_res));
+  p.set("u_sun_texel_m", static_cast<float>(sun_texel_m));
+  p.set("u_point_shadow", 1);
+  p.set("u_sun_shadow", 2);
+  if (point_maps) glBindTextureUnit(1, point_maps.id());
+  if (sun_map) glBindTextureUnit(2, sun_map.id());
+}
+
+const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
+  const int method = m.kind == ShaftMethod::Kind::RayMarch ? 0 : m.kind == ShaftMethod::Kind::Analytic ? 1 : 2;
+  const bool table = m.kind == ShaftMethod::Kind::Analytic && m.airlight.kind == AirlightMethod::Table;
+  const std::string defines = "#define METHOD " + std::to_string(method) + "\n#define STEPS " +
+                              std::to_string(std::max(m.steps, 1)) + "\n#define AIRLIGHT_TABLE " +
+                              (table ? "1" : "0") + "\n";
+  auto it = shaft_programs.find(defines);
+  if (it == shaft_programs.end())
+    it = shaft_programs.emplace(defines, ShaderProgram({"fullscreen.vert.glsl", "shafts.frag.glsl"}, defines)).first;
+  return it->second;
+}
+
+ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
+    : impl_(std::make_unique<Impl>(scene, settings)) {
+  validate(scene);
+  if (scene.point_lights.size() > static_cast<std::size_t>(kMaxPointLights))
+    throw std::invalid_argument("scene '" + scene.name + "': the GPU renderer takes at most 4 point lights, got " +
+                                std::to_string(scene.point_lights.size()));
+  if (settings.point_shadow_res < 16 || settings.point_shadow_res > 8192)
+    throw std::invalid_argument("point_shadow_res must be in [16, 8192]");
+  if (settings.sun_shadow_res < 16 || settings.sun_shadow_res > 16384)
+    throw std::invalid_argument("sun_shadow_res must be in [16, 16384]");
+  const double sigma_t = scene.medium.extinction_per_m;
+  impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
+  impl_->build_meshes();
+}
+
+ShaftRenderer::~ShaftRenderer() = default;
+
+Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, ShaftFrameStats* stats) {
+  validate(camera);
+  Impl& s = *impl_;
+  if (method.kind == ShaftMethod::Kind::Reference)
+    throw std::invalid_argument("method 'reference' is the CPU renderer (render_reference), not the GPU one");
+  if (method.kind == ShaftMethod::Kind::Analytic && method.airlight.kind == AirlightMethod::Table &&
+      s.scene.medium.phase.kind != PhaseKind::Isotropic)
+    throw std::invalid_argument("method '" + to_string(method) + "': Sun et al.'s F table covers the isotropic phase only; this scene's phase is " +
+                                to_string(s.scene.medium.phase) + " (use analytic:stable)");
+  ShaftFrameStats st;
+  const int w = camera.width, h = camera.height;
+  if (!s.shadow_maps_ready) st.shadow_maps_ms = timed_ms([&] { s.build_shadow_maps(); });
+
+  // Surface pass.
+  GlTexture radiance = make_texture_2d(GL_RGBA32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
+  GlTexture distance = make_texture_2d(GL_R32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
+  GlTexture depth = make_depth_texture(w, h);
+  GlFramebuffer surface_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, radiance.id()},
+                                                {GL_COLOR_ATTACHMENT1, distance.id()},
+                                                {GL_DEPTH_ATTACHMENT, depth.id()}});
+  const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
+  const CameraFrame frame = camera_frame(camera);
+  const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
+  auto bind_camera = [&](const ShaderProgram& p) {
+    p.set("u_eye", to_float(camera.eye));
+    p.set("u_forward", to_float(frame.forward));
+    p.set("u_right_scaled", to_float(frame.right * tan_half));
+    p.set("u_up_scaled", to_float(frame.up * (tan_half * h / w)));
+    p.set("u_viewport", glm::vec2(static_cast<float>(w), static_cast<float>(h)));
+  };
+  const float sigma_t = static_cast<float>(s.scene.medium.extinction_per_m);
+  const float sigma_s = static_cast<float>(s.scene.medium.scattering_per_m());
+  st.surfaces_ms = timed_ms([&] {
+    glBindFramebuffer(GL_FRAMEBUFFER, surface_fbo.id());
+    glViewport(0, 0, w, h);
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(surface_fbo.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(surface_fbo.id(), GL_COLOR, 1, zero);
+    glClearNamedFramebufferfv(surface_fbo.id(), GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    const ShaderProgram& p = s.surface_program;
+    p.use();
+    p.set("u_view_proj", view_proj);
+    p.set("u_sigma_t", sigma_t);
+    bind_camera(p);
+    s.bind_lights(p);
+    p.set("u_emissive", 0);
+    p.set("u_normal_offset_texels", 0.0f);  // the ground is in no shadow map: no acne to avoid
+    draw(s.ground);
+    p.set("u_normal_offset_texels", 1.5f);
+    draw(s.occluders);
+    p.set("u_emissive", 1);
+    for (std::size_t i = 0; i < s.bulbs.size(); ++i) {
+      const PointLight& l = s.scene.point_lights[i];
+      p.set("u_emissive_radiance", to_float(l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m)));
+      draw(s.bulbs[i]);
+    }
+    check_gl("surface pass");
+  });
+
+  // Shadow-volume intervals: skirts from each light's map, nearest/farthest crossing per pixel.
+  const int layers = s.n_point + (s.scene.sun ? 1 : 0);
+  GlTexture sv_near, sv_far;
+  if (method.kind == ShaftMethod::Kind::ShadowVolume) {
+    GLuint ids[2] = {0, 0};
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 2, ids);
+    sv_near.reset(ids[0]);
+    sv_far.reset(ids[1]);
+    for (GLuint id : ids) {
+      glTextureStorage3D(id, 1, GL_R32F, w, h, std::max(layers, 1));
+      glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    if (!s.skirts_ready) st.shadow_maps_ms += timed_ms([&] { s.build_skirts(); });
+    st.shadow_volume_ms = timed_ms([&] {
+      for (int layer = 0; layer < layers; ++layer) {
+        const Impl::Skirts& sk = s.skirts[static_cast<std::size_t>(layer)];
+        const std::size_t n_quads = sk.count;
+        st.skirt_quads += n_quads;
+        st.skirt_overflow = st.skirt_overflow || sk.overflow;
+        GlFramebuffer fbo;
+        {
+          GLuint f = 0;
+          glCreateFramebuffers(1, &f);
+          fbo.reset(f);
+          glNamedFramebufferTextureLayer(f, GL_COLOR_ATTACHMENT0, sv_near.id(), 0, layer);
+          glNamedFramebufferTextureLayer(f, GL_COLOR_ATTACHMENT1, sv_far.id(), 0, layer);
+          const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+          glNamedFramebufferDrawBuffers(f, 2, bufs);
+        }
+        const float near_clear[4] = {3.0e38f, 0, 0, 0};
+        const float far_clear[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, near_clear);
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, far_clear);
+        if (sk.overflow) {
+          // Too many skirts: mark the whole ray ambiguous (sampled), which is always correct.
+          const float zero[4] = {0, 0, 0, 0};
+          const float huge[4] = {1.0e30f, 0, 0, 0};
+          glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, zero);
+          glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, huge);
+          continue;
+        }
+        if (n_quads == 0) continue;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glViewport(0, 0, w, h);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glEnablei(GL_BLEND, 0);
+        glEnablei(GL_BLEND, 1);
+        glBlendEquationi(0, GL_MIN);
+        glBlendEquationi(1, GL_MAX);
+        glBlendFunci(0, GL_ONE, GL_ONE);
+        glBlendFunci(1, GL_ONE, GL_ONE);
+        const ShaderProgram& iv = s.skirt_interval_program;
+        iv.use();
+        iv.set("u_view_proj", view_proj);
+        iv.set("u_eye", to_float(camera.eye));
+        iv.set("u_surface_distance", 0);
+        glBindTextureUnit(0, distance.id());
+        glBindVertexArray(sk.vao.id());
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(n_quads * 6));
+        glDisablei(GL_BLEND, 0);
+        glDisablei(GL_BLEND, 1);
+        glBlendEquation(GL_FUNC_ADD);
+      }
+      check_gl("shadow-volume intervals");
+    });
+  }
+
+  // Shaft pass.
+  if (!s.jitter_tex) {
+    const int n = 64;
+    const std::vector<float> tile = blue_noise_tile(n, s.settings.jitter_seed);
+    s.jitter_tex = make_texture_2d(GL_R32F, n, n, TextureParams{GL_NEAREST, GL_NEAREST, GL_REPEAT, 1});
+    glTextureSubImage2D(s.jitter_tex.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, tile.data());
+  }
+  GlTexture out = make_texture_2d(GL_RGBA32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
+  GlFramebuffer out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out.id()}});
+  const ShaderProgram& p = s.shaft_program(method);
+  st.shafts_ms = timed_ms([&] {
+    glBindFramebuffer(GL_FRAMEBUFFER, out_fbo.id());
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    p.use();
+    bind_camera(p);
+    s.bind_lights(p);
+    p.set("u_sigma_t", sigma_t);
+    p.set("u_sigma_s", sigma_s);
+    p.set("u_phase_kind", static_cast<int>(s.scene.medium.phase.kind));
+    p.set("u_phase_g", static_cast<float>(s.scene.medium.phase.g));
+    p.set("u_march_cutoff_m",
+          static_cast<float>(sigma_t > 0 ? std::min(s.settings.march_cutoff_optical / sigma_t, camera.far_m) : camera.far_m));
+    p.set("u_jitter_mode", static_cast<int>(method.jitter));
+    p.set("u_surface_radiance", 3);
+    p.set("u_surface_distance", 4);
+    p.set("u_jitter", 5);
+    glBindTextureUnit(3, radiance.id());
+    glBindTextureUnit(4, distance.id());
+    glBindTextureUnit(5, s.jitter_tex.id());
+    if (method.kind == ShaftMethod::Kind::ShadowVolume) {
+      p.set("u_sv_near", 6);
+      p.set("u_sv_far", 7);
+      glBindTextureUnit(6, sv_near.id());
+      glBindTextureUnit(7, sv_far.id());
+    }
+    if (method.kind == ShaftMethod::Kind::Analytic && method.airlight.kind == AirlightMethod::Table) {
+      auto it = s.f_tables.find(method.airlight.n);
+      if (it == s.f_tables.end()) {
+        const FTable table(method.airlight.n);
+        const int n = table.size();
+        GlTexture t = make_texture_2d(GL_R32F, n, n, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+        glTextureSubImage2D(t.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, table.data());
+        it = s.f_tables.emplace(n, std::move(t)).first;
+      }
+      p.set("u_F_table", 8);
+      p.set("u_F_size", method.airlight.n);
+      glBindTextureUnit(8, it->second.id());
+    }
+    draw_fullscreen_triangle(s.empty_vao);
+    check_gl("shaft pass");
+  });
+  Image img = read_rgba(out_fbo, w, h);
+  st.total_ms = st.shadow_maps_ms + st.surfaces_ms + st.shadow_volume_ms + st.shafts_ms;
+  st.timing = "glFinish + steady_clock";
+  for (float& v : img.rgba)
+    if (!std::isfinite(v)) throw std::runtime_error("GPU renderer produced a non-finite pixel value (method " + to_string(method) + ")");
+  describe_frame(img, s.scene, camera, to_string(method));
+  if (stats) *stats = st;
+  return img;
+}
+
+}  // namespace nimbus::render

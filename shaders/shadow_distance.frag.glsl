@@ -1,0 +1,13 @@
+#version 450 core
+// Shadow maps store distances in metres: from a point light (cube faces), or along the sun's
+// propagation direction from a plane in front of every occluder (orthographic map).
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_albedo;
+uniform int u_mode;      // 0: point light, 1: sun
+uniform vec3 u_origin;   // light position, or a point on the sun's plane
+uniform vec3 u_dir;      // sun's propagation direction (unit)
+layout(location = 0) out float o_distance;
+void main() {
+  o_distance = (u_mode == 0) ? length(v_world - u_origin) : dot(v_world - u_origin, u_dir);
+}

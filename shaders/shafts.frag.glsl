@@ -1,0 +1,167 @@
+#version 450 core
+// The light-shaft pass: per pixel, the attenuated surface radiance (thesis eq. 23) plus the
+// single-scattered airlight of every light, by one of three methods chosen at compile time:
+//   METHOD 0: ray marching with shadow-map visibility and a per-pixel jitter (thesis 4.1, Alg. 1)
+//   METHOD 1: the analytic airlight of Sun et al. (eqs. 7-12), no volumetric shadows
+//   METHOD 2: shadow-volume intervals (thesis 4.3, Biri et al. eqs. 10-12): closed form on the
+//             parts of the ray before the nearest and after the farthest shadow-volume crossing,
+//             STEPS samples only in between.
+// Defines: METHOD, STEPS, AIRLIGHT_TABLE (1: Sun's F table for METHOD 1, else the stable form).
+#ifndef METHOD
+#define METHOD 0
+#endif
+#ifndef STEPS
+#define STEPS 64
+#endif
+#ifndef AIRLIGHT_TABLE
+#define AIRLIGHT_TABLE 0
+#endif
+in vec2 uv;
+uniform sampler2D u_surface_radiance;  // RGBA32F: radiance leaving the surface, alpha 1 on hits
+uniform sampler2D u_surface_distance;  // R32F: metres from the eye, 0 where nothing was hit
+uniform float u_sigma_t;    // extinction, per metre
+uniform float u_sigma_s;    // scattering, per metre
+uniform int u_phase_kind;   // 0 isotropic, 1 Henyey-Greenstein, 2 Schlick, 3 Rayleigh
+uniform float u_phase_g;
+uniform float u_march_cutoff_m;  // ray-march end for rays that hit nothing
+uniform sampler2D u_jitter;      // tiled jitter values in [0, 1)
+uniform int u_jitter_mode;       // 0: none (0.5), 1: white, 2: tiled (blue noise)
+#include "lib/camera_ray.glsl"
+#include "lib/lights.glsl"
+#include "lib/phase.glsl"
+#include "lib/airlight.glsl"
+#if METHOD == 1 && AIRLIGHT_TABLE
+#include "lib/airlight_table.glsl"
+uniform sampler2D u_F_table;
+uniform int u_F_size;
+#endif
+#if METHOD == 2
+uniform sampler2DArray u_sv_near;  // layer = point light index, last layer = sun
+uniform sampler2DArray u_sv_far;
+#endif
+layout(location = 0) out vec4 o_color;
+
+const float INF_M = 1.0e30;
+
+float hash_jitter(uvec2 p) {
+  uint h = p.x * 1664525u + p.y * 1013904223u;
+  h ^= h >> 16; h *= 0x7feb352du; h ^= h >> 15; h *= 0x846ca68bu; h ^= h >> 16;
+  return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+float pixel_jitter(ivec2 px) {
+  if (u_jitter_mode == 1) return hash_jitter(uvec2(px));
+  if (u_jitter_mode == 2) {
+    ivec2 size = textureSize(u_jitter, 0);
+    return texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r;
+  }
+  return 0.5;
+}
+
+// Ray-marched single scattering from point light i over [a, b] (thesis eq. 26): n samples at
+// a + (k + jitter) (b - a) / n, each weighted by the shadow-map visibility.
+float march_point(int i, vec3 dir, float a, float b, int n, float jitter) {
+  float h = (b - a) / float(n);
+  float sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    float x = a + (float(k) + jitter) * h;
+    vec3 p = u_eye + dir * x;
+    vec3 lv = p - u_light_pos[i];
+    float d = length(lv);
+    float vis = point_visibility(i, p);
+    if (vis > 0.0)
+      sum += phase_value(u_phase_kind, u_phase_g, dot(lv / d, -dir)) * exp(-u_sigma_t * (d + x)) / (d * d);
+  }
+  return u_sigma_s * sum * h;
+}
+
+float march_sun(vec3 dir, float a, float b, int n, float jitter) {
+  float h = (b - a) / float(n);
+  float sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    float x = a + (float(k) + jitter) * h;
+    sum += sun_visibility(u_eye + dir * x) * exp(-u_sigma_t * x);
+  }
+  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-u_sun_to, -dir)) * sum * h;
+}
+
+float closed_point(int i, vec3 dir, float x0, float x1) {
+  vec3 to_light = u_light_pos[i] - u_eye;
+  float Dsv = length(to_light);
+  float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
+  float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
+  return point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, x0, x1, u_phase_kind, u_phase_g);
+}
+
+float closed_sun(vec3 dir, float x0, float x1) {
+  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-u_sun_to, -dir), x0, x1, u_phase_kind, u_phase_g);
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec3 Ls = texelFetch(u_surface_radiance, px, 0).rgb;
+  float t = texelFetch(u_surface_distance, px, 0).r;
+  bool hit = t > 0.0;
+  float t_end = hit ? t : INF_M;
+  vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
+  vec3 L = hit ? Ls * exp(-u_sigma_t * t) : vec3(0.0);
+  float jitter = pixel_jitter(px);
+  float t_march = hit ? t : u_march_cutoff_m;
+
+  for (int i = 0; i < u_num_point_lights; ++i) {
+#if METHOD == 0
+    float a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
+#elif METHOD == 1
+#if AIRLIGHT_TABLE
+    vec3 to_light = u_light_pos[i] - u_eye;
+    float Dsv = length(to_light);
+    float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
+    float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
+    // Sun's table form is for albedo 1 (beta = sigma_s = sigma_t), scaled by the albedo.
+    float a = (u_sigma_t > 0.0 ? u_sigma_s / u_sigma_t : 0.0) *
+              airlight_table(u_F_table, u_F_size, u_sigma_t, 1.0, Dsv, hit ? t : INF_M, cg, sg);
+#else
+    float a = closed_point(i, dir, 0.0, t_end);
+#endif
+#else
+    float tn = texelFetch(u_sv_near, ivec3(px, i), 0).r;
+    float tf = texelFetch(u_sv_far, ivec3(px, i), 0).r;
+    float a = 0.0;
+    if (tn >= 1.0e29) {  // no shadow-volume crossing before the surface: one state
+      float probe = 0.5 * min(t_end, 10.0);
+      if (point_visibility(i, u_eye + dir * probe) > 0.0) a = closed_point(i, dir, 0.0, t_end);
+    } else {
+      if (point_visibility(i, u_eye + dir * (0.5 * tn)) > 0.0) a += closed_point(i, dir, 0.0, tn);
+      a += march_point(i, dir, tn, tf, STEPS, jitter);
+      float probe = tf + 0.5 * (min(t_end, tf + 10.0) - tf);
+      if (point_visibility(i, u_eye + dir * probe) > 0.0) a += closed_point(i, dir, tf, t_end);
+    }
+#endif
+    L += u_light_intensity[i] * a;
+  }
+
+  if (u_has_sun != 0) {
+#if METHOD == 0
+    float a = march_sun(dir, 0.0, t_march, STEPS, jitter);
+#elif METHOD == 1
+    float a = closed_sun(dir, 0.0, t_end);
+#else
+    int layer = u_num_point_lights;
+    float tn = texelFetch(u_sv_near, ivec3(px, layer), 0).r;
+    float tf = texelFetch(u_sv_far, ivec3(px, layer), 0).r;
+    float a = 0.0;
+    if (tn >= 1.0e29) {
+      float probe = 0.5 * min(t_end, 10.0);
+      if (sun_visibility(u_eye + dir * probe) > 0.0) a = closed_sun(dir, 0.0, t_end);
+    } else {
+      if (sun_visibility(u_eye + dir * (0.5 * tn)) > 0.0) a += closed_sun(dir, 0.0, tn);
+      a += march_sun(dir, tn, tf, STEPS, jitter);
+      float probe = tf + 0.5 * (min(t_end, tf + 10.0) - tf);
+      if (sun_visibility(u_eye + dir * probe) > 0.0) a += closed_sun(dir, tf, t_end);
+    }
+#endif
+    L += u_sun_irradiance * a;
+  }
+  float alpha = (hit || u_sigma_t > 0.0) ? 1.0 : 0.0;
+  o_color = vec4(L, alpha);
+}

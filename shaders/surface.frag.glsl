@@ -1,0 +1,40 @@
+#version 450 core
+// Surface pass: the radiance leaving each visible surface towards the eye, before the medium
+// between them attenuates it (thesis eq. 24, Lambert), and its distance from the eye.
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_albedo;
+uniform float u_sigma_t;           // extinction, per metre
+uniform vec3 u_emissive_radiance;  // > 0 for light bulbs: their radiance, no shading
+uniform int u_emissive;
+uniform float u_normal_offset_texels;  // shadow lookups move this many texels along the normal
+#include "lib/camera_ray.glsl"
+#include "lib/lights.glsl"
+layout(location = 0) out vec4 o_radiance;
+layout(location = 1) out float o_distance;
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 to_eye = u_eye - v_world;
+  if (dot(n, to_eye) < 0.0) n = -n;  // two-sided
+  vec3 L = vec3(0.0);
+  if (u_emissive != 0) {
+    L = u_emissive_radiance;
+  } else {
+    for (int i = 0; i < u_num_point_lights; ++i) {
+      vec3 l = u_light_pos[i] - v_world;
+      float d = length(l);
+      float cos_s = max(dot(n, l / d), 0.0);
+      if (cos_s <= 0.0) continue;
+      // Normal offset against shadow acne on surfaces that are in the shadow maps.
+      float v = point_visibility(i, v_world + n * (u_normal_offset_texels * d * u_point_texel_angle));
+      L += v_albedo / 3.14159265358979 * u_light_intensity[i] * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
+    }
+    if (u_has_sun != 0) {
+      float cos_s = max(dot(n, u_sun_to), 0.0);
+      if (cos_s > 0.0)
+        L += v_albedo / 3.14159265358979 * u_sun_irradiance * cos_s * sun_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
+    }
+  }
+  o_radiance = vec4(L, 1.0);
+  o_distance = length(to_eye);
+}

@@ -40,6 +40,9 @@ TEST(AirlightTable, HoldsExactFAtItsNodesInRowMajorOrder) {
   // Clamped outside [0, 10] x [0, pi/2].
   EXPECT_DOUBLE_EQ(t.lookup(25.0, 0.3), t.lookup(10.0, 0.3));
   EXPECT_DOUBLE_EQ(t.lookup(-1.0, 0.3), t.lookup(0.0, 0.3));
+  EXPECT_TRUE(std::isnan(t.lookup(std::nan(""), 0.3)));
+  // Eq. 11 as printed divides by Tsv sin(gamma): beta = 0 gives NaN, which the method reports.
+  EXPECT_TRUE(std::isnan(nimbus::render::airlight_table({0.0, 1.0, 1.0, 1.0, 1.0}, t)));
   EXPECT_THROW(FTable(15), std::invalid_argument);
   EXPECT_THROW(FTable(1025), std::invalid_argument);
 }

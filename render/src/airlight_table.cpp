@@ -3,6 +3,7 @@
 // stable evaluation.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -50,6 +51,7 @@ FTable::FTable(int n) : n_(n) {
 const float* FTable::data() const { return impl_->floats.data(); }
 
 double FTable::lookup(double u, double v) const {
+  if (std::isnan(u) || std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();  // e.g. eq. 11 at beta = 0
   const int n = n_;
   const double fu = std::clamp(u / kUMax, 0.0, 1.0) * (n - 1);
   const double fv = std::clamp(v / kVMax, 0.0, 1.0) * (n - 1);

@@ -1,6 +1,7 @@
 // Scene presets (what each named scene is made of) and scene validation messages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -105,7 +106,9 @@ TEST(ScenePresets, TerrainIsADeterministic65x65Heightfield) {
   EXPECT_TRUE(a.sun);
   const auto ground = nr::heightfield_height(*a.terrain, a.camera.eye.x, a.camera.eye.z);
   ASSERT_TRUE(ground);
-  EXPECT_GT(a.camera.eye.y - *ground, 5.0);
+  EXPECT_GT(a.camera.eye.y - *ground, 3.0);
+  ASSERT_TRUE(a.ground);  // closes the horizon beyond the heightfield, below all of it
+  EXPECT_LT(a.ground->height_m, *std::min_element(a.terrain->heights_m.begin(), a.terrain->heights_m.end()));
 }
 
 TEST(ScenePresets, OpenSceneHasNothingToOcclude) {
@@ -146,6 +149,9 @@ TEST(SceneValidation, ErrorsNameTheField) {
   expect_error_naming(s, "camera");
   s = good;
   s.camera.eye = s.spheres[0].centre_m;
+  expect_error_naming(s, "camera.eye");
+  s = good;
+  s.camera.eye = s.point_lights[0].position_m + glm::dvec3{0.0, 0.01, 0.0};
   expect_error_naming(s, "camera.eye");
   s = good;
   s.medium.extinction_per_m = -0.1;

@@ -118,6 +118,11 @@ void validate(const Scene& s) {
     fail("camera", e.what());
   }
   check_not_buried(s, s.camera.eye, "camera.eye");
+  for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
+    if (glm::length(s.camera.eye - s.point_lights[i].position_m) <= s.point_lights[i].bulb_radius_m) {
+      fail("camera.eye", "lies inside the bulb of " + at("point_lights", i));
+    }
+  }
   if (s.ground) {
     for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
       if ((s.point_lights[i].position_m.y > s.ground->height_m) != (s.camera.eye.y > s.ground->height_m)) {

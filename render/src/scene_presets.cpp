@@ -114,22 +114,28 @@ Scene spheres() {
   return s;
 }
 
-// Smooth deterministic hills (metres): a ridge of three hills 150-170 m behind the origin
-// with a gap between them, a low mound in front, and gentle undulation.
+// Smooth deterministic terrain (metres): a ridge of five peaks 42-60 m high along z = -150 m,
+// 50 m apart with notches about 15 m high between them, on gently undulating ground; lowest
+// point 0.5 m.
 double terrain_height(double x, double z) {
   auto bump = [](double dx, double dz, double rx, double rz) {
     return std::exp(-(dx * dx) / (rx * rx) - (dz * dz) / (rz * rz));
   };
-  return 3.0 + 28.0 * bump(x + 70.0, z + 150.0, 90.0, 60.0) + 34.0 * bump(x - 90.0, z + 170.0, 70.0, 70.0) +
-         18.0 * bump(x - 10.0, z + 60.0, 50.0, 45.0) + 2.5 * std::sin(x / 31.0) * std::cos(z / 43.0);
+  const double peaks[5][3] = {{-100.0, -145.0, 45.0}, {-50.0, -155.0, 58.0}, {0.0, -150.0, 50.0},
+                              {50.0, -160.0, 60.0}, {100.0, -150.0, 42.0}};
+  double y = 3.0 + 2.5 * std::sin(x / 31.0) * std::cos(z / 43.0);
+  for (const auto& p : peaks) y += p[2] * bump(x - p[0], z - p[1], 22.0, 35.0);
+  return y;
 }
 
-// 65 x 65 heightfield, 8 m apart (512 m square), a low sun (about 9 degrees up) behind the
-// hills: shafts through the gap and over the ridges toward the camera.
+// 65 x 65 heightfield, 8 m apart (512 m square), over a ground plane at 0 m that closes the
+// horizon beyond its edges; a low sun (about 10 degrees up) behind the ridge: the camera in
+// the peaks' shadow sees lit sheets through the notches between shadow wedges, streaming
+// toward it (forward scattering, HG g = 0.6).
 Scene terrain() {
   Scene s;
   s.name = "terrain";
-  s.medium = medium(0.008, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.4});
+  s.medium = medium(0.006, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.6});
   Heightfield h;
   h.nx = h.nz = 65;
   h.spacing_m = 8.0;
@@ -143,9 +149,10 @@ Scene terrain() {
   }
   h.material = Material{{0.35, 0.4, 0.3}};
   s.terrain = h;
-  s.sun = SunLight{glm::normalize(glm::dvec3{0.15, 0.16, -1.0}), glm::dvec3{1.0, 0.92, 0.8} * 6.0};
-  // Eye 10 m above the (smooth) ground near the south edge, looking north at the ridge.
-  s.camera = camera({0.0, terrain_height(0.0, 200.0) + 10.0, 200.0}, {0.0, 15.0, -150.0}, 60.0);
+  s.ground = GroundPlane{0.0, Material{{0.35, 0.4, 0.3}}};
+  s.sun = SunLight{glm::normalize(glm::dvec3{0.1, 0.18, -1.0}), glm::dvec3{1.0, 0.92, 0.8} * 6.0};
+  // Eye 5 m above the ground 60 m south of the origin, looking north at the ridge.
+  s.camera = camera({0.0, terrain_height(0.0, 60.0) + 5.0, 60.0}, {0.0, 30.0, -150.0}, 60.0);
   return s;
 }
 

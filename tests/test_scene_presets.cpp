@@ -151,7 +151,7 @@ TEST(SceneValidation, ErrorsNameTheField) {
   s.camera.eye = s.spheres[0].centre_m;
   expect_error_naming(s, "camera.eye");
   s = good;
-  s.camera.eye = s.point_lights[0].position_m + glm::dvec3{0.0, 0.01, 0.0};
+  s.camera.eye = s.point_lights[0].position_m + glm::dvec3{0.01, 0.0, 0.0};
   expect_error_naming(s, "camera.eye");
   s = good;
   s.medium.extinction_per_m = -0.1;

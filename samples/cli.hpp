@@ -20,10 +20,13 @@ void add_bench_command(CLI::App& app, Action& action);
 void add_info_command(CLI::App& app, Action& action);
 void add_generate_command(CLI::App& app, Action& action);
 void add_presets_command(CLI::App& app, Action& action);
+void add_render_command(CLI::App& app, Action& action);
+void add_compare_command(CLI::App& app, Action& action);
 void add_airlight_command(CLI::App& app, Action& action);
 
 // Benchmarks, each a `nimbus bench NAME` subcommand.
 void add_bench_noise(CLI::App& bench, Action& action);
 void add_bench_volume(CLI::App& bench, Action& action);
+void add_bench_shafts(CLI::App& bench, Action& action);
 
 }  // namespace nimbus::cli

@@ -8,6 +8,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   bench->require_subcommand(1);
   add_bench_noise(*bench, action);
   add_bench_volume(*bench, action);
+  add_bench_shafts(*bench, action);
 }
 
 }  // namespace nimbus::cli

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   nimbus::cli::add_info_command(app, action);
   nimbus::cli::add_generate_command(app, action);
   nimbus::cli::add_presets_command(app, action);
+  nimbus::cli::add_render_command(app, action);
+  nimbus::cli::add_compare_command(app, action);
   nimbus::cli::add_airlight_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

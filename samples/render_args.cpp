@@ -19,7 +19,7 @@ glm::dvec3 parse_vec3(const std::string& flag, const std::string& text) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != m[i + 1].length() || !std::isfinite(x))
+    if (used != static_cast<std::size_t>(m[i + 1].length()) || !std::isfinite(x))
       throw UsageError(flag + ": '" + text + "' must be three finite numbers X,Y,Z");
     v[i] = x;
   }

@@ -22,6 +22,7 @@
 #include "nimbus/render/intersect.hpp"
 #include "nimbus/render/reference_quadrature.hpp"
 #include "nimbus/render/reference_visibility.hpp"
+#include "nimbus/render/shaft_renderer.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -174,34 +175,10 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
   return out;
 }
 
-std::string vec(const glm::dvec3& v) {
-  std::ostringstream os;
-  os.precision(9);
-  os << v.x << "," << v.y << "," << v.z;
-  return os.str();
-}
-
+// The frame's metadata as every renderer writes it (describe_frame), plus the reference's own
+// settings.
 void describe(Image& image, const Scene& s, const Camera& c, const ReferenceSettings& settings) {
-  std::ostringstream cam, med, lights;
-  cam.precision(9);
-  med.precision(9);
-  cam << "eye=" << vec(c.eye) << " look_at=" << vec(c.look_at) << " up=" << vec(c.up) << " fov_deg=" << c.fov_deg
-      << " size=" << c.width << "x" << c.height;
-  med << "extinction_per_m=" << s.medium.extinction_per_m << " albedo=" << s.medium.albedo
-      << " phase=" << to_string(s.medium.phase);
-  for (const PointLight& l : s.point_lights) {
-    lights << (lights.tellp() > 0 ? "; " : "") << "point position_m=" << vec(l.position_m)
-           << " intensity_w_sr=" << vec(l.intensity_w_sr) << " bulb_radius_m=" << l.bulb_radius_m;
-  }
-  if (s.sun) {
-    lights << (lights.tellp() > 0 ? "; " : "") << "sun direction_to_sun=" << vec(glm::normalize(s.sun->direction_to_sun))
-           << " irradiance_w_m2=" << vec(s.sun->irradiance_w_m2);
-  }
-  image.metadata["method"] = "reference";
-  image.metadata["scene"] = s.name;
-  image.metadata["camera"] = cam.str();
-  image.metadata["medium"] = med.str();
-  image.metadata["lights"] = lights.str();
+  describe_frame(image, s, c, "reference");
   std::ostringstream tol;
   tol << settings.rel_tol;
   image.metadata["rel_tol"] = tol.str();

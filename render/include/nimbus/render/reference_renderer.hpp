@@ -31,7 +31,8 @@ void validate(const ReferenceSettings& settings);
 // Renders `scene` (validated; std::invalid_argument naming the field) through `camera`
 // (validated): RGB = radiance (W sr^-1 m^-2), premultiplied by alpha; alpha = 1 where a
 // surface or bulb is hit, else 1 - e^(-sigma_t inf) (1 in fog, 0 in vacuum). Metadata:
-// "method" = "reference", "camera", "medium", "lights", "scene", "rel_tol".
+// describe_frame's (shaft_renderer.hpp) with method "reference", plus "rel_tol" and
+// "visibility_samples".
 // Throws std::runtime_error if a pixel came out NaN or infinite.
 Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings = {});
 

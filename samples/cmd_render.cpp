@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string preview;
   std::optional<double> exposure;
   std::string output;
+  bool hide_bulbs = false;
 };
 
 int run_render(const RenderArgs& a) {
@@ -40,6 +41,8 @@ int run_render(const RenderArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--scene: ") + e.what());
   }
+  if (a.hide_bulbs)
+    for (render::PointLight& l : scene.point_lights) l.bulb_radius_m = 0.0;
   if (a.extinction) scene.medium.extinction_per_m = *a.extinction;
   if (a.albedo) scene.medium.albedo = *a.albedo;
   if (!a.phase.empty()) {
@@ -129,6 +132,7 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--extinction", a->extinction, "Override the fog's extinction, per metre");
   cmd->add_option("--albedo", a->albedo, "Override the fog's single-scattering albedo, [0, 1]");
   cmd->add_option("--phase", a->phase, "Override the phase function: isotropic, hg:G, schlick:G, rayleigh");
+  cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
   cmd->add_option("-o,--output", a->output, "Output EXR file")->required();

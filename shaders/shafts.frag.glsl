@@ -120,6 +120,9 @@ void main() {
     // Sun's table form is for albedo 1 (beta = sigma_s = sigma_t), scaled by the albedo.
     float a = (u_sigma_t > 0.0 ? u_sigma_s / u_sigma_t : 0.0) *
               airlight_table(u_F_table, u_F_size, u_sigma_t, 1.0, Dsv, hit ? t : INF_M, cg, sg);
+    // Sun's formula as printed is undefined where A1 = Tsv sin(gamma) = 0 (no fog, or the
+    // light on the ray's line); there the stable form stands in, so no NaN reaches the image.
+    if (isnan(a) || isinf(a)) a = closed_point(i, dir, 0.0, t_end);
 #else
     float a = closed_point(i, dir, 0.0, t_end);
 #endif

@@ -118,6 +118,17 @@ TEST(SceneMesh, BulbsCarryTheirRadiance) {
   }
 }
 
+// A radius of 0 hides a bulb: no triangles, and the reference sees no bulb either.
+TEST(SceneMesh, HiddenBulbsHaveNoGeometry) {
+  nr::Scene s = nr::make_scene("lamps");
+  for (nr::PointLight& l : s.point_lights) l.bulb_radius_m = 0.0;
+  nr::validate(s);
+  EXPECT_TRUE(nr::build_bulb_mesh(s).indices.empty());
+  EXPECT_TRUE(nr::build_bulb_mesh(s.point_lights[0]).vertices.empty());
+  const glm::dvec3 dir = glm::normalize(s.point_lights[0].position_m - s.camera.eye);
+  EXPECT_FALSE(nr::intersect_bulbs(s, s.camera.eye, dir, 1e9).has_value());
+}
+
 TEST(SceneMesh, EveryPresetBuilds) {
   for (const std::string& name : nr::scene_names()) {
     const nr::Scene s = nr::make_scene(name);

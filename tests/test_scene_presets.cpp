@@ -136,7 +136,7 @@ TEST(SceneValidation, ErrorsNameTheField) {
   s.point_lights[0].intensity_w_sr.y = std::nan("");
   expect_error_naming(s, "point_lights[0].intensity_w_sr");
   s = good;
-  s.point_lights[0].bulb_radius_m = 0.0;
+  s.point_lights[0].bulb_radius_m = -0.01;  // 0 is allowed: no visible bulb
   expect_error_naming(s, "point_lights[0].bulb_radius_m");
   s = good;
   s.point_lights[0].position_m = s.spheres[2].centre_m;

@@ -353,6 +353,7 @@ std::optional<BulbHit> SceneTracer::intersect_bulbs(const glm::dvec3& o, const g
   std::optional<BulbHit> best;
   for (std::size_t i = 0; i < scene_.point_lights.size(); ++i) {
     const PointLight& l = scene_.point_lights[i];
+    if (!(l.bulb_radius_m > 0.0)) continue;  // no visible bulb
     if (auto h = intersect_sphere(l.position_m, l.bulb_radius_m, o, d, 0.0, tmax)) {
       best = BulbHit{h->t, i};
       tmax = h->t;

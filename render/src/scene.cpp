@@ -101,8 +101,8 @@ void validate(const Scene& s) {
     const std::string f = at("point_lights", i);
     if (!finite3(l.position_m)) fail(f + ".position_m", "must be finite");
     check_non_negative3(l.intensity_w_sr, f + ".intensity_w_sr");
-    if (!std::isfinite(l.bulb_radius_m) || !(l.bulb_radius_m > 0.0)) {
-      fail(f + ".bulb_radius_m", "must be finite and > 0");
+    if (!std::isfinite(l.bulb_radius_m) || !(l.bulb_radius_m >= 0.0)) {
+      fail(f + ".bulb_radius_m", "must be finite and >= 0 (0: no visible bulb)");
     }
     check_not_buried(s, l.position_m, f + ".position_m");
   }

@@ -120,6 +120,7 @@ SceneMesh build_scene_mesh(const Scene& scene, double ground_extent_m) {
 SceneMesh build_bulb_mesh(const PointLight& light) {
   SceneMesh m;
   const double r = light.bulb_radius_m;
+  if (!(r > 0.0)) return m;  // no visible bulb
   add_sphere(m, light.position_m, r, light.intensity_w_sr / (M_PI * r * r), kBulbSlices, kBulbStacks);
   return m;
 }
@@ -128,6 +129,7 @@ SceneMesh build_bulb_mesh(const Scene& scene) {
   SceneMesh m;
   for (const PointLight& l : scene.point_lights) {
     const double r = l.bulb_radius_m;
+    if (!(r > 0.0)) continue;  // no visible bulb
     add_sphere(m, l.position_m, r, l.intensity_w_sr / (M_PI * r * r), kBulbSlices, kBulbStacks);
   }
   return m;

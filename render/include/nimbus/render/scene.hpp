@@ -45,7 +45,8 @@ struct Sphere {
 };
 
 // Isotropic point light (a street lamp). Seen directly it is a small emissive sphere of
-// radius bulb_radius_m and radiance intensity / (pi r^2); the bulb casts no shadow.
+// radius bulb_radius_m and radiance intensity / (pi r^2); the bulb casts no shadow. A radius of
+// 0 hides the bulb (the benchmarks do, so that the error measures the shafts, not the source).
 struct PointLight {
   glm::dvec3 position_m{0.0, 4.0, 0.0};
   glm::dvec3 intensity_w_sr{100.0};  // radiant intensity I0 per channel, W/sr

@@ -77,15 +77,23 @@ TEST_F(ShaftsGl, RayMarchConvergesToAnalyticWhereNothingOccludes) {
   EXPECT_LT(previous, 5e-3);
 }
 
-// The analytic airlight is exact where nothing occludes: against the CPU reference within
-// 0.5 % (float32 shader arithmetic and the tessellated bulb's silhouette pixels).
+// The analytic airlight is exact where nothing occludes: the stable form within 1e-3 of the
+// CPU reference (measured 5e-5: float32 arithmetic), Sun's F table with an error that falls as
+// the table grows (measured 7.1 %, 2.3 %, 0.6 % at N = 16, 64, 256) and within 1 % at N = 256.
 TEST_F(ShaftsGl, AnalyticMatchesReferenceWhereNothingOccludes) {
   const Scene scene = scene_without_bulbs("open");
+  ASSERT_EQ(scene.medium.phase.kind, PhaseKind::Isotropic);  // the table's case
   ShaftRenderer r(scene);
   const Camera cam = small(scene);
   const Image ref = render_reference(scene, cam, {});
-  const ImageError e = compare_images(r.render(cam, parse_shaft_method("analytic")), ref);
-  EXPECT_LT(e.rel_rmse, 5e-3);
+  EXPECT_LT(compare_images(r.render(cam, parse_shaft_method("analytic")), ref).rel_rmse, 1e-3);
+  double previous = 1e300;
+  for (int n : {16, 64, 256}) {
+    const double err = compare_images(r.render(cam, parse_shaft_method("analytic:table:" + std::to_string(n))), ref).rel_rmse;
+    EXPECT_LT(err, previous) << "table " << n;
+    previous = err;
+  }
+  EXPECT_LT(previous, 0.01);
 }
 
 // With occluders, shadow-volume intervals and ray marching sample the same shadow maps: at

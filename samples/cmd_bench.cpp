@@ -9,6 +9,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   add_bench_noise(*bench, action);
   add_bench_volume(*bench, action);
   add_bench_shafts(*bench, action);
+  add_bench_airlight(*bench, action);
 }
 
 }  // namespace nimbus::cli

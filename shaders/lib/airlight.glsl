@@ -1,6 +1,8 @@
 // Numerically stable single-scattering airlight of a point light (Sun et al. 2005, eq. 5) and
 // of the sun, over any segment of a view ray (Biri et al. eqs. 10-12), in float32. Common
 // subset of GLSL 4.50 and C++ (glm): render/src/airlight_stable.cpp compiles this file too.
+// Written for SIMD rasterisers (llvmpipe runs 8 fragments in lock step and every branch costs
+// every lane): a fixed panel layout, no data-dependent loop bounds, no trigonometric functions.
 // Derivation, panel layout and measured errors: docs/airlight.md.
 #ifndef NIMBUS_AIRLIGHT_GLSL
 #define NIMBUS_AIRLIGHT_GLSL
@@ -9,60 +11,23 @@
 
 const float AL_INFINITY = 1.0e30f;    // x1 (or Dvp) >= this: the ray never ends
 const float AL_MAX_RESULT = 3.0e38f;  // results are clamped to stay finite
-const float AL_G_SPLIT = 2.0f;        // optical depth covered by the t panel (beyond the segment start)
+const float AL_G_SPLIT = 2.0f;        // optical depth covered by the T panel (beyond the segment start)
 const float AL_G_CUT = 16.0f;         // optical depth beyond which the rest (< e^-16) is dropped
-const float AL_C = 32.0f;             // linear omega panel only where the exponent is < 1/AL_C
-const float AL_RATIO = 4.0f;          // a panel [lo, hi] with hi > AL_RATIO lo uses a log variable
-const float AL_FLOOR = 1.0e-6f;       // smallest omega, relative to the top of the omega side
+const float AL_G_U = 4.0f;            // the U panel covers at most this many more e-foldings ...
+const float AL_C = 4.0f;              // ... and ends where the exponent reaches 1/AL_C ...
+const float AL_RATIO = 4.0f;          // ... or X = t + c reaches AL_RATIO times its start, whichever is later
+const float AL_FLOOR = 1.0e-6f;       // smallest u, relative to the top of the u side
 const float AL_PEAK = 0.5f;           // forward peaks narrower than this in tan(theta/2) get panels
 
-// 6-point Gauss-Legendre rule on [-1, 1] (positive half; the rule is symmetric).
-const float AL_GL_X[3] = {0.2386191861f, 0.6612093865f, 0.9324695142f};
-const float AL_GL_W[3] = {0.4679139346f, 0.3607615730f, 0.1713244924f};
+// 5-point Gauss-Legendre rule on [-1, 1].
+const int AL_NODES = 5;
+const float AL_NODE[5] = {-0.9061798459f, -0.5384693101f, 0.0f, 0.5384693101f, 0.9061798459f};
+const float AL_WEIGHT[5] = {0.2369268851f, 0.4786286705f, 0.5688888889f, 0.4786286705f, 0.2369268851f};
 
-// sin and cos on [0, pi/2] by their Taylor series (error < 6e-8): relative accuracy for small
-// angles, whatever the GPU's sin does there.
-float al_sin(float x) {
-  float x2 = x * x;
-  return x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f +
-             x2 * (2.7557319e-6f + x2 * -2.5052108e-8f)))));
-}
-float al_cos(float x) {
-  float x2 = x * x;
-  return 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f +
-         x2 * (-2.7557319e-7f + x2 * 2.0876757e-9f)))));
-}
-
-// atan(y / x) in [0, pi/2] for y, x >= 0 (not both 0), to a few 1e-8 relative: panel limits
-// are differences of such angles, so the GPU's atan (often accurate only to an absolute 1e-7)
-// is not used. Reduced to |z| <= tan(pi/8), then its Taylor series to z^17.
-float al_atan_positive(float y, float x) {
-  bool swapped = y > x;
-  float r = swapped ? x / y : y / x;
-  float base = 0.0f;
-  if (r > 0.41421356f) {
-    r = (r - 1.0f) / (r + 1.0f);
-    base = 0.78539816f;
-  }
-  float z2 = r * r;
-  float a = base + r * (1.0f + z2 * (-3.3333333e-1f + z2 * (2.0e-1f + z2 * (-1.4285714e-1f + z2 * (1.1111111e-1f +
-                       z2 * (-9.0909091e-2f + z2 * (7.6923077e-2f + z2 * (-6.6666667e-2f + z2 * 5.8823529e-2f))))))));
-  return swapped ? 1.57079633f - a : a;
-}
-
-float al_hypot(float a, float b) {
-  float m = max(abs(a), abs(b));
-  if (m == 0.0f) return 0.0f;
-  float u = a / m;
-  float v = b / m;
-  return m * sqrt(u * u + v * v);
-}
-
-// d + along for a point at signed distance `along` past the light's foot point on the ray,
-// h from the light's line, d = hypot(along, h): without cancellation ((d + along)(d - along) = h^2).
-float al_plus(float along, float h, float d) {
-  return along >= 0.0f ? d + along : h * (h / (d - along));
-}
+// Panel variables; X = t + c = s tan(theta/2), u = s / X = tan(omega), omega = (pi - theta)/2.
+const int AL_MAP_T = 0;    // v = t
+const int AL_MAP_U = 1;    // v = sqrt(u)
+const int AL_MAP_LOG = 2;  // v = ln(X / X(start))
 
 // Forward peak width of the phase function in tau = tan(theta/2); 1e30 when not peaked forward.
 float al_forward_width(int kind, float g) {
@@ -74,7 +39,7 @@ float al_forward_width(int kind, float g) {
   return 1.0e30f;
 }
 
-// Backward peak width in omega = (pi - theta)/2; 1e30 when not peaked backward.
+// Backward peak width in u = tan(omega) (~ omega); 1e30 when not peaked backward.
 float al_backward_width(int kind, float g) {
   if (kind == PHASE_HENYEY_GREENSTEIN && g < 0.0f) return (1.0f + g) / (2.0f * sqrt(-g));
   if (kind == PHASE_SCHLICK) {
@@ -84,73 +49,45 @@ float al_backward_width(int kind, float g) {
   return 1.0e30f;
 }
 
-// The t side: t = (x + d(x) - d0) / r0 from the segment start, the integrand e^{-K t} p L(t)
-// with L(t) = s / ((t + c)^2 + s^2) = d(omega)/dt; X = t + c is passed exactly.
-float al_f_t(float t, float X, float K, float s, int kind, float g) {
+// ln(1 + r) for r >= 0, accurate for small r: 2 atanh(z), z = r / (2 + r), by its series for
+// z < 1/3 (error < 2e-7 relative), else log.
+float al_log1p(float r) {
+  float z = r / (2.0f + r);
+  float z2 = z * z;
+  float series = 2.0f * z * (1.0f + z2 * (3.3333333e-1f + z2 * (2.0e-1f + z2 * (1.4285714e-1f + z2 * 1.1111111e-1f))));
+  return z < 0.33333333f ? series : log(1.0f + r);
+}
+
+// The integrand e^{-K t} p(theta) s / ((t + c)^2 + s^2) times dt/dv, at the offset off = |v - v(ta)|
+// from the start ta of a panel in the variable v of `map`. t is ta plus an offset formed without
+// cancellation, and 1 -+ cos(theta) = 2 X^2 / q, 2 s^2 / q exactly.
+float al_node(int map, float off, float ta, float K, float s, float c, PhaseCoeffs pc) {
+  float Xa = ta + c;
+  float va = map == AL_MAP_U ? sqrt(s / Xa) : 0.0f;
+  float v = va - off;                             // map U: u = v^2 falls from s / Xa
+  float e = map == AL_MAP_LOG ? exp(off) : 1.0f;  // map LOG: X = Xa e^off
+  float X = map == AL_MAP_T ? Xa + off : (map == AL_MAP_U ? s / (v * v) : Xa * e);
+  float t = ta + (map == AL_MAP_T ? off : (map == AL_MAP_U ? off * (va + v) * X * Xa / s : Xa * (e - 1.0f)));
   float q = X * X + s * s;
-  return exp(-K * t) * (s / q) * phase_value_pair(kind, g, 2.0f * X * X / q, 2.0f * s * s / q);
+  float jac = map == AL_MAP_T ? s : (map == AL_MAP_U ? 2.0f * v * X * X : s * X);  // s dt/dv
+  return exp(-K * t) * (jac / q) * phase_value_coeffs(pc, 2.0f * X * X / q, 2.0f * s * s / q);
 }
 
-float al_panel_t(float lo, float hi, float K, float s, float c, int kind, float g) {
-  if (!(hi > lo)) return 0.0f;
-  float half_len = 0.5f * (hi - lo);
-  float mid = 0.5f * (hi + lo);
+// Length of the panel [ta, tb] in the variable of `map`, without cancellation.
+float al_panel_length(int map, float ta, float tb, float s, float c) {
+  float Xa = ta + c;
+  float dt = tb - ta;
+  float ua = s / Xa;
+  float du = s * dt / (Xa * (tb + c));  // u(ta) - u(tb)
+  return map == AL_MAP_T ? dt : (map == AL_MAP_U ? du / (sqrt(ua) + sqrt(ua - du)) : al_log1p(dt / Xa));
+}
+
+// int_ta^tb e^{-K t} p(theta) s / ((t + c)^2 + s^2) dt, Gauss-Legendre in the panel's variable.
+float al_panel(int map, float ta, float tb, float K, float s, float c, PhaseCoeffs pc) {
+  float half_len = 0.5f * al_panel_length(map, ta, tb, s, c);
   float sum = 0.0f;
-  for (int i = 0; i < 3; ++i) {
-    float dt = half_len * AL_GL_X[i];
-    sum += AL_GL_W[i] * (al_f_t(mid - dt, mid - dt + c, K, s, kind, g) +
-                         al_f_t(mid + dt, mid + dt + c, K, s, kind, g));
-  }
-  return half_len * sum;
-}
-
-// Same integral with tau = (t + c)/s = tan(theta/2) on a log scale (the tail of a forward peak).
-float al_panel_logtau(float lo, float hi, float K, float s, float c, int kind, float g) {
-  if (!(hi > lo)) return 0.0f;
-  float la = log((lo + c) / s);
-  float lb = log((hi + c) / s);
-  float half_len = 0.5f * (lb - la);
-  float mid = 0.5f * (lb + la);
-  float sum = 0.0f;
-  for (int i = 0; i < 3; ++i) {
-    for (int side = -1; side <= 1; side += 2) {
-      float X = s * exp(mid + float(side) * half_len * AL_GL_X[i]);  // t + c
-      sum += AL_GL_W[i] * X * al_f_t(max(X - c, 0.0f), X, K, s, kind, g);
-    }
-  }
-  return half_len * sum;
-}
-
-// The omega side: omega = (pi - theta)/2 from 0 (x -> infinity) up; the exponent beyond the
-// segment start is g = K (s cot(omega) - c).
-float al_f_omega(float om, float K, float s, float c, int kind, float g) {
-  float so = al_sin(om);
-  float co = al_cos(om);
-  float depth = K * (s * co / so - c);
-  return exp(-depth) * phase_value_pair(kind, g, 2.0f * co * co, 2.0f * so * so);
-}
-
-float al_panel_omega(float lo, float hi, bool allow_log, float K, float s, float c, int kind, float g) {
-  if (!(hi > lo)) return 0.0f;
-  float sum = 0.0f;
-  if (allow_log && AL_RATIO * lo < hi) {
-    float la = log(lo);
-    float lb = log(hi);
-    float half_len = 0.5f * (lb - la);
-    float mid = 0.5f * (lb + la);
-    for (int i = 0; i < 3; ++i) {
-      float om0 = exp(mid - half_len * AL_GL_X[i]);
-      float om1 = exp(mid + half_len * AL_GL_X[i]);
-      sum += AL_GL_W[i] * (om0 * al_f_omega(om0, K, s, c, kind, g) + om1 * al_f_omega(om1, K, s, c, kind, g));
-    }
-    return half_len * sum;
-  }
-  float half_len = 0.5f * (hi - lo);
-  float mid = 0.5f * (hi + lo);
-  for (int i = 0; i < 3; ++i) {
-    float dw = half_len * AL_GL_X[i];
-    sum += AL_GL_W[i] * (al_f_omega(mid - dw, K, s, c, kind, g) + al_f_omega(mid + dw, K, s, c, kind, g));
-  }
+  for (int i = 0; i < AL_NODES; ++i)
+    sum += AL_WEIGHT[i] * al_node(map, half_len * (1.0f + AL_NODE[i]), ta, K, s, c, pc);
   return half_len * sum;
 }
 
@@ -164,66 +101,77 @@ float point_segment_airlight(float sigma_t, float sigma_s, float I0, float Dsv, 
   bool infinite = x1 >= AL_INFINITY;
   // Lengths in units of D (the problem is scale-free but for sigma_t D).
   float D = max(Dsv, 1.0e-20f);
-  float a = clamp(cos_gamma, -1.0f, 1.0f);  // foot point of the light on the ray
+  float a = clamp(cos_gamma, -1.0f, 1.0f);    // foot point of the light on the ray
   float h = clamp(sin_gamma, 1.0e-7f, 1.0f);  // distance of the light from the ray's line
   float u0 = min(max(x0, 0.0f) / D, 1.0e18f);
   float along0 = u0 - a;
-  float d0 = al_hypot(along0, h);
+  float d0 = sqrt(along0 * along0 + h * h);
   float T = sigma_t * D;
   float base = T * (u0 + d0);  // optical depth light -> segment start -> eye
   if (!(base < 87.0f)) return 0.0f;
-  float p0 = al_plus(along0, h, d0);
-  float r0 = al_hypot(h, p0);  // sqrt(2 d0 p0)
-  float s = h / r0;            // sin(psi0), psi0 = (pi - theta0)/2
-  float c = p0 / r0;           // cos(psi0) = sin(theta0/2)
-  float K = T * r0;            // exponent = K t beyond the segment start
+  float p0 = along0 >= 0.0f ? d0 + along0 : h * (h / (d0 - along0));  // d0 + along0 without cancellation
+  float r0 = sqrt(h * h + p0 * p0);  // sqrt(2 d0 p0)
+  float s = h / r0;                  // sin(psi0), psi0 = (pi - theta0)/2
+  float c = p0 / r0;                 // cos(psi0) = sin(theta0/2)
+  float K = max(T * r0, 1.0e-30f);   // exponent = K t beyond the segment start
   float tend = AL_INFINITY;
   if (!infinite) {
     float len = min((x1 - max(x0, 0.0f)) / D, 1.0e18f);
     float along1 = min(u0 + len, 1.0e18f) - a;
-    float d1 = al_hypot(along1, h);
-    float p1 = al_plus(along1, h, d1);
+    float d1 = sqrt(along1 * along1 + h * h);
+    float p1 = along1 >= 0.0f ? d1 + along1 : h * (h / (d1 - along1));
     tend = len * ((p0 + p1) / ((d0 + d1) * r0));
   }
   int kind = phase_kind;
   float g = phase_g;
-  float sum = 0.0f;
-  // t side: t in [0, min(tend, tsplit)], up to optical depth AL_G_SPLIT beyond the start.
-  float tsplit = K > AL_G_SPLIT ? AL_G_SPLIT / K : 1.0f;
-  float tE = min(tend, tsplit);
+  // Panels in t (docs/airlight.md), the same straight-line code for every input and phase:
+  //   T [0, tb] up to tE: optical depth AL_G_SPLIT beyond the segment start, or t = 1;
+  //   U [tU, tS]: the algebraic tail of the Lorentzian while the exponent is small;
+  //   LOG [tS, ta]: the exponential cut-off, up to optical depth AL_G_CUT.
+  // Peaked phase functions add LOG panels, one node per iteration of a loop whose trip count
+  // depends on the phase function only (0 for isotropic, Rayleigh and mild peaks):
+  //   forward, width b in tan(theta/2): [tb, tE] (tb where tan(theta/2) = b), halved in ln X;
+  //   backward, width w in u: [tE, tw] halved in ln X (tw where u = w), then the knee [tw, t(w/8)],
+  //   and the U panel starts at t(w/8).
+  PhaseCoeffs pc = phase_coeffs(kind, g);
   float b = al_forward_width(kind, g);
-  float tb = s * b - c;  // t where tan(theta/2) = b
-  if (b < AL_PEAK && tb < tE) {
-    float t1 = max(tb, 0.0f);
-    sum += al_panel_t(0.0f, t1, K, s, c, kind, g);
-    if (tE + c > AL_RATIO * (t1 + c)) sum += al_panel_logtau(t1, tE, K, s, c, kind, g);
-    else sum += al_panel_t(t1, tE, K, s, c, kind, g);
-  } else {
-    sum += al_panel_t(0.0f, tE, K, s, c, kind, g);
+  float w = al_backward_width(kind, g);
+  float tE = min(tend, min(1.0f, AL_G_SPLIT / K));                           // end of the t side
+  float ta = max(min(min(tend, AL_G_CUT / K), (tE + c) / AL_FLOOR - c), tE);  // end of the u side
+  int n_extra = 0;  // extra LOG panels [e0, e1], [e1, e2], [e2, e3]
+  float e0 = 0.0f;
+  float e1 = 0.0f;
+  float e2 = 0.0f;
+  float e3 = 0.0f;
+  float tb = tE;  // end of the T panel
+  float tU = tE;  // start of the U panel
+  if (b < AL_PEAK) {
+    tb = clamp(s * b - c, 0.0f, tE);
+    n_extra = 2;
+    e0 = tb;
+    e1 = clamp(sqrt((tb + c) * (tE + c)) - c, tb, tE);
+    e2 = tE;
+  } else if (w * (tE + c) < s) {
+    float tw = clamp(s / w - c, tE, ta);  // u = w
+    n_extra = 3;
+    e0 = tE;
+    e1 = clamp(sqrt((tE + c) * (tw + c)) - c, tE, tw);
+    e2 = tw;
+    e3 = clamp(8.0f * s / w - c, tw, ta);  // u = w / 8
+    tU = e3;
   }
-  // omega side: the rest of the segment, tan(omega) = s / (t + c).
-  if (tend > tsplit) {
-    float ob = al_atan_positive(s, tsplit + c);
-    float oa = infinite ? 0.0f : al_atan_positive(s, tend + c);
-    float o1 = 0.0f;  // where the exponent reaches 1
-    if (K > 1.0e-30f) {
-      o1 = al_atan_positive(s, 1.0f / K + c);
-      oa = max(oa, al_atan_positive(s, AL_G_CUT / K + c));
-    }
-    oa = max(oa, AL_FLOOR * ob);
-    float S = clamp(min(AL_C * o1, ob / AL_RATIO), oa, ob);
-    float w = al_backward_width(kind, g);
-    if (w < ob / AL_RATIO) {  // backward peak: log panels around its knee too
-      float k1 = clamp(0.125f * w, oa, ob);
-      float k2 = clamp(w, oa, ob);
-      float q1 = min(S, k1);
-      float q2 = max(k1, min(S, k2));
-      float q3 = max(S, k2);
-      sum += al_panel_omega(oa, q1, true, K, s, c, kind, g) + al_panel_omega(q1, q2, true, K, s, c, kind, g) +
-             al_panel_omega(q2, q3, true, K, s, c, kind, g) + al_panel_omega(q3, ob, true, K, s, c, kind, g);
-    } else {
-      sum += al_panel_omega(oa, S, true, K, s, c, kind, g) + al_panel_omega(S, ob, false, K, s, c, kind, g);
-    }
+  float tS = clamp(min(max((1.0f / K + c) / AL_C - c, AL_RATIO * (tU + c) - c), tU + AL_G_U / K), tU, ta);
+  float sum = al_panel(AL_MAP_T, 0.0f, tb, K, s, c, pc) + al_panel(AL_MAP_U, tU, tS, K, s, c, pc) +
+              al_panel(AL_MAP_LOG, tS, ta, K, s, c, pc);
+  float h0 = 0.5f * al_panel_length(AL_MAP_LOG, e0, e1, s, c);
+  float h1 = 0.5f * al_panel_length(AL_MAP_LOG, e1, e2, s, c);
+  float h2 = 0.5f * al_panel_length(AL_MAP_LOG, e2, e3, s, c);
+  for (int j = 0; j < n_extra * AL_NODES; ++j) {
+    int k = j / AL_NODES;
+    int i = j - k * AL_NODES;
+    float lo = k == 0 ? e0 : (k == 1 ? e1 : e2);
+    float half_len = k == 0 ? h0 : (k == 1 ? h1 : h2);
+    sum += half_len * AL_WEIGHT[i] * al_node(AL_MAP_LOG, half_len * (1.0f + AL_NODE[i]), lo, K, s, c, pc);
   }
   if (!(sum > 0.0f)) return 0.0f;
   // Eq. 33 in the angle variable: dx / d^2 = 2 d(omega) / (h D).

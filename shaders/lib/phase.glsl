@@ -15,24 +15,54 @@ float phase_schlick_k(float g) {
   return clamp(1.55f * g - 0.55f * g * g * g, -PHASE_SCHLICK_MAX_K, PHASE_SCHLICK_MAX_K);
 }
 
-// p(theta) from 1 - cos(theta) and 1 + cos(theta), each passed exactly so that the forward
-// and backward peaks lose no precision in float.
-float phase_value_pair(int kind, float g, float one_minus_cos, float one_plus_cos) {
+// Every phase function as p = scale (1 + rayleigh cos^2) / (d d^(1/2 or 1)) with
+// d = d0 + d_minus (1 - cos) + d_plus (1 + cos): the coefficients depend on the kind and g only,
+// so a shader forms them once and evaluates p without branches (on SIMD rasterisers such as
+// llvmpipe every branch of a per-sample switch costs every sample).
+struct PhaseCoeffs {
+  float scale;     // normalisation
+  float rayleigh;  // 1 for Rayleigh (eq. 17), else 0
+  float d0, d_minus, d_plus;
+  float schlick;   // 1: d^2 (Schlick, eq. 15); 0: d^(3/2) (Henyey-Greenstein, eq. 14)
+};
+
+PhaseCoeffs phase_coeffs(int kind, float g) {
+  PhaseCoeffs pc;
+  pc.scale = PHASE_INV_4PI;  // eq. 13
+  pc.rayleigh = 0.0f;
+  pc.d0 = 1.0f;
+  pc.d_minus = 0.0f;
+  pc.d_plus = 0.0f;
+  pc.schlick = 0.0f;
   if (kind == PHASE_HENYEY_GREENSTEIN) {  // eq. 14: 1 + g^2 - 2 g cos = (1-g)^2 + 2g(1-cos) = (1+g)^2 - 2g(1+cos)
-    float d = g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * one_minus_cos
-                        : (1.0f + g) * (1.0f + g) - 2.0f * g * one_plus_cos;
-    return PHASE_INV_4PI * (1.0f - g * g) / (d * sqrt(d));
-  }
-  if (kind == PHASE_SCHLICK) {  // eq. 15 with theta = 0 forward: (1 - k^2) / (4 pi (1 - k cos)^2)
+    pc.scale = PHASE_INV_4PI * (1.0f - g * g);
+    pc.d0 = g >= 0.0f ? (1.0f - g) * (1.0f - g) : (1.0f + g) * (1.0f + g);
+    pc.d_minus = g >= 0.0f ? 2.0f * g : 0.0f;
+    pc.d_plus = g >= 0.0f ? 0.0f : -2.0f * g;
+  } else if (kind == PHASE_SCHLICK) {  // eq. 15 with theta = 0 forward: 1 - k cos = (1-k) + k(1-cos) = (1+k) - k(1+cos)
     float k = phase_schlick_k(g);
-    float d = k >= 0.0f ? (1.0f - k) + k * one_minus_cos : (1.0f + k) - k * one_plus_cos;
-    return PHASE_INV_4PI * (1.0f - k * k) / (d * d);
+    pc.scale = PHASE_INV_4PI * (1.0f - k * k);
+    pc.d0 = k >= 0.0f ? 1.0f - k : 1.0f + k;
+    pc.d_minus = k >= 0.0f ? k : 0.0f;
+    pc.d_plus = k >= 0.0f ? 0.0f : -k;
+    pc.schlick = 1.0f;
+  } else if (kind == PHASE_RAYLEIGH) {  // eq. 17: 3/(16 pi) (1 + cos^2)
+    pc.scale = 0.0596831037f;
+    pc.rayleigh = 1.0f;
   }
-  if (kind == PHASE_RAYLEIGH) {  // eq. 17
-    float c = 0.5f * (one_plus_cos - one_minus_cos);
-    return 0.0596831037f * (1.0f + c * c);
-  }
-  return PHASE_INV_4PI;  // eq. 13
+  return pc;
+}
+
+// p(theta) from 1 - cos(theta) and 1 + cos(theta), each passed exactly so that the forward
+// and backward peaks lose no precision in float (d is formed from the one that is small there).
+float phase_value_coeffs(PhaseCoeffs pc, float one_minus_cos, float one_plus_cos) {
+  float d = pc.d0 + pc.d_minus * one_minus_cos + pc.d_plus * one_plus_cos;
+  float c = 0.5f * (one_plus_cos - one_minus_cos);
+  return pc.scale * (1.0f + pc.rayleigh * c * c) / (d * mix(sqrt(d), d, pc.schlick));
+}
+
+float phase_value_pair(int kind, float g, float one_minus_cos, float one_plus_cos) {
+  return phase_value_coeffs(phase_coeffs(kind, g), one_minus_cos, one_plus_cos);
 }
 
 float phase_value(int kind, float g, float cos_theta) {

@@ -207,13 +207,13 @@ std::string fmt(const char* f, double v) {
 }
 
 int run_bench_airlight(const BenchAirlightArgs& a) {
+  if (a.log2_n < 6 || a.log2_n > 24) throw UsageError("--log2-n: must be in [6, 24] (got " + std::to_string(a.log2_n) + ")");
+  if (a.error_queries < 1 || a.error_queries > (1 << a.log2_n))
+    throw UsageError("--error-queries: must be in [1, 2^log2-n] (got " + std::to_string(a.error_queries) + ")");
+  if (a.repeat < 1 || a.repeat > 100) throw UsageError("--repeat: must be in [1, 100] (got " + std::to_string(a.repeat) + ")");
   const int log2_n = a.quick ? 12 : a.log2_n;
   const int n_err = a.quick ? 512 : a.error_queries;
   const int repeat = a.quick ? 1 : a.repeat;
-  if (log2_n < 6 || log2_n > 24) throw UsageError("--log2-n: must be in [6, 24] (got " + std::to_string(log2_n) + ")");
-  if (n_err < 1 || n_err > (1 << log2_n))
-    throw UsageError("--error-queries: must be in [1, 2^log2-n] (got " + std::to_string(n_err) + ")");
-  if (repeat < 1 || repeat > 100) throw UsageError("--repeat: must be in [1, 100]");
   render::Phase phase;
   try {
     phase = render::parse_phase(a.phase);

@@ -2,7 +2,8 @@
 // of the sun, over any segment of a view ray (Biri et al. eqs. 10-12), in float32. Common
 // subset of GLSL 4.50 and C++ (glm): render/src/airlight_stable.cpp compiles this file too.
 // Written for SIMD rasterisers (llvmpipe runs 8 fragments in lock step and every branch costs
-// every lane): a fixed panel layout, no data-dependent loop bounds, no trigonometric functions.
+// every lane): a fixed panel layout with branch-free limits (peaked phase functions add nodes in
+// one loop, skipped for the others), no trigonometric functions.
 // Derivation, panel layout and measured errors: docs/airlight.md.
 #ifndef NIMBUS_AIRLIGHT_GLSL
 #define NIMBUS_AIRLIGHT_GLSL

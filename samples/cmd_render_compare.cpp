@@ -30,8 +30,8 @@ void add_compare_command(CLI::App& app, Action& action) {
                          std::to_string(test.height) + " but " + files->reference + " is " + std::to_string(ref.width) +
                          "x" + std::to_string(ref.height));
       const render::ImageError e = render::compare_images(test, ref);
-      std::printf("rel_rmse %.6g max_rel %.6g mean_bias %+.6g lit_pixels %zu\n", e.rel_rmse, e.max_rel, e.mean_bias,
-                  e.pixels);
+      std::printf("rel_rmse %.6g median_rel %.6g max_rel %.6g mean_bias %+.6g lit_pixels %zu\n", e.rel_rmse,
+                  e.median_rel, e.max_rel, e.mean_bias, e.pixels);
       if (files->worst > 0) {
         const std::vector<std::uint8_t> lit = render::lit_pixels(ref);
         std::vector<std::pair<double, std::size_t>> errs;

@@ -131,8 +131,12 @@ void main() {
     float tf = texelFetch(u_sv_far, ivec3(px, i), 0).r;
     float a = 0.0;
     if (tn >= 1.0e29) {  // no shadow-volume crossing before the surface: one state
-      float probe = 0.5 * min(t_end, 10.0);
-      if (point_visibility(i, u_eye + dir * probe) > 0.0) a = closed_point(i, dir, 0.0, t_end);
+      // Two probes; where they disagree a boundary slipped between the skirts (a silhouette
+      // grazed within a texel), and the whole ray is sampled instead.
+      float v0 = point_visibility(i, u_eye + dir * (0.5 * min(t_end, 10.0)));
+      float v1 = point_visibility(i, u_eye + dir * (0.999 * t_march));
+      if (v0 != v1) a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
+      else if (v0 > 0.0) a = closed_point(i, dir, 0.0, t_end);
     } else {
       if (point_visibility(i, u_eye + dir * (0.5 * tn)) > 0.0) a += closed_point(i, dir, 0.0, tn);
       a += march_point(i, dir, tn, tf, STEPS, jitter);
@@ -154,8 +158,10 @@ void main() {
     float tf = texelFetch(u_sv_far, ivec3(px, layer), 0).r;
     float a = 0.0;
     if (tn >= 1.0e29) {
-      float probe = 0.5 * min(t_end, 10.0);
-      if (sun_visibility(u_eye + dir * probe) > 0.0) a = closed_sun(dir, 0.0, t_end);
+      float v0 = sun_visibility(u_eye + dir * (0.5 * min(t_end, 10.0)));
+      float v1 = sun_visibility(u_eye + dir * (0.999 * t_march));
+      if (v0 != v1) a = march_sun(dir, 0.0, t_march, STEPS, jitter);
+      else if (v0 > 0.0) a = closed_sun(dir, 0.0, t_end);
     } else {
       if (sun_visibility(u_eye + dir * (0.5 * tn)) > 0.0) a += closed_sun(dir, 0.0, tn);
       a += march_sun(dir, tn, tf, STEPS, jitter);

@@ -50,11 +50,27 @@ TEST(ImageMetrics, MaskIsTheQuantileOfPositiveLuminanceTimesTheLitFraction) {
   EXPECT_EQ(std::accumulate(all.begin(), all.end(), 0), 100);
 }
 
+// The median follows the typical pixel, not the worst: 10 of the 100 lit pixels 5x too bright
+// and the rest 1 % too bright give a median of 1 % while the maximum is 4 (400 %).
+TEST(ImageMetrics, MedianIgnoresAFewBadPixels) {
+  const Image ref = ramp();
+  Image test = ref;
+  for (int i = 0; i < 100; ++i) {
+    float* p = test.pixel(i % 20, i / 20);
+    const float factor = i % 10 == 0 ? 5.0f : 1.01f;
+    for (int c = 0; c < 3; ++c) p[c] *= factor;
+  }
+  const auto e = compare_images(test, ref);
+  EXPECT_NEAR(e.median_rel, 0.01, 1e-6);
+  EXPECT_NEAR(e.max_rel, 4.0, 1e-6);
+}
+
 TEST(ImageMetrics, IdenticalImagesHaveNoError) {
   const auto e = compare_images(ramp(), ramp());
   EXPECT_EQ(e.rel_rmse, 0.0);
   EXPECT_EQ(e.max_rel, 0.0);
   EXPECT_EQ(e.mean_bias, 0.0);
+  EXPECT_EQ(e.median_rel, 0.0);
   EXPECT_EQ(e.pixels, 100u);
 }
 

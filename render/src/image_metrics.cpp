@@ -62,9 +62,11 @@ ImageError compare_images(const Image& test, const Image& reference, const Error
   const double floor = mask.floor_fraction * luminance_scale(reference, mask.percentile);
   double sum_sq_err = 0.0, sum_sq_ref = 0.0, sum_err = 0.0, sum_ref = 0.0;
   ImageError e;
+  std::vector<double> pixel_rel;  // per lit pixel: the largest channel's relative error
   for (std::size_t p = 0; p < lit.size(); ++p) {
     if (!lit[p]) continue;
     ++e.pixels;
+    double rel = 0.0;
     for (std::size_t c = 0; c < 3; ++c) {
       const double t = test.rgba[4 * p + c];
       const double r = reference.rgba[4 * p + c];
@@ -73,12 +75,18 @@ ImageError compare_images(const Image& test, const Image& reference, const Error
       sum_sq_ref += r * r;
       sum_err += d;
       sum_ref += r;
-      e.max_rel = std::max(e.max_rel, std::abs(d) / std::max(std::abs(r), floor));
+      rel = std::max(rel, std::abs(d) / std::max(std::abs(r), floor));
     }
+    e.max_rel = std::max(e.max_rel, rel);
+    pixel_rel.push_back(rel);
   }
   if (e.pixels == 0) throw std::invalid_argument("reference image has no lit pixel (all black)");
   e.rel_rmse = std::sqrt(sum_sq_err / sum_sq_ref);
   e.mean_bias = sum_err / sum_ref;
+  // Median (upper median for an even count): what a typical lit pixel sees.
+  const auto mid = pixel_rel.begin() + static_cast<std::ptrdiff_t>(pixel_rel.size() / 2);
+  std::nth_element(pixel_rel.begin(), mid, pixel_rel.end());
+  e.median_rel = *mid;
   return e;
 }
 

@@ -614,6 +614,13 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
   for (float& v : img.rgba)
     if (!std::isfinite(v)) throw std::runtime_error("GPU renderer produced a non-finite pixel value (method " + to_string(method) + ")");
   describe_frame(img, s.scene, camera, to_string(method));
+  if (method.kind != ShaftMethod::Kind::Analytic) {
+    img.metadata["samples_per_ray"] = std::to_string(method.steps) +
+                                      (method.kind == ShaftMethod::Kind::ShadowVolume ? " (in [tn, tf] only)" : "");
+    img.metadata["jitter"] = to_string(method.jitter);
+  }
+  img.metadata["shadow_map_res"] = std::to_string(s.settings.point_shadow_res) + " per cube face, sun " +
+                                   std::to_string(s.settings.sun_shadow_res);
   if (stats) *stats = st;
   return img;
 }

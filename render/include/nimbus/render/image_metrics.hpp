@@ -27,11 +27,14 @@ struct ErrorMask {
 //   rel_rmse  = sqrt(sum (t - r)^2 / sum r^2)
 //   max_rel   = max |t - r| / max(|r|, floor)
 //   mean_bias = sum (t - r) / sum r             (signed: > 0 means the test is too bright)
+//   median_rel = median over lit pixels of max over R, G, B of |t - r| / max(|r|, floor)
+//               (robust: what a typical pixel sees, where rel_rmse and max_rel follow the worst)
 //   pixels    = how many lit pixels
 struct ImageError {
   double rel_rmse = 0.0;
   double max_rel = 0.0;
   double mean_bias = 0.0;
+  double median_rel = 0.0;
   std::size_t pixels = 0;
 };
 

@@ -14,6 +14,7 @@
 
 #include "../render/src/airlight_detail.hpp"  // raymarch_length: the GL march covers what the CPU's does
 #include "cli.hpp"
+#include "render_args.hpp"
 #include "nimbus/render/airlight.hpp"
 #include "nimbus/render/gl_context.hpp"
 #include "nimbus/render/gl_resources.hpp"
@@ -192,13 +193,6 @@ void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phas
   errors(row, std::vector<double>(result.begin(), result.end()), ref);
 }
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 std::string fmt(const char* f, double v) {
   char buf[48];

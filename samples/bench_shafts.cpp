@@ -36,13 +36,6 @@ struct BenchShaftsArgs {
   bool bulbs = false;
 };
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
 
 int run_bench_shafts(const BenchShaftsArgs& a) {
   render::Scene scene;
@@ -81,15 +74,8 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
                        std::to_string(reference.height) + ", the bench renders " + std::to_string(camera.width) +
                        "x" + std::to_string(camera.height));
   } else {
-    Progress progress("reference " + scene.name);
-    std::mutex m;
-    render::ReferenceSettings rs;
-    rs.progress = [&](double f) {
-      std::lock_guard<std::mutex> lock(m);
-      progress.update(f);
-    };
     const auto t0 = std::chrono::steady_clock::now();
-    reference = render::render_reference(scene, camera, rs);
+    reference = render_reference_with_progress(scene, camera);
     reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!a.reference_out.empty()) render::write_exr(a.reference_out, reference);
   }

@@ -72,14 +72,7 @@ int run_render(const RenderArgs& a) {
   render::Image image;
   std::string device;
   if (method.kind == render::ShaftMethod::Kind::Reference) {
-    Progress progress("reference " + scene.name);
-    std::mutex m;
-    render::ReferenceSettings rs;
-    rs.progress = [&](double f) {
-      std::lock_guard<std::mutex> lock(m);
-      progress.update(f);
-    };
-    image = render::render_reference(scene, camera, rs);
+    image = render_reference_with_progress(scene, camera);
     device = "CPU (double precision)";
   } else {
     std::unique_ptr<render::GlContext> gl;

@@ -2,7 +2,12 @@
 #include "render_args.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <regex>
+#include <sstream>
+
+#include "nimbus/render/reference_renderer.hpp"
+#include "progress.hpp"
 
 namespace nimbus::cli {
 
@@ -56,6 +61,25 @@ render::Camera apply_camera_args(const CameraArgs& a, render::Camera c) {
     throw UsageError(std::string("camera flags: ") + e.what());
   }
   return c;
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera) {
+  Progress progress("reference " + scene.name);
+  std::mutex m;
+  render::ReferenceSettings rs;
+  rs.progress = [&](double f) {
+    std::lock_guard<std::mutex> lock(m);
+    progress.update(f);
+  };
+  return render::render_reference(scene, camera, rs);
 }
 
 }  // namespace nimbus::cli

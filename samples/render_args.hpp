@@ -5,7 +5,11 @@
 #include <string>
 
 #include "cli.hpp"
+#include <vector>
+
 #include "nimbus/render/camera.hpp"
+#include "nimbus/render/image.hpp"
+#include "nimbus/render/scene.hpp"
 
 namespace nimbus::cli {
 
@@ -23,5 +27,11 @@ render::Camera apply_camera_args(const CameraArgs& args, render::Camera camera);
 glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
 // "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
+
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated lists of the benchmarks' flags.
+std::vector<std::string> split_list(const std::string& text);
+
+// The exact CPU reference with its progress on stderr (shared by render and bench shafts).
+render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera);
 
 }  // namespace nimbus::cli

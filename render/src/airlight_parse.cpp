@@ -63,16 +63,7 @@ std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries,
   if (method.kind == AirlightMethod::Table) table = std::make_unique<FTable>(method.n);
   auto segment = [&](const AirlightQuery& q) {  // Sun's query as a segment from the eye
     validate(q);
-    SegmentQuery s;
-    s.sigma_t = s.sigma_s = q.beta;
-    s.I0 = q.I0;
-    s.Dsv = q.Dsv;
-    s.cos_gamma = std::cos(q.gamma);
-    s.sin_gamma = std::sin(q.gamma);
-    s.x0 = 0.0;
-    s.x1 = q.Dvp;
-    s.phase = phase;
-    return s;
+    return to_segment(q, phase);
   };
   for (const AirlightQuery& q : queries) {
     switch (method.kind) {

@@ -125,8 +125,7 @@ double segment_airlight_quadrature(const SegmentQuery& query) {
   return q.sigma_s * q.I0 * (2.0 / h) * std::exp(-base) * integral;
 }
 
-double airlight_quadrature(const AirlightQuery& q) {
-  validate(q);
+SegmentQuery to_segment(const AirlightQuery& q, const Phase& phase) {
   SegmentQuery s;
   s.sigma_t = s.sigma_s = q.beta;
   s.I0 = q.I0;
@@ -135,8 +134,13 @@ double airlight_quadrature(const AirlightQuery& q) {
   s.sin_gamma = std::sin(q.gamma);
   s.x0 = 0.0;
   s.x1 = q.Dvp;
-  s.phase = Phase{};
-  return segment_airlight_quadrature(s);
+  s.phase = phase;
+  return s;
+}
+
+double airlight_quadrature(const AirlightQuery& q) {
+  validate(q);
+  return segment_airlight_quadrature(to_segment(q));
 }
 
 double F_exact(double u, double v) {

@@ -64,6 +64,8 @@ struct SegmentQuery {
   double x0 = 0.0, x1 = 1.0;
   Phase phase;
 };
+// Sun's query as the segment [0, Dvp] from the eye (sigma_t = sigma_s = beta), with a phase.
+SegmentQuery to_segment(const AirlightQuery& q, const Phase& phase = {});
 double segment_airlight_quadrature(const SegmentQuery& q);  // double reference
 double segment_airlight_stable(const SegmentQuery& q);      // float path (shader source)
 

@@ -34,16 +34,7 @@ TEST(AirlightRaymarch, PhaseFunctionsConvergeToTheSegmentReference) {
        {nimbus::render::Phase{nimbus::render::PhaseKind::HenyeyGreenstein, 0.6},
         nimbus::render::Phase{nimbus::render::PhaseKind::Rayleigh, 0.0}}) {
     const AirlightQuery q{0.5, 2.0, 2.0, 4.0, 1.0};
-    nimbus::render::SegmentQuery s;
-    s.sigma_t = s.sigma_s = q.beta;
-    s.I0 = q.I0;
-    s.Dsv = q.Dsv;
-    s.cos_gamma = std::cos(q.gamma);
-    s.sin_gamma = std::sin(q.gamma);
-    s.x0 = 0.0;
-    s.x1 = q.Dvp;
-    s.phase = phase;
-    const double ref = nimbus::render::segment_airlight_quadrature(s);
+    const double ref = nimbus::render::segment_airlight_quadrature(nimbus::render::to_segment(q, phase));
     EXPECT_NEAR(nimbus::render::airlight_raymarch(q, 4000, phase) / ref, 1.0, 1e-6) << nimbus::render::to_string(phase);
   }
 }

@@ -20,6 +20,7 @@
 #include "nimbus/render/blue_noise.hpp"
 #include "nimbus/render/gl_readback.hpp"
 #include "nimbus/render/gl_resources.hpp"
+#include "nimbus/render/intersect.hpp"
 #include "nimbus/render/scene_mesh.hpp"
 #include "nimbus/render/shader_program.hpp"
 
@@ -128,11 +129,9 @@ struct ShaftRenderer::Impl {
   // Shadow maps.
   int n_point = 0;
   GlTexture point_maps;  // cube map array, R32F, 6 layers per light
-  GlRenderbuffer point_depth;
-  std::vector<GlFramebuffer> point_fbos;  // light * 6 + face
+  GlTexture point_depth;
   GlTexture sun_map;
-  GlRenderbuffer sun_depth;
-  GlFramebuffer sun_fbo;
+  GlTexture sun_depth;
   glm::dvec3 sun_origin{0.0}, sun_axis_x{1, 0, 0}, sun_axis_y{0, 0, 1}, sun_dir{0, -1, 0};
   glm::dmat4 sun_view_proj{1.0};
   double sun_texel_m = 1.0;
@@ -198,10 +197,7 @@ void ShaftRenderer::Impl::build_shadow_maps() {
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    GLuint rb = 0;
-    glCreateRenderbuffers(1, &rb);
-    point_depth.reset(rb);
-    glNamedRenderbufferStorage(rb, GL_DEPTH_COMPONENT32F, res, res);
+    point_depth = make_depth_texture(res, res);
     glViewport(0, 0, res, res);
     const glm::dmat4 proj = glm::perspective(M_PI / 2.0, 1.0, 0.01, static_cast<double>(kFarDistanceM));
     shadow_program.set("u_mode", 0);
@@ -209,17 +205,11 @@ void ShaftRenderer::Impl::build_shadow_maps() {
       const glm::dvec3 pos = scene.point_lights[static_cast<std::size_t>(i)].position_m;
       shadow_program.set("u_origin", to_float(pos));
       for (int f = 0; f < 6; ++f) {
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        point_fbos.emplace_back(fbo);
-        glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, tex, 0, i * 6 + f);
-        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
-        glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-        if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-          throw GlError("point shadow framebuffer incomplete");
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear_far);
-        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+        const GlFramebuffer fbo = make_framebuffer(
+            {{GL_COLOR_ATTACHMENT0, tex, 0, i * 6 + f}, {GL_DEPTH_ATTACHMENT, point_depth.id()}});
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+        glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_far);
+        glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &clear_depth);
         const glm::dmat4 view = glm::lookAt(pos, pos + kFaceDir[static_cast<std::size_t>(f)], kFaceUp[static_cast<std::size_t>(f)]);
         shadow_program.set("u_view_proj", to_float(proj * view));
         draw(occluders);
@@ -234,26 +224,18 @@ void ShaftRenderer::Impl::build_shadow_maps() {
     const glm::dvec3 v = glm::cross(sun_dir, u);
     // Bounds of the occluders along u, v and the propagation direction.
     glm::dvec3 lo(1e300), hi(-1e300);
-    bool any = false;
     auto extend = [&](const glm::dvec3& p) {
       const glm::dvec3 c(glm::dot(p, u), glm::dot(p, v), glm::dot(p, sun_dir));
       lo = glm::min(lo, c);
       hi = glm::max(hi, c);
-      any = true;
     };
-    for (const Box& b : scene.boxes)
-      for (int k = 0; k < 8; ++k)
-        extend(glm::dvec3(k & 1 ? b.max_m.x : b.min_m.x, k & 2 ? b.max_m.y : b.min_m.y, k & 4 ? b.max_m.z : b.min_m.z));
-    for (const Sphere& s : scene.spheres)
-      for (int k = 0; k < 8; ++k)
-        extend(s.centre_m + s.radius_m * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
-    if (scene.terrain) {
-      const Heightfield& h = *scene.terrain;
-      for (int iz = 0; iz < h.nz; ++iz)
-        for (int ix = 0; ix < h.nx; ++ix)
-          extend(glm::dvec3(h.x0_m + ix * h.spacing_m, h.heights_m[static_cast<std::size_t>(iz * h.nx + ix)], h.z0_m + iz * h.spacing_m));
+    const SceneTracer tracer(scene);  // the occluders' bounding boxes
+    for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
+      glm::dvec3 b_lo, b_hi;
+      tracer.occluder_bounds(k, b_lo, b_hi);
+      for (int c = 0; c < 8; ++c) extend(glm::dvec3(c & 1 ? b_hi.x : b_lo.x, c & 2 ? b_hi.y : b_lo.y, c & 4 ? b_hi.z : b_lo.z));
     }
-    if (!any) lo = hi = glm::dvec3(0.0);
+    if (tracer.occluder_count() == 0) lo = hi = glm::dvec3(0.0);
     const glm::dvec3 pad = 0.01 * (hi - lo) + glm::dvec3(0.5);
     lo -= pad;
     hi += pad;
@@ -276,22 +258,12 @@ void ShaftRenderer::Impl::build_shadow_maps() {
     m[3][3] = 1.0;
     sun_view_proj = m;
     sun_map = make_texture_2d(GL_R32F, sres, sres, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
-    GLuint rb = 0;
-    glCreateRenderbuffers(1, &rb);
-    sun_depth.reset(rb);
-    glNamedRenderbufferStorage(rb, GL_DEPTH_COMPONENT32F, sres, sres);
-    GLuint fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    sun_fbo.reset(fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, sun_map.id(), 0);
-    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError("sun shadow framebuffer incomplete");
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    sun_depth = make_depth_texture(sres, sres);
+    const GlFramebuffer fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, sun_map.id()}, {GL_DEPTH_ATTACHMENT, sun_depth.id()}});
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
     glViewport(0, 0, sres, sres);
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, clear_far);
-    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+    glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_far);
+    glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &clear_depth);
     shadow_program.set("u_mode", 1);
     shadow_program.set("u_origin", to_float(sun_origin));
     shadow_program.set("u_dir", to_float(sun_dir));
@@ -506,16 +478,8 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
         const std::size_t n_quads = sk.count;
         st.skirt_quads += n_quads;
         st.skirt_overflow = st.skirt_overflow || sk.overflow;
-        GlFramebuffer fbo;
-        {
-          GLuint f = 0;
-          glCreateFramebuffers(1, &f);
-          fbo.reset(f);
-          glNamedFramebufferTextureLayer(f, GL_COLOR_ATTACHMENT0, sv_near.id(), 0, layer);
-          glNamedFramebufferTextureLayer(f, GL_COLOR_ATTACHMENT1, sv_far.id(), 0, layer);
-          const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-          glNamedFramebufferDrawBuffers(f, 2, bufs);
-        }
+        const GlFramebuffer fbo = make_framebuffer(
+            {{GL_COLOR_ATTACHMENT0, sv_near.id(), 0, layer}, {GL_COLOR_ATTACHMENT1, sv_far.id(), 0, layer}});
         const float near_clear[4] = {3.0e38f, 0, 0, 0};
         const float far_clear[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, near_clear);

@@ -39,7 +39,7 @@ VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Tr
   VolumeTexture v;
   for (int a = 0; a < 3; ++a) v.size[a] = static_cast<int>(box.size[a]);
   v.texture = make_texture_3d(internal_format, v.size[0], v.size[1], v.size[2],
-                              TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+                              TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_BORDER, 1});
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage3D(v.texture.id(), 0, 0, 0, 0, v.size[0], v.size[1], v.size[2], GL_RED, GL_FLOAT, box.values.data());
   check_gl("uploading a volume texture");
@@ -58,13 +58,14 @@ VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Tr
   }
   v.world_to_texture = index_to_texture * glm::inverse(index_to_world_m);
 
-  // World bounds of the box's outer faces (index origin - 0.5 .. origin + size - 0.5).
+  // World bounds of the support: trilinear density is 0 one voxel beyond the outermost
+  // voxel centres (index origin - 1 .. origin + size), as the border texels are 0.
   v.world_min = glm::dvec3(1e300);
   v.world_max = glm::dvec3(-1e300);
   for (int c = 0; c < 8; ++c) {
-    const double i = box.origin[0] - 0.5 + ((c & 1) ? v.size[0] : 0);
-    const double j = box.origin[1] - 0.5 + ((c & 2) ? v.size[1] : 0);
-    const double k = box.origin[2] - 0.5 + ((c & 4) ? v.size[2] : 0);
+    const double i = box.origin[0] - 1.0 + ((c & 1) ? v.size[0] + 1 : 0);
+    const double j = box.origin[1] - 1.0 + ((c & 2) ? v.size[1] + 1 : 0);
+    const double k = box.origin[2] - 1.0 + ((c & 4) ? v.size[2] + 1 : 0);
     const glm::dvec3 w = index_to_world(transform, i, j, k);
     v.world_min = glm::min(v.world_min, w);
     v.world_max = glm::max(v.world_max, w);

@@ -13,12 +13,15 @@
 namespace nimbus::render {
 
 struct VolumeTexture {
-  GlTexture texture;                 // 3D, one channel, linear filtering, clamped to edge
+  GlTexture texture;                 // 3D, one channel, linear filtering, border 0 (as OpenVDB's
+                                     // trilinear sampler sees the background outside the box)
   std::array<int, 3> size{0, 0, 0};  // texels per axis = voxels of the active box
   // World point (metres) -> texture coordinates: the centre of voxel (i, j, k) of the box lands
   // on ((i - origin.x + 0.5) / size.x, ...), as OpenVDB puts voxel centres at integer indices.
   glm::dmat4 world_to_texture{1.0};
-  glm::dvec3 world_min{0.0}, world_max{0.0};  // world bounds of the box's outer voxel faces
+  // World bounds of the support, where trilinear density can be non-zero: index origin - 1 to
+  // origin + size on each axis (one voxel beyond the outermost voxel centres).
+  glm::dvec3 world_min{0.0}, world_max{0.0};
   float max_density = 0.0f;
 };
 

@@ -1,0 +1,57 @@
+// How cloud density meets light: extinction and scattering per unit density (world units), a
+// dual-lobe Henyey-Greenstein phase, an ambient sky term, and the directional light (the sun)
+// that the half-angle slicer and the CPU reference both use.
+#pragma once
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace nimbus::render {
+
+// p(theta) = w HG(theta; g_forward) + (1 - w) HG(theta; g_back); w = 1 and g_forward = 0 is
+// isotropic (1 / 4 pi). theta is the angle between the light's propagation direction and the
+// scattered direction (0 = forward).
+struct DualLobePhase {
+  double g_forward = 0.0;       // (-1, 1)
+  double g_back = 0.0;          // (-1, 1)
+  double forward_weight = 1.0;  // [0, 1]
+};
+
+struct CloudOptics {
+  double extinction_per_m = 0.04;  // sigma_t per unit density, per metre (grey)
+  glm::dvec3 albedo{0.99};         // sigma_s / sigma_t per channel, [0, 1] (chromatic allowed)
+  DualLobePhase phase;
+  // Isotropic sky radiance that lights every point of the cloud unshadowed (W sr^-1 m^-2 per
+  // channel); its in-scattered radiance is sigma_s rho L_ambient. 0 switches it off.
+  glm::dvec3 ambient_radiance{0.0};
+};
+
+// The sun: parallel light arriving from `direction_to_light`.
+struct CloudLight {
+  glm::dvec3 direction_to_light{0.3, 0.8, -0.5};  // normalised on use
+  glm::dvec3 irradiance_w_m2{3.0};                 // per channel, where it enters the clouds
+};
+
+// Unreal-style multiple-scattering approximation (research-render.md section 2): octave k = 0..N
+// sees the light through extinction scaled by a^k, adds b^k of its radiance, with phase
+// asymmetry scaled by c^k. octaves = 0 is single scattering.
+struct MultipleScattering {
+  int octaves = 0;            // extra octaves, [0, 3]
+  double occlusion = 0.5;     // a, (0, 1]
+  double contribution = 0.5;  // b, [0, 1]
+  double eccentricity = 0.5;  // c, [0, 1]
+};
+
+// Throw std::invalid_argument naming the field (NaN, infinity, out of range, zero direction).
+void validate(const CloudOptics& optics);
+void validate(const CloudLight& light);
+void validate(const MultipleScattering& ms);
+
+// Double-precision phase value per steradian for cos(theta).
+double cloud_phase_value(const DualLobePhase& phase, double cos_theta);
+
+// "isotropic", "hg:G", "dual:GF,GB,W" <-> DualLobePhase; std::invalid_argument naming the text.
+DualLobePhase parse_cloud_phase(const std::string& text);
+std::string to_string(const DualLobePhase& phase);
+
+}  // namespace nimbus::render

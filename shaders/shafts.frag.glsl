@@ -24,11 +24,13 @@ uniform float u_sigma_s;    // scattering, per metre
 uniform int u_phase_kind;   // 0 isotropic, 1 Henyey-Greenstein, 2 Schlick, 3 Rayleigh
 uniform float u_phase_g;
 uniform float u_march_cutoff_m;  // ray-march end for rays that hit nothing
+uniform float u_shadow_ceiling_m;  // no shadow of the sun (opaque or cloud) above this height; 1e30 = none known
 uniform sampler2D u_jitter;      // tiled jitter values in [0, 1)
 uniform int u_jitter_mode;       // 0: none (0.5), 1: white, 2: tiled (blue noise)
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 #include "lib/phase.glsl"
+#include "lib/sky.glsl"
 #include "lib/airlight.glsl"
 #if METHOD == 1 && AIRLIGHT_TABLE
 #include "lib/airlight_table.glsl"
@@ -80,7 +82,7 @@ float march_sun(vec3 dir, float a, float b, int n, float jitter) {
   float sum = 0.0;
   for (int k = 0; k < n; ++k) {
     float x = a + (float(k) + jitter) * h;
-    sum += sun_visibility(u_eye + dir * x) * exp(-u_sigma_t * x);
+    sum += sun_light_visibility(u_eye + dir * x) * exp(-u_sigma_t * x);
   }
   return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-u_sun_to, -dir)) * sum * h;
 }
@@ -97,16 +99,29 @@ float closed_sun(vec3 dir, float x0, float x1) {
   return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-u_sun_to, -dir), x0, x1, u_phase_kind, u_phase_g);
 }
 
+// The part [lo, hi] of [a, b] below the shadow ceiling (lo > hi: none). Above it the sun (above
+// the horizon) meets no occluder and no cloud, so the airlight there has its closed form.
+vec2 shadowed_span(vec3 dir, float a, float b) {
+  float y0 = u_eye.y - u_shadow_ceiling_m;  // < 0: the eye is below the ceiling
+  float dy = dir.y;
+  float cross_t = -y0 / (abs(dy) > 1.0e-12 ? dy : 1.0e-12);  // where the ray meets the ceiling
+  float lo = a, hi = b;
+  if (y0 <= 0.0 && dy > 0.0) hi = min(b, cross_t);
+  if (y0 > 0.0) lo = dy < 0.0 ? max(a, cross_t) : b + 1.0;
+  return vec2(lo, hi);
+}
+
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec3 Ls = texelFetch(u_surface_radiance, px, 0).rgb;
   float t = texelFetch(u_surface_distance, px, 0).r;
-  bool hit = t > 0.0;
-  float t_end = hit ? t : INF_M;
+  bool hit = t > 0.0 && (u_has_sky == 0 || t < u_sky_distance);  // the world ends at the sky
+  bool sky = !hit && u_has_sky != 0;
+  float t_end = hit ? t : (sky ? u_sky_distance : INF_M);
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
-  vec3 L = hit ? Ls * exp(-u_sigma_t * t) : vec3(0.0);
+  vec3 L = hit ? Ls * exp(-u_sigma_t * t) : (sky ? sky_radiance(dir) * exp(-u_sigma_t * t_end) : vec3(0.0));
   float jitter = pixel_jitter(px);
-  float t_march = hit ? t : u_march_cutoff_m;
+  float t_march = hit ? t : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
 
   for (int i = 0; i < u_num_point_lights; ++i) {
 #if METHOD == 0
@@ -149,7 +164,11 @@ void main() {
 
   if (u_has_sun != 0) {
 #if METHOD == 0
-    float a = march_sun(dir, 0.0, t_march, STEPS, jitter);
+    // Samples only where a shadow can fall; the closed form before and after.
+    vec2 span = shadowed_span(dir, 0.0, t_march);
+    float a = span.x < span.y ? march_sun(dir, span.x, span.y, STEPS, jitter) +
+                                closed_sun(dir, 0.0, span.x) + closed_sun(dir, span.y, t_end)
+                              : closed_sun(dir, 0.0, t_end);
 #elif METHOD == 1
     float a = closed_sun(dir, 0.0, t_end);
 #else
@@ -171,6 +190,6 @@ void main() {
 #endif
     L += u_sun_irradiance * a;
   }
-  float alpha = (hit || u_sigma_t > 0.0) ? 1.0 : 0.0;
+  float alpha = (hit || sky || u_sigma_t > 0.0) ? 1.0 : 0.0;
   o_color = vec4(L, alpha);
 }

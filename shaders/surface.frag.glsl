@@ -32,7 +32,7 @@ void main() {
     if (u_has_sun != 0) {
       float cos_s = max(dot(n, u_sun_to), 0.0);
       if (cos_s > 0.0)
-        L += v_albedo / 3.14159265358979 * u_sun_irradiance * cos_s * sun_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
+        L += v_albedo / 3.14159265358979 * u_sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
     }
   }
   o_radiance = vec4(L, 1.0);

@@ -148,7 +148,8 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
   const SceneTracer& tracer = prepared.tracer;
   const Scene& s = tracer.scene();
   const double sigma_t = s.medium.extinction_per_m;
-  const std::optional<Hit> hit = tracer.intersect(eye, dir);
+  std::optional<Hit> hit = tracer.intersect(eye, dir);
+  if (hit && s.sky && hit->t > s.sky->distance_m) hit.reset();  // the world ends at the sky
   const std::optional<BulbHit> bulb = tracer.intersect_bulbs(eye, dir, hit ? hit->t : kInf);
   ReferenceSample out;
   double t_end = kInf;
@@ -161,6 +162,10 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
     t_end = hit->t;
     out.radiance = surface_radiance(tracer, eye + t_end * dir, hit->normal, dir, hit->albedo) *
                    std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else if (s.sky) {
+    t_end = s.sky->distance_m;
+    out.radiance = sky_radiance(*s.sky, dir) * std::exp(-sigma_t * t_end);
     out.alpha = 1.0;
   } else {
     out.alpha = sigma_t > 0.0 ? 1.0 : 0.0;

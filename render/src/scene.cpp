@@ -106,6 +106,11 @@ void validate(const Scene& s) {
     }
     check_not_buried(s, l.position_m, f + ".position_m");
   }
+  if (s.sky) {
+    check_non_negative3(s.sky->zenith_radiance_w_sr_m2, "sky.zenith_radiance_w_sr_m2");
+    check_non_negative3(s.sky->horizon_radiance_w_sr_m2, "sky.horizon_radiance_w_sr_m2");
+    if (!std::isfinite(s.sky->distance_m) || !(s.sky->distance_m > 0.0)) fail("sky.distance_m", "must be finite and > 0");
+  }
   if (s.sun) {
     if (!finite3(s.sun->direction_to_sun) || !(glm::length(s.sun->direction_to_sun) > 0.0)) {
       fail("sun.direction_to_sun", "must be finite and non-zero");
@@ -130,6 +135,11 @@ void validate(const Scene& s) {
       }
     }
   }
+}
+
+glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir) {
+  const double w = std::sqrt(std::max(dir.y, 0.0));
+  return sky.horizon_radiance_w_sr_m2 + (sky.zenith_radiance_w_sr_m2 - sky.horizon_radiance_w_sr_m2) * w;
 }
 
 }  // namespace nimbus::render

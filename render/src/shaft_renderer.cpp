@@ -112,6 +112,11 @@ void describe_frame(Image& image, const Scene& scene, const Camera& camera, cons
               " E_w_m2 " + fmt3(scene.sun->irradiance_w_m2);
   }
   image.metadata["lights"] = lights;
+  if (scene.sky) {
+    image.metadata["sky"] = "zenith " + fmt3(scene.sky->zenith_radiance_w_sr_m2) + " horizon " +
+                            fmt3(scene.sky->horizon_radiance_w_sr_m2) + " distance_m " +
+                            std::to_string(scene.sky->distance_m);
+  }
 }
 
 struct ShaftRenderer::Impl {
@@ -149,6 +154,12 @@ struct ShaftRenderer::Impl {
 
   // Jitter and the F table.
   GlTexture jitter_tex;
+  const CloudShadowMap* cloud_shadow = nullptr;
+  double opaque_ceiling_m = -1e300;  // top of the occluders (world y)
+  // The frame's render targets, kept while the image size stays the same.
+  int target_w = 0, target_h = 0;
+  GlTexture radiance, distance, depth, out;
+  GlFramebuffer surface_fbo, out_fbo;
   std::map<int, GlTexture> f_tables;
 
   Impl(const Scene& s, const ShaftSettings& st) : scene(s), settings(st) {}
@@ -170,7 +181,10 @@ void ShaftRenderer::Impl::build_meshes() {
   if (scene.ground) {
     Scene g;
     g.ground = scene.ground;
-    ground = upload(build_scene_mesh(g, settings.ground_extent_m));
+    // Under a sky the ground reaches the sky's distance from wherever the camera stands.
+    const double extent = scene.sky ? std::max(settings.ground_extent_m, 3.0 * scene.sky->distance_m)
+                                    : settings.ground_extent_m;
+    ground = upload(build_scene_mesh(g, extent));
   }
   for (const PointLight& l : scene.point_lights) {
     bulbs.push_back(upload(build_bulb_mesh(l)));
@@ -363,6 +377,18 @@ void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
   p.set("u_sun_shadow", 2);
   if (point_maps) glBindTextureUnit(1, point_maps.id());
   if (sun_map) glBindTextureUnit(2, sun_map.id());
+  bind_cloud_shadow(p.id(), cloud_shadow, 9);
+  p.set("u_has_sky", scene.sky ? 1 : 0);
+  if (scene.sky) {
+    p.set("u_sky_zenith", to_float(scene.sky->zenith_radiance_w_sr_m2));
+    p.set("u_sky_horizon", to_float(scene.sky->horizon_radiance_w_sr_m2));
+    p.set("u_sky_distance", static_cast<float>(scene.sky->distance_m));
+  }
+  // With the sun above the horizon nothing shadows the fog above the highest occluder or cloud.
+  double ceiling = 1e30;
+  if (scene.sun && glm::normalize(scene.sun->direction_to_sun).y > 1e-6)
+    ceiling = std::max(opaque_ceiling_m, cloud_shadow ? cloud_shadow->top_y_m : -1e300) + 1e-3;
+  p.set("u_shadow_ceiling_m", static_cast<float>(std::clamp(ceiling, -1e30, 1e30)));
 }
 
 const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
@@ -390,7 +416,17 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   const double sigma_t = scene.medium.extinction_per_m;
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
+  const SceneTracer tracer(scene);
+  for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
+    glm::dvec3 lo, hi;
+    tracer.occluder_bounds(k, lo, hi);
+    impl_->opaque_ceiling_m = std::max(impl_->opaque_ceiling_m, hi.y);
+  }
 }
+
+void ShaftRenderer::set_cloud_shadow(const CloudShadowMap* map) { impl_->cloud_shadow = map; }
+GLuint ShaftRenderer::color_texture() const { return impl_->out.id(); }
+GLuint ShaftRenderer::distance_texture() const { return impl_->distance.id(); }
 
 ShaftRenderer::~ShaftRenderer() = default;
 
@@ -408,12 +444,22 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
   if (!s.shadow_maps_ready) st.shadow_maps_ms = timed_ms([&] { s.build_shadow_maps(); });
 
   // Surface pass.
-  GlTexture radiance = make_texture_2d(GL_RGBA32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
-  GlTexture distance = make_texture_2d(GL_R32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
-  GlTexture depth = make_depth_texture(w, h);
-  GlFramebuffer surface_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, radiance.id()},
-                                                {GL_COLOR_ATTACHMENT1, distance.id()},
-                                                {GL_DEPTH_ATTACHMENT, depth.id()}});
+  if (s.target_w != w || s.target_h != h) {
+    const TextureParams nearest{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1};
+    s.radiance = make_texture_2d(GL_RGBA32F, w, h, nearest);
+    s.distance = make_texture_2d(GL_R32F, w, h, nearest);
+    s.depth = make_depth_texture(w, h);
+    s.surface_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, s.radiance.id()},
+                                      {GL_COLOR_ATTACHMENT1, s.distance.id()},
+                                      {GL_DEPTH_ATTACHMENT, s.depth.id()}});
+    s.out = make_texture_2d(GL_RGBA32F, w, h, nearest);
+    s.out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, s.out.id()}});
+    s.target_w = w;
+    s.target_h = h;
+  }
+  const GlTexture& radiance = s.radiance;
+  const GlTexture& distance = s.distance;
+  const GlFramebuffer& surface_fbo = s.surface_fbo;
   const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
   const CameraFrame frame = camera_frame(camera);
   const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
@@ -526,8 +572,7 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     s.jitter_tex = make_texture_2d(GL_R32F, n, n, TextureParams{GL_NEAREST, GL_NEAREST, GL_REPEAT, 1});
     glTextureSubImage2D(s.jitter_tex.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, tile.data());
   }
-  GlTexture out = make_texture_2d(GL_RGBA32F, w, h, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
-  GlFramebuffer out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out.id()}});
+  const GlFramebuffer& out_fbo = s.out_fbo;
   const ShaderProgram& p = s.shaft_program(method);
   st.shafts_ms = timed_ms([&] {
     glBindFramebuffer(GL_FRAMEBUFFER, out_fbo.id());

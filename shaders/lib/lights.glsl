@@ -1,4 +1,5 @@
 // The scene's lights and their shadow maps (distances in metres, see shadow_distance.frag.glsl).
+#include "lib/cloud_shadow.glsl"
 #define MAX_POINT_LIGHTS 4
 uniform int u_num_point_lights;
 uniform vec3 u_light_pos[MAX_POINT_LIGHTS];        // metres
@@ -31,4 +32,9 @@ float sun_visibility(vec3 p) {
   float d = dot(q, -u_sun_to);
   float stored = textureLod(u_sun_shadow, st, 0.0).r;
   return d <= stored + u_sun_shadow_bias ? 1.0 : 0.0;
+}
+
+// The sun's light reaching p: the opaque shadow map times the clouds' transmittance.
+float sun_light_visibility(vec3 p) {
+  return sun_visibility(p) * cloud_transmittance(p);
 }

@@ -22,6 +22,7 @@ struct CloudShadowMap {
   // World -> map: x, y in [0, 1] across the footprint, z = depth in metres along the light's
   // propagation direction from the map's plane (which lies on the light's side of every cloud).
   glm::dmat4 world_to_map{1.0};
+  double top_y_m = -1e300;  // highest point of the clouds' support (world y): no cloud shadow above it
 };
 
 // Marches each texel's light ray through the clouds (half-voxel steps). Points between the

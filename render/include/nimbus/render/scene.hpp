@@ -60,6 +60,18 @@ struct SunLight {
   glm::dvec3 irradiance_w_m2{3.0};
 };
 
+// The sky behind everything: rays that meet no surface end at distance_m, where the sky's
+// radiance (a gradient from the horizon to the zenith, sky_radiance) shines through the fog.
+struct Sky {
+  glm::dvec3 zenith_radiance_w_sr_m2{0.04, 0.08, 0.2};
+  glm::dvec3 horizon_radiance_w_sr_m2{0.22, 0.26, 0.32};
+  double distance_m = 30000.0;  // where the fog ends, metres
+};
+
+// Radiance of the sky in unit direction `dir` (y up): horizon + (zenith - horizon) sqrt(max(dir.y, 0)).
+// shaders/lib/sky.glsl computes the same.
+glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir);
+
 struct Scene {
   std::string name;
   Medium medium;
@@ -69,6 +81,7 @@ struct Scene {
   std::vector<Sphere> spheres;
   std::vector<PointLight> point_lights;
   std::optional<SunLight> sun;
+  std::optional<Sky> sky;  // none: rays that meet nothing see black (through the fog's airlight)
   Camera camera;  // the scene's default view
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "nimbus/render/camera.hpp"
+#include "nimbus/render/cloud_shadow.hpp"
 #include "nimbus/render/image.hpp"
 #include "nimbus/render/scene.hpp"
 #include "nimbus/render/shaft_method.hpp"
@@ -16,7 +17,7 @@ namespace nimbus::render {
 struct ShaftSettings {
   int point_shadow_res = 1024;    // texels per cube face side
   int sun_shadow_res = 2048;      // texels per side of the sun's orthographic map
-  double ground_extent_m = 1000;  // half-size of the ground quad standing for the infinite plane
+  double ground_extent_m = 1000;  // half-size of the ground quad standing for the infinite plane (under a sky: at least 3x its distance)
   double march_cutoff_optical = 9.21;  // rays hitting nothing are marched to this optical depth (e^-9.21 = 1e-4)
   double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
   std::size_t max_skirt_quads = 1u << 19;  // per light; beyond it the whole ray is sampled
@@ -43,6 +44,16 @@ class ShaftRenderer {
   // One frame. `method` must not be Reference (that is render_reference, on the CPU); the
   // analytic table form covers the isotropic phase only (std::invalid_argument otherwise).
   Image render(const Camera& camera, const ShaftMethod& method, ShaftFrameStats* stats = nullptr);
+
+  // The clouds' shadow (cloud_shadow.hpp), multiplied into the sun's visibility on surfaces in
+  // every method and in the fog's shafts by ray marching (the analytic and shadow-volume
+  // methods' closed forms assume no cloud). The map must outlive its use; null removes it.
+  void set_cloud_shadow(const CloudShadowMap* map);
+
+  // The last frame's GL textures, valid until the next render (cloud_renderer.hpp's underlay):
+  // RGBA32F premultiplied radiance, and R32F distance to the surface (metres, 0 = none).
+  GLuint color_texture() const;
+  GLuint distance_texture() const;
 
   struct Impl;
 

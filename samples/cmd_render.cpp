@@ -15,6 +15,7 @@
 #include "nimbus/render/shaft_renderer.hpp"
 #include "progress.hpp"
 #include "render_args.hpp"
+#include "render_clouds.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -31,10 +32,15 @@ struct RenderArgs {
   std::optional<double> exposure;
   std::string output;
   bool hide_bulbs = false;
+  CloudRenderArgs clouds;
+  bool scene_given = false, method_given = false;
 };
 
 int run_render(const RenderArgs& a) {
   if (a.output.empty()) throw UsageError("-o: an output file (.exr) is required");
+  if (!a.clouds.files.empty() || !a.clouds.presets.empty())
+    return run_render_clouds(a.clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
+                             a.exposure);
   render::Scene scene;
   try {
     scene = render::make_scene(a.scene);
@@ -109,15 +115,18 @@ int run_render(const RenderArgs& a) {
 
 void add_render_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<RenderArgs>();
-  CLI::App* cmd = app.add_subcommand("render", "Render a light-shaft scene to a linear half-float EXR");
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render clouds (FILE.vdb or --preset) over a scene, or a light-shaft scene alone, to a linear half-float EXR");
   cmd->add_option("--scene", a->scene, "Scene: " + [] {
     std::string names;
     for (const std::string& n : render::scene_names()) names += (names.empty() ? "" : ", ") + n;
-    return names;
+    return names + "; with clouds also none (default with clouds: sky)";
   }())->capture_default_str();
   cmd->add_option("--method", a->method,
-                  "raymarch:N | analytic | analytic:table:N | shadowvolume:N | reference")
+                  "Scene alone: raymarch:N | analytic | analytic:table:N | shadowvolume:N | reference. "
+                  "With clouds: slices | reference (reference: --scene none only)")
       ->capture_default_str();
+  add_cloud_render_options(cmd, a->clouds);
   add_camera_options(cmd, a->camera);
   cmd->add_option("--jitter", a->jitter, "Ray-march jitter: blue, white or none")->capture_default_str();
   cmd->add_option("--shadow-res", a->shadow_res, "Point-light shadow map size per cube face (sun: twice)")
@@ -129,7 +138,11 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
   cmd->add_option("-o,--output", a->output, "Output EXR file")->required();
-  cmd->callback([&action, a] { action = [a] { return run_render(*a); }; });
+  cmd->callback([&action, a, cmd] {
+    a->scene_given = cmd->count("--scene") > 0;
+    a->method_given = cmd->count("--method") > 0;
+    action = [a] { return run_render(*a); };
+  });
 }
 
 }  // namespace nimbus::cli

@@ -1,0 +1,43 @@
+// `nimbus render FILE.vdb | --preset NAME`: clouds by half-angle slicing (or the CPU reference),
+// over the sky scene, another scene or nothing, one frame or a sequence.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "render_args.hpp"
+
+namespace nimbus::cli {
+
+struct CloudRenderArgs {
+  std::vector<std::string> files;    // VDB files (a '%04d'-style pattern with --frames)
+  std::vector<std::string> presets;  // generated at --time or per frame
+  std::string grid;                  // grid name in the files (default: density, else the first float grid)
+  std::string up = "auto";           // up axis of the files: auto (their metadata, else y), y or z
+  std::optional<double> voxel_size;  // metres, presets
+  std::optional<double> time;        // seconds, presets
+  std::string frames;                // A-B
+  double fps = 24.0;
+  std::string sun;                   // direction towards the sun X,Y,Z
+  int slices = 128;
+  int light_res = 256;
+  int shadow_map_res = 512;          // the clouds' shadow on the scene
+  std::string shafts = "raymarch:48";  // the scene's method under the clouds
+  std::optional<double> cloud_extinction;
+  std::string cloud_albedo;          // R,G,B
+  std::string cloud_phase = "dual:0.7,-0.25,0.8";
+  std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
+  int multiple = 0;
+  double blur_deg = 0.0;
+  bool no_jitter = false;
+};
+
+void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& args);
+
+// Runs when files or presets were given. `scene`, `method`, camera, outputs as `nimbus render`.
+int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
+                      const std::string& method, bool method_given, const CameraArgs& camera_args,
+                      const std::string& output, const std::string& preview, std::optional<double> exposure);
+
+}  // namespace nimbus::cli

@@ -1,0 +1,46 @@
+#version 450 core
+// The clouds over the scene (cloud_renderer.hpp, SceneUnderlay): out = scene (1 - A) + C +
+// sum_i w_i A_fog(0, t_i), C the fog-attenuated clouds, A their alpha, w_i the slices' weights.
+// Each slice sees the fog's unshadowed airlight in front of it; summed under the clouds'
+// blending, the fog in front is counted once. For the sun A_fog(0, t) = sigma_s p E
+// (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; point
+// lights take A * A_fog(0, D) at the alpha-weighted mean distance D. Output alpha 1.
+in vec2 uv;
+uniform sampler2D u_scene_color;     // RGBA32F premultiplied scene radiance
+uniform sampler2D u_cloud_color;     // premultiplied cloud radiance, alpha
+uniform sampler2D u_cloud_distance;  // (sum w t, sum w (1 - e^{-sigma t}) / sigma, 0, alpha)
+uniform float u_sigma_t;             // fog extinction, per metre
+uniform float u_sigma_s;             // fog scattering, per metre
+uniform int u_phase_kind;            // lib/phase.glsl kinds
+uniform float u_phase_g;
+uniform int u_num_point_lights;
+uniform vec3 u_point_pos[4];         // metres
+uniform vec3 u_point_intensity[4];   // W/sr per channel
+uniform int u_has_sun;
+uniform vec3 u_sun_to;               // unit, toward the sun
+uniform vec3 u_sun_irradiance;       // W/m^2 per channel
+layout(location = 0) out vec4 o_color;
+#include "lib/camera_ray.glsl"
+#include "lib/airlight.glsl"
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec3 scene = texelFetch(u_scene_color, px, 0).rgb;
+  vec4 cloud = texelFetch(u_cloud_color, px, 0);
+  vec4 weighted = texelFetch(u_cloud_distance, px, 0);
+  float A = clamp(cloud.a, 0.0, 1.0);
+  float D = weighted.a > 1.0e-12 ? max(weighted.r / weighted.a, 0.0) : 0.0;
+  vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
+  vec3 air = vec3(0.0);
+  for (int i = 0; i < u_num_point_lights; ++i) {
+    vec3 to_light = u_point_pos[i] - u_eye;
+    float Dsv = length(to_light);
+    float cg = clamp(dot(dir, to_light) / max(Dsv, 1.0e-20), -1.0, 1.0);
+    float sg = min(length(cross(dir, to_light)) / max(Dsv, 1.0e-20), 1.0);
+    air += (A * u_point_intensity[i]) *
+           point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, 0.0, D, u_phase_kind, u_phase_g);
+  }
+  float sun = float(u_has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-u_sun_to, -dir));
+  air += u_sun_irradiance * (sun * max(weighted.g, 0.0));
+  o_color = vec4(scene * (1.0 - A) + cloud.rgb + air, 1.0);
+}

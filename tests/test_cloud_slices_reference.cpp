@@ -1,0 +1,185 @@
+// The half-angle slicer against the CPU reference of the same model (render_cloud_reference):
+// relative RMSE over covered pixels front-lit and back-lit, isotropic and Henyey-Greenstein; a
+// uniform sphere's dark side against its lit side; the two branches at their switch; no popping
+// as the light crosses 90 degrees from the view.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/cloud_reference.hpp"
+#include "nimbus/render/cloud_renderer.hpp"
+#include "nimbus/render/image_metrics.hpp"
+#include "test_cloud_slices_support.hpp"
+#include "test_gl_support.hpp"
+
+namespace nimbus::render {
+namespace {
+
+using namespace slice_test;
+
+constexpr int kN = 24;
+constexpr double kVoxel = 1.0 / kN;
+
+CloudReferenceSettings quick_reference() {
+  CloudReferenceSettings r;
+  r.view_step_voxels = 0.25;
+  r.shadow_step_voxels = 0.5;
+  return r;
+}
+
+struct RefCase {
+  std::string name;
+  glm::dvec3 to_light;
+  double g;          // Henyey-Greenstein asymmetry, 0 = isotropic
+  double tolerance;  // relative RMSE over covered pixels
+};
+
+// Measured (llvmpipe): rel RMSE 0.26-0.44 %, |alpha error| < 0.02; tolerance 1.5 %.
+class AgainstReference : public ::testing::TestWithParam<RefCase> {};
+
+TEST_P(AgainstReference, RelativeRmseWithinTolerance) {
+  NIMBUS_REQUIRE_GL();
+  const RefCase& p = GetParam();
+  CloudOptics o = grey_optics(8.0, 0.9);
+  o.phase.g_forward = p.g;
+  const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
+  const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
+  CloudLight light;
+  light.direction_to_light = p.to_light;
+  const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
+  CloudRenderer r(clouds, GL_R32F);
+  CloudSliceSettings s;
+  s.slices = 64;
+  s.light_res = 128;
+  const Image img = r.render(cam, light, s);
+  const ImageError e = compare_images(img, ref);
+  std::printf("[ slices vs reference ] %s: rel RMSE %.4f, bias %+.4f, median %.4f over %zu pixels\n", p.name.c_str(),
+              e.rel_rmse, e.mean_bias, e.median_rel, e.pixels);
+  EXPECT_GT(e.pixels, 1000u);
+  EXPECT_LT(e.rel_rmse, p.tolerance) << p.name;
+  double alpha_err = 0.0;
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) alpha_err = std::max(alpha_err, std::abs(double(img.rgba[i]) - ref.rgba[i]));
+  EXPECT_LT(alpha_err, 0.02) << p.name << ": largest |alpha - reference|";
+}
+
+INSTANTIATE_TEST_SUITE_P(CloudSlices, AgainstReference,
+                         ::testing::Values(RefCase{"front_lit_isotropic", {0.5, 0.6, 0.8}, 0.0, 0.015},
+                                           RefCase{"back_lit_isotropic", {-0.3, 0.5, -0.8}, 0.0, 0.015},
+                                           RefCase{"front_lit_hg", {0.5, 0.6, 0.8}, 0.6, 0.015},
+                                           RefCase{"back_lit_hg", {-0.3, 0.5, -0.8}, 0.6, 0.015}),
+                         [](const ::testing::TestParamInfo<RefCase>& param) { return param.param.name; });
+
+// Mean radiance of the covered pixels whose ray passes left (side < 0) or right of the centre.
+double side_mean(const Image& img, const Camera& cam, double side) {
+  double sum = 0.0;
+  int n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double sx = glm::dot(pixel_ray(cam, x, y), camera_frame(cam).right);
+      if (sx * side < 0.04 || img.pixel(x, y)[3] < 0.5) continue;
+      sum += img.pixel(x, y)[1];
+      ++n;
+    }
+  return n > 0 ? sum / n : 0.0;
+}
+
+// A uniform sphere lit from the side: the side facing away from the light is darker than the lit
+// side by the factor the reference gives.
+TEST(CloudSlices, UniformSphereDarkSideMatchesReference) {
+  NIMBUS_REQUIRE_GL();
+  const auto sphere = [](int i, int j, int k) {
+    const double c = 0.5 * (kN - 1);
+    const double r = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c)) * kVoxel;
+    return r < 0.4 ? 1.0f : 0.0f;
+  };
+  const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, sphere, grey_optics(6.0, 0.9))};
+  const Camera cam = look_at_origin({0.0, 0.0, 2.5}, 64, 30.0);
+  CloudLight light;
+  light.direction_to_light = {1.0, 0.2, 0.3};  // from the right, a little from the camera's side
+  const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
+  CloudRenderer r(clouds, GL_R32F);
+  CloudSliceSettings s;
+  s.slices = 64;
+  s.light_res = 128;
+  const Image img = r.render(cam, light, s);
+  const double ref_ratio = side_mean(ref, cam, -1.0) / side_mean(ref, cam, 1.0);
+  const double ratio = side_mean(img, cam, -1.0) / side_mean(img, cam, 1.0);
+  std::printf("[ sphere ] dark/lit: slices %.4f, reference %.4f\n", ratio, ref_ratio);
+  EXPECT_LT(ref_ratio, 0.5);  // the setup has a dark side at all
+  EXPECT_NEAR(ratio / ref_ratio, 1.0, 0.05);
+}
+
+// Light exactly 90 degrees from the view: both branches slice at 45 degrees to it, on opposite
+// sides, and must give the same image (and the reference's).
+TEST(CloudSlices, BranchesAgreeAtTheSwitch) {
+  NIMBUS_REQUIRE_GL();
+  CloudOptics o = grey_optics(8.0, 0.9);
+  o.phase.g_forward = 0.5;
+  const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
+  const Camera cam = look_at_origin({0.0, 0.4, 2.5}, 64, 30.0);
+  const glm::dvec3 v = camera_frame(cam).forward;
+  CloudLight light;
+  light.direction_to_light = -rotate_towards(v, {1.0, 0.3, 0.0}, 90.0);
+  CloudRenderer r(clouds, GL_R32F);
+  CloudSliceSettings s;
+  s.slices = 64;
+  s.light_res = 128;
+  s.branch = CloudSliceSettings::Branch::FrontToBack;
+  const Image under = r.render(cam, light, s);
+  s.branch = CloudSliceSettings::Branch::BackToFront;
+  const Image over = r.render(cam, light, s);
+  const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
+  const double between = compare_images(under, over).rel_rmse;
+  const double e_under = compare_images(under, ref).rel_rmse, e_over = compare_images(over, ref).rel_rmse;
+  std::printf("[ switch ] under vs over %.4f; vs reference: under %.4f, over %.4f\n", between, e_under, e_over);
+  EXPECT_LT(between, 0.02);
+  EXPECT_LT(e_under, 0.02);
+  EXPECT_LT(e_over, 0.02);
+}
+
+// Issue 5: as the light sweeps through 90 degrees from the view (the branch switch) in 1-degree
+// steps, the frame-to-frame change at the switch stays within twice the mean change between the
+// other steps, with the jitter pattern fixed (the strict case: the two branches' noise differs)
+// and varied from frame to frame. Measured at 64 slices (llvmpipe): 1.5x fixed, 1.05x varied;
+// fixed-pattern jitter exceeds 2x below about 56 slices (2.2x at 48, 4.3x at 32), where the
+// jitter-free image stays at 1.4x and 2x.
+TEST(CloudSlices, NoPoppingAtTheSwitch) {
+  NIMBUS_REQUIRE_GL();
+  const std::vector<CloudVolume> clouds = {
+      cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, grey_optics(8.0, 0.9))};
+  const Camera cam = look_at_origin({0.0, 0.4, 2.5}, 64, 30.0);
+  const glm::dvec3 v = camera_frame(cam).forward;
+  CloudRenderer r(clouds, GL_R32F);
+  CloudSliceSettings s;
+  s.slices = 64;
+  s.light_res = 128;
+  for (bool vary_frame : {false, true}) {
+    std::vector<Image> frames;
+    for (int i = 0; i < 8; ++i) {  // 86.5 .. 93.5 degrees: the switch between frames 3 and 4
+      CloudLight light;
+      light.direction_to_light = -rotate_towards(v, {1.0, 0.3, 0.0}, 86.5 + i);
+      s.frame = vary_frame ? static_cast<unsigned>(i) : 0u;
+      frames.push_back(r.render(cam, light, s));
+    }
+    double others = 0.0, at_switch = 0.0;
+    std::string trace;
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+      const double change = rms_difference(frames[i], frames[i - 1]);
+      trace += " " + std::to_string(change);
+      if (i == 4) {
+        at_switch = change;
+      } else {
+        others += change / static_cast<double>(frames.size() - 2);
+      }
+    }
+    std::printf("[ popping ] jitter pattern %s: RMS change per degree%s\n", vary_frame ? "varied" : "fixed",
+                trace.c_str());
+    EXPECT_LE(at_switch, 2.0 * others) << trace;
+  }
+}
+
+}  // namespace
+}  // namespace nimbus::render

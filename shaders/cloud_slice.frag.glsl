@@ -3,30 +3,37 @@
 // from the light buffer (optical depth toward the light of the slices before it) and composited
 // into the eye buffer with the energy-conserving step integral (Hillaire 2015): colour =
 // (S / sigma_t) (1 - exp(-sigma_t rho dt)). dt = d / |dot(ray, s)| per fragment; the sample is
-// jittered along the ray within its slab (blue noise), which hides slice banding.
+// jittered along the ray within its slab (blue noise), which hides slice banding. The sample
+// x = v_world + k q (q = v_world - eye) has texture coordinates (1 + k) v - k (those of the eye),
+// as both maps are affine: no matrix per fragment.
 // UNDERLAY 1: hidden behind the scene's surfaces, attenuated by the fog in front, and
 // (alpha t, alpha (1 - exp(-sigma_fog t)) / sigma_fog, 0, alpha) into the second output for the
-// fog's airlight in front of the clouds (cloud_composite.frag.glsl).
+// fog's airlight in front of the clouds (cloud_composite.frag.glsl). OCTAVES: extra
+// multiple-scattering octaves (0 = single scattering).
 #ifndef UNDERLAY
 #define UNDERLAY 0
 #endif
+#ifndef OCTAVES
+#define OCTAVES 0
+#endif
 in vec3 v_world;
+in vec3 v_tc;
+in vec2 v_luv;
 uniform vec3 u_eye;               // metres
+uniform vec3 u_tc_eye;            // the eye's density-texture coordinates
+uniform vec2 u_luv_eye;           // the eye's light-buffer coordinates
 uniform vec3 u_slice_axis;        // s, unit
 uniform float u_spacing_m;        // d, slice spacing along s
 uniform float u_light_slab_m;     // d / |dot(l, s)|: a slab's thickness along the light
 uniform vec3 u_light_dir;         // l, the light's propagation direction, unit
 uniform vec3 u_irradiance;        // E, W m^-2 per channel
 uniform sampler3D u_density;      // border 0 outside the active box
-uniform mat4 u_world_to_texture;
 uniform float u_sigma_t;          // extinction per unit density, per metre
 uniform vec3 u_albedo;            // sigma_s / sigma_t per channel
 uniform vec3 u_ambient;           // sky radiance (0 when off)
 uniform vec3 u_phase;             // g_forward, g_back, forward weight
 uniform vec3 u_octave_abc;        // occlusion a, contribution b, eccentricity c
-uniform int u_octaves;            // extra octaves, 0 = single scattering
 uniform sampler2D u_light;        // R32F optical depth of the slices before this one
-uniform mat4 u_world_to_light;    // world -> light-buffer uv
 uniform sampler2D u_jitter;       // blue-noise tile (power-of-two side), values in (0, 1)
 uniform ivec2 u_jitter_offset;    // this frame's tile shift, pixels (>= 0)
 uniform float u_jitter_shift;     // this frame's shift of the values, modulo 1
@@ -40,25 +47,26 @@ layout(location = 0) out vec4 o_color;
 #include "lib/cloud_phase.glsl"
 
 void main() {
-  vec3 to_plane = v_world - u_eye;
-  float t_plane = length(to_plane);
-  vec3 dir = to_plane / max(t_plane, 1.0e-20);
-  float dt = u_spacing_m / max(abs(dot(dir, u_slice_axis)), 1.0e-3);
+  vec3 q = v_world - u_eye;
+  float inv_len = inversesqrt(max(dot(q, q), 1.0e-30));
+  float qs = dot(q, u_slice_axis) * inv_len;  // dot(ray, s)
+  float cos_rs = max(abs(qs), 1.0e-3);
+  float dt = u_spacing_m / cos_rs;
   ivec2 px = ivec2(gl_FragCoord.xy);
   ivec2 tile = textureSize(u_jitter, 0);
   float noise = fract(texelFetch(u_jitter, (px + u_jitter_offset) & (tile - 1), 0).r + u_jitter_shift);
-  float offset = (mix(0.5, noise, u_jitter_on) - 0.5) * dt;
-  vec3 x = v_world + dir * offset;
-  float t = max(t_plane + offset, 0.0);
-  float rho = max(texture(u_density, (u_world_to_texture * vec4(x, 1.0)).xyz).r, 0.0);
+  float offset = (mix(0.5, noise, u_jitter_on) - 0.5) * dt;  // metres along the ray
+  float k = offset * inv_len;
+  float rho = max(texture(u_density, v_tc + k * (v_tc - u_tc_eye)).r, 0.0);
   // Toward the light: the slices before this one, plus this slab up to the sample.
-  float own = clamp(0.5 + dot(x - v_world, u_slice_axis) / u_spacing_m, 0.0, 1.0);
-  float tau = texture(u_light, (u_world_to_light * vec4(x, 1.0)).xy).r + own * u_sigma_t * rho * u_light_slab_m;
+  float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
+  float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * u_sigma_t * rho * u_light_slab_m;
   float od = u_sigma_t * rho * dt;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
-  float lit = cloud_octaves(u_phase, u_octave_abc, u_octaves, dot(u_light_dir, -dir), tau);
+  float lit = cloud_octaves(u_phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
   vec3 color = u_albedo * (u_irradiance * lit + u_ambient) * alpha;  // (S / sigma_t) alpha
 #if UNDERLAY
+  float t = max((1.0 + k) / inv_len, 0.0);
   float surface = texelFetch(u_scene_distance, px, 0).r;
   float visible = (surface > 0.0 && t > surface) ? 0.0 : 1.0;
   alpha *= visible;

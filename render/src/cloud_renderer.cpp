@@ -1,5 +1,6 @@
 // The half-angle slice renderer (cloud_renderer.hpp; Kniss et al. 2002/2003). Per frame: the
-// slicing axis and every slice's polygons on the CPU (cloud_slice_geometry.cpp), then per slice
+// slicing axis and every slice's polygons inside each cloud's convex bound of non-zero density
+// on the CPU (cloud_slice_geometry.cpp), then per slice
 // an eye pass (shaders/cloud_slice.frag.glsl: lit from the light buffer, composited under or
 // over) and a light pass (shaders/cloud_light.frag.glsl: adds the slab's optical depth, after
 // an optional forward-scattering blur), and with a scene underlay a composite pass
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -105,11 +107,12 @@ class PassTimer {
 struct CloudRenderer::Impl {
   std::vector<CloudVolume> clouds;
   std::vector<VolumeTexture> textures;
-  std::vector<std::array<glm::dvec3, 8>> boxes;  // each cloud's support corners
+  std::vector<ConvexHull> hulls;           // where each cloud's density can be non-zero
+  std::vector<glm::dvec3> hull_points;     // all their vertices
   ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}};
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
-  ShaderProgram eye_program{{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 0\n"};
-  std::optional<ShaderProgram> eye_underlay_program, composite_program;
+  std::map<std::pair<bool, int>, ShaderProgram> eye_programs;  // by (underlay, octaves)
+  std::optional<ShaderProgram> composite_program;
   GlVertexArray empty_vao, mesh_vao;
   GlBuffer mesh_buffer;
   std::size_t mesh_capacity = 0;  // vertices
@@ -124,10 +127,22 @@ struct CloudRenderer::Impl {
   GlTexture eye_color, eye_distance, out_color;
   GlFramebuffer eye_fbo, out_fbo;
 
+  const ShaderProgram& eye_program(bool underlay, int octaves);
   void upload_mesh(const SliceMesh& mesh);
   void ensure_light_buffers(int res);
   void ensure_eye_buffers(int w, int h, bool distance);
 };
+
+const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves) {
+  const auto key = std::make_pair(underlay, octaves);
+  auto it = eye_programs.find(key);
+  if (it == eye_programs.end()) {
+    const std::string defines = "#define UNDERLAY " + std::string(underlay ? "1" : "0") + "\n#define OCTAVES " +
+                                std::to_string(octaves) + "\n";
+    it = eye_programs.emplace(key, ShaderProgram({"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, defines)).first;
+  }
+  return it->second;
+}
 
 void CloudRenderer::Impl::upload_mesh(const SliceMesh& mesh) {
   if (mesh.vertices.size() > mesh_capacity) {
@@ -187,7 +202,9 @@ CloudRenderer::CloudRenderer(std::vector<CloudVolume> clouds, GLenum format) : i
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
     }
-    s.boxes.push_back(support_corners(c));
+    s.hulls.push_back(cloud_hull(c));
+    const std::vector<glm::dvec3> v = hull_vertices(s.hulls.back());
+    s.hull_points.insert(s.hull_points.end(), v.begin(), v.end());
   }
   s.clouds = std::move(clouds);
   s.empty_vao = make_vertex_array();
@@ -232,10 +249,10 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   const CameraFrame frame = camera_frame(camera);
   const glm::dvec3 l = -glm::normalize(light.direction_to_light);
   const SliceAxis axis = choose_slice_axis(frame.forward, l, settings.branch);
-  const SlicePlanes planes = slice_planes(s.boxes, axis.axis, settings.slices);
+  const SlicePlanes planes = slice_planes(s.hull_points, axis.axis, settings.slices);
   // A jittered sample lies up to dt / 2 = d / (2 |dot(ray, s)|) along its ray from the plane, so
-  // a ray whose plane point misses the support can still sample density inside it: the polygons
-  // are cut from the supports grown by that much (the steepest ray at the image's corners).
+  // a ray whose plane point misses the hull can still sample density inside it: the polygons
+  // are cut from the hulls grown by that much (the steepest ray at the image's corners).
   double margin_m = 0.0;
   if (settings.jitter) {
     double min_cos = 1.0;
@@ -245,21 +262,18 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     }
     margin_m = std::min(0.5 / std::max(min_cos, 0.125), 4.0) * planes.spacing_m;
   }
-  std::vector<std::array<glm::dvec3, 8>> grown;
-  for (const CloudVolume& c : s.clouds) grown.push_back(support_corners(c, margin_m));
-  const SliceMesh mesh = build_slice_mesh(grown, axis.axis, planes);
+  std::vector<ConvexHull> hulls;
+  for (const ConvexHull& hull : s.hulls) hulls.push_back(grown(hull, margin_m));
+  const SliceMesh mesh = build_slice_mesh(hulls, axis.axis, planes);
   s.upload_mesh(mesh);
   // The slab between two planes is spacing / dot(l, s) thick along the light (issue 5: d / cos).
   const double light_slab_m = planes.spacing_m / std::max(glm::dot(l, axis.axis), 1e-3);
-  const LightFrame lf = light_frame(s.boxes, l, settings.light_res);
+  const LightFrame lf = light_frame(s.hull_points, l, settings.light_res);
   s.ensure_light_buffers(settings.light_res);
   s.ensure_eye_buffers(w, h, underlay != nullptr);
-  if (underlay && !s.eye_underlay_program) {
-    s.eye_underlay_program.emplace(std::vector<std::string>{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"},
-                                   "#define UNDERLAY 1\n");
+  if (underlay && !s.composite_program)
     s.composite_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"});
-  }
-  const ShaderProgram& eye = underlay ? *s.eye_underlay_program : s.eye_program;
+  const ShaderProgram& eye = s.eye_program(underlay != nullptr, settings.multiple.octaves);
   const ShaderProgram& lp = s.light_program;
   const bool blur = settings.blur_cone_rad > 0.0;
   PassTimer timer(stats != nullptr);
@@ -276,8 +290,8 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   const MultipleScattering& ms = settings.multiple;
   eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                     static_cast<float>(ms.eccentricity)));
-  eye.set("u_octaves", ms.octaves);
   eye.set("u_world_to_light", to_float(lf.world_to_uv));
+  eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
   eye.set("u_density", 0);
   eye.set("u_light", 1);
   eye.set("u_jitter", 2);
@@ -315,6 +329,7 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     const VolumeTexture& t = s.textures[j];
     const float sigma_t = static_cast<float>(c.optics.extinction_per_m);
     eye.set("u_world_to_texture", to_float(t.world_to_texture));
+    eye.set("u_tc_eye", glm::vec3(t.world_to_texture * glm::dvec4(camera.eye, 1.0)));
     eye.set("u_sigma_t", sigma_t);
     eye.set("u_albedo", to_float(c.optics.albedo));
     eye.set("u_ambient", settings.ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f));

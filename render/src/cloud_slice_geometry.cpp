@@ -1,5 +1,5 @@
-// CPU geometry of the half-angle slicer (cloud_slice_geometry.hpp): axis, planes, box-plane
-// polygons and the light buffer's frame.
+// CPU geometry of the half-angle slicer (cloud_slice_geometry.hpp): axis, convex bounds, planes,
+// plane-bound polygons and the light buffer's frame.
 #include "cloud_slice_geometry.hpp"
 
 #include <algorithm>
@@ -24,59 +24,130 @@ SliceAxis choose_slice_axis(const glm::dvec3& v, const glm::dvec3& l, CloudSlice
   return a;
 }
 
-std::array<glm::dvec3, 8> support_corners(const CloudVolume& cloud, double margin_m) {
-  std::array<glm::dvec3, 8> out;
-  double pad[3];  // the margin in index units along each axis: |grad index_a| per metre
-  for (int a = 0; a < 3; ++a) {
-    const glm::dmat4& m = cloud.world_to_index;
-    pad[a] = margin_m * glm::length(glm::dvec3(m[0][a], m[1][a], m[2][a]));
-  }
-  for (int k = 0; k < 8; ++k) {
-    glm::dvec3 idx;
-    for (int a = 0; a < 3; ++a)
-      idx[a] = ((k >> a) & 1) ? cloud.box.origin[a] + static_cast<double>(cloud.box.size[a]) + pad[a]
-                              : cloud.box.origin[a] - 1.0 - pad[a];
-    out[static_cast<std::size_t>(k)] = glm::dvec3(cloud.index_to_world * glm::dvec4(idx, 1.0));
+namespace {
+
+// Keeps the part of the convex polygon `poly` where dot(n, x) <= d (Sutherland & Hodgman 1974).
+std::vector<glm::dvec3> clip(const std::vector<glm::dvec3>& poly, const glm::dvec3& n, double d) {
+  std::vector<glm::dvec3> out;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const glm::dvec3& a = poly[i];
+    const glm::dvec3& b = poly[(i + 1) % poly.size()];
+    const double fa = glm::dot(n, a) - d, fb = glm::dot(n, b) - d;
+    if (fa <= 0.0) out.push_back(a);
+    if ((fa <= 0.0) != (fb <= 0.0)) out.push_back(a + (b - a) * (fa / (fa - fb)));
   }
   return out;
 }
 
-std::vector<glm::dvec3> plane_box_polygon(const std::array<glm::dvec3, 8>& corners, const glm::dvec3& n, double c) {
-  std::vector<glm::dvec3> pts;
-  double f[8];
-  for (int k = 0; k < 8; ++k) f[k] = glm::dot(n, corners[static_cast<std::size_t>(k)]) - c;
-  // The 12 edges join corners that differ in one bit.
-  for (int k = 0; k < 8; ++k) {
-    for (int bit = 1; bit < 8; bit <<= 1) {
-      const int m = k | bit;
-      if (m == k) continue;
-      if ((f[k] < 0.0) == (f[m] < 0.0)) continue;
-      const double t = f[k] / (f[k] - f[m]);
-      pts.push_back(corners[static_cast<std::size_t>(k)] +
-                    t * (corners[static_cast<std::size_t>(m)] - corners[static_cast<std::size_t>(k)]));
-    }
-  }
-  if (pts.size() < 3) return {};
-  glm::dvec3 centre(0.0);
-  for (const glm::dvec3& p : pts) centre += p;
-  centre /= static_cast<double>(pts.size());
+// The plane dot(n, x) = c cut by every plane of the hull but number `skip`.
+std::vector<glm::dvec3> cut(const ConvexHull& hull, const glm::dvec3& n, double c, std::size_t skip) {
+  if (hull.empty) return {};
+  const double off = glm::dot(n, hull.centre) - c;
+  if (std::abs(off) >= hull.radius_m) return {};
+  // A square on the plane around the ball's cross-section, then clipped.
+  const glm::dvec3 p0 = hull.centre - off * n;
   const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 e1 = glm::normalize(glm::cross(n, helper));
-  const glm::dvec3 e2 = glm::cross(n, e1);
-  std::sort(pts.begin(), pts.end(), [&](const glm::dvec3& a, const glm::dvec3& b) {
-    return std::atan2(glm::dot(a - centre, e2), glm::dot(a - centre, e1)) <
-           std::atan2(glm::dot(b - centre, e2), glm::dot(b - centre, e1));
-  });
-  return pts;
+  const glm::dvec3 e1 = glm::normalize(glm::cross(n, helper)) * (2.0 * hull.radius_m);
+  const glm::dvec3 e2 = glm::normalize(glm::cross(n, e1)) * (2.0 * hull.radius_m);
+  std::vector<glm::dvec3> poly = {p0 - e1 - e2, p0 + e1 - e2, p0 + e1 + e2, p0 - e1 + e2};
+  for (std::size_t i = 0; i < hull.planes.size() && poly.size() >= 3; ++i)
+    if (i != skip) poly = clip(poly, glm::dvec3(hull.planes[i]), hull.planes[i].w);
+  if (poly.size() < 3) return {};
+  return poly;
 }
 
-SlicePlanes slice_planes(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& axis, int count) {
-  double lo = std::numeric_limits<double>::max(), hi = -lo;
-  for (const auto& box : boxes)
-    for (const glm::dvec3& p : box) {
-      lo = std::min(lo, glm::dot(axis, p));
-      hi = std::max(hi, glm::dot(axis, p));
+}  // namespace
+
+ConvexHull cloud_hull(const CloudVolume& cloud) {
+  // The 13 directions of a 26-DOP in index space.
+  static const int kDir[13][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},  {1, 1, 0},  {1, -1, 0}, {1, 0, 1}, {1, 0, -1},
+                                  {0, 1, 1}, {0, 1, -1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+  double lo[13], hi[13];
+  for (int i = 0; i < 13; ++i) {
+    lo[i] = std::numeric_limits<double>::max();
+    hi[i] = -lo[i];
+  }
+  const volume::DenseBox& b = cloud.box;
+  bool any = false;
+  std::size_t n = 0;
+  for (int64_t k = 0; k < b.size[2]; ++k)
+    for (int64_t j = 0; j < b.size[1]; ++j)
+      for (int64_t i = 0; i < b.size[0]; ++i, ++n) {
+        if (!(b.values[n] > 0.0f)) continue;
+        any = true;
+        const double c[3] = {static_cast<double>(b.origin[0] + i), static_cast<double>(b.origin[1] + j),
+                             static_cast<double>(b.origin[2] + k)};
+        for (int d = 0; d < 13; ++d) {
+          const double v = kDir[d][0] * c[0] + kDir[d][1] * c[1] + kDir[d][2] * c[2];
+          lo[d] = std::min(lo[d], v);
+          hi[d] = std::max(hi[d], v);
+        }
+      }
+  ConvexHull h;
+  if (!any) {
+    h.empty = true;
+    return h;
+  }
+  // Index-space dot(m, idx) <= e with idx = L x + t (world_to_index) is dot(L^T m, x) <= e - dot(m, t).
+  const glm::dmat4& w = cloud.world_to_index;
+  const glm::dvec3 t(w[3]);
+  for (int d = 0; d < 13; ++d) {
+    const glm::dvec3 m(kDir[d][0], kDir[d][1], kDir[d][2]);
+    const double reach = std::abs(m.x) + std::abs(m.y) + std::abs(m.z);  // a voxel's support, centre +- 1
+    for (int sign : {1, -1}) {
+      const glm::dvec3 ms = static_cast<double>(sign) * m;
+      const double e = sign > 0 ? hi[d] + reach : -(lo[d] - reach);
+      const glm::dvec3 g(glm::dot(glm::dvec3(w[0]), ms), glm::dot(glm::dvec3(w[1]), ms), glm::dot(glm::dvec3(w[2]), ms));
+      const double len = glm::length(g);
+      h.planes.emplace_back(g / len, (e - glm::dot(ms, t)) / len);
     }
+  }
+  // The ball around the axis-aligned index box of the DOP.
+  glm::dvec3 corner_lo, corner_hi;
+  for (int a = 0; a < 3; ++a) {
+    corner_lo[a] = lo[a] - 1.0;
+    corner_hi[a] = hi[a] + 1.0;
+  }
+  h.centre = glm::dvec3(cloud.index_to_world * glm::dvec4(0.5 * (corner_lo + corner_hi), 1.0));
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 idx((c & 1) ? corner_hi.x : corner_lo.x, (c & 2) ? corner_hi.y : corner_lo.y,
+                         (c & 4) ? corner_hi.z : corner_lo.z);
+    h.radius_m = std::max(h.radius_m, glm::length(glm::dvec3(cloud.index_to_world * glm::dvec4(idx, 1.0)) - h.centre));
+  }
+  h.radius_m *= 1.0 + 1e-9;
+  return h;
+}
+
+ConvexHull grown(const ConvexHull& hull, double margin_m) {
+  ConvexHull g = hull;
+  for (glm::dvec4& p : g.planes) p.w += margin_m;
+  g.radius_m += margin_m;
+  return g;
+}
+
+std::vector<glm::dvec3> plane_hull_polygon(const ConvexHull& hull, const glm::dvec3& n, double c) {
+  return cut(hull, n, c, hull.planes.size());
+}
+
+std::vector<glm::dvec3> hull_vertices(const ConvexHull& hull) {
+  std::vector<glm::dvec3> out;
+  for (std::size_t i = 0; i < hull.planes.size(); ++i) {
+    const std::vector<glm::dvec3> face = cut(hull, glm::dvec3(hull.planes[i]), hull.planes[i].w, i);
+    out.insert(out.end(), face.begin(), face.end());
+  }
+  return out;
+}
+
+SlicePlanes slice_planes(const std::vector<glm::dvec3>& points, const glm::dvec3& axis, int count) {
+  double lo = std::numeric_limits<double>::max(), hi = -lo;
+  for (const glm::dvec3& p : points) {
+    lo = std::min(lo, glm::dot(axis, p));
+    hi = std::max(hi, glm::dot(axis, p));
+  }
+  if (!(hi > lo)) {  // nothing to slice: any planes (no polygon will be found)
+    lo = 0.0;
+    hi = 1.0;
+  }
   SlicePlanes s;
   s.count = count;
   s.spacing_m = (hi - lo) / count;
@@ -84,17 +155,16 @@ SlicePlanes slice_planes(const std::vector<std::array<glm::dvec3, 8>>& boxes, co
   return s;
 }
 
-SliceMesh build_slice_mesh(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& axis,
-                           const SlicePlanes& planes) {
+SliceMesh build_slice_mesh(const std::vector<ConvexHull>& hulls, const glm::dvec3& axis, const SlicePlanes& planes) {
   SliceMesh m;
-  const std::size_t n = static_cast<std::size_t>(planes.count) * boxes.size();
+  const std::size_t n = static_cast<std::size_t>(planes.count) * hulls.size();
   m.first.assign(n, 0);
   m.count.assign(n, 0);
   for (int k = 0; k < planes.count; ++k) {
     const double c = planes.first_m + k * planes.spacing_m;
-    for (std::size_t j = 0; j < boxes.size(); ++j) {
-      const std::size_t idx = static_cast<std::size_t>(k) * boxes.size() + j;
-      const std::vector<glm::dvec3> poly = plane_box_polygon(boxes[j], axis, c);
+    for (std::size_t j = 0; j < hulls.size(); ++j) {
+      const std::size_t idx = static_cast<std::size_t>(k) * hulls.size() + j;
+      const std::vector<glm::dvec3> poly = plane_hull_polygon(hulls[j], axis, c);
       m.first[idx] = static_cast<int>(m.vertices.size());
       for (std::size_t i = 1; i + 1 < poly.size(); ++i) {  // a fan
         m.vertices.emplace_back(poly[0]);
@@ -107,7 +177,7 @@ SliceMesh build_slice_mesh(const std::vector<std::array<glm::dvec3, 8>>& boxes, 
   return m;
 }
 
-LightFrame light_frame(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& l, int resolution,
+LightFrame light_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& l, int resolution,
                        double margin_texels) {
   LightFrame f;
   const glm::dvec3 helper = std::abs(l.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -115,14 +185,15 @@ LightFrame light_frame(const std::vector<std::array<glm::dvec3, 8>>& boxes, cons
   f.w_axis = glm::cross(l, f.u_axis);
   double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   double hi[2] = {-lo[0], -lo[1]};
-  for (const auto& box : boxes)
-    for (const glm::dvec3& p : box) {
-      const double c[2] = {glm::dot(f.u_axis, p), glm::dot(f.w_axis, p)};
-      for (int a = 0; a < 2; ++a) {
-        lo[a] = std::min(lo[a], c[a]);
-        hi[a] = std::max(hi[a], c[a]);
-      }
+  for (const glm::dvec3& p : points) {
+    const double c[2] = {glm::dot(f.u_axis, p), glm::dot(f.w_axis, p)};
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
     }
+  }
+  for (int a = 0; a < 2; ++a)
+    if (!(hi[a] >= lo[a])) lo[a] = hi[a] = 0.0;
   double origin[2], extent[2];
   for (int a = 0; a < 2; ++a) {
     const double texel = std::max(hi[a] - lo[a], 1e-9) / (resolution - 2.0 * margin_texels);

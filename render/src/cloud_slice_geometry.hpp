@@ -1,8 +1,8 @@
 // CPU geometry of the half-angle slicer (Kniss et al. 2003): the slicing axis and compositing
-// order, the slice planes across the clouds, each plane's polygon inside a cloud's support box,
-// and the light buffer's orthographic frame. Private to render/src/cloud_*.cpp.
+// order, a convex bound of each cloud's non-zero density, the slice planes across the clouds,
+// each plane's polygon inside a bound, and the light buffer's orthographic frame. Private to
+// render/src/cloud_*.cpp.
 #pragma once
-#include <array>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,35 +24,47 @@ struct SliceAxis {
 // falls back to s = l.
 SliceAxis choose_slice_axis(const glm::dvec3& v, const glm::dvec3& l, CloudSliceSettings::Branch branch);
 
-// The 8 corners (world, metres) of a cloud's support: index origin - 1 to origin + size on each
-// axis through index_to_world (an oriented box; corner bit a set = the high end of axis a),
-// each face moved out by margin_m metres.
-std::array<glm::dvec3, 8> support_corners(const CloudVolume& cloud, double margin_m = 0.0);
+// A convex polytope, the intersection of half-spaces dot(n, x) <= d (world metres, n unit).
+struct ConvexHull {
+  std::vector<glm::dvec4> planes;  // (n, d)
+  glm::dvec3 centre{0.0};          // a point inside, and the radius of a ball around it that
+  double radius_m = 0.0;           // holds the hull
+  bool empty = false;              // no point has non-zero density
+};
 
-// The convex polygon where the plane dot(n, x) = c cuts the box of `corners`, its vertices in
-// order around it (angle about their centroid). Empty when the plane misses the box or touches
-// it in fewer than 3 points.
-std::vector<glm::dvec3> plane_box_polygon(const std::array<glm::dvec3, 8>& corners, const glm::dvec3& n, double c);
+// Where a cloud's trilinear density can be non-zero: its support box (index origin - 1 to
+// origin + size) cut by the 26-DOP (13 directions of the index lattice: axes, face and body
+// diagonals) of the supports (centre +- 1 voxel) of its voxels with density > 0.
+ConvexHull cloud_hull(const CloudVolume& cloud);
+
+// Every face moved out by margin_m metres.
+ConvexHull grown(const ConvexHull& hull, double margin_m);
+
+// The convex polygon where the plane dot(n, x) = c cuts the hull, in order around it. Empty
+// when the plane misses it.
+std::vector<glm::dvec3> plane_hull_polygon(const ConvexHull& hull, const glm::dvec3& n, double c);
+
+// The hull's vertices (those of its faces' polygons).
+std::vector<glm::dvec3> hull_vertices(const ConvexHull& hull);
 
 // Slice planes dot(axis, x) = first_m + k * spacing_m, k = 0 .. count - 1: count planes evenly
-// across [lo, hi] (the union support's extent along the axis), each at the middle of its slab.
+// across the extent of `points` along the axis, each at the middle of its slab.
 struct SlicePlanes {
   double first_m = 0.0, spacing_m = 0.0;
   int count = 0;
 };
-SlicePlanes slice_planes(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& axis, int count);
+SlicePlanes slice_planes(const std::vector<glm::dvec3>& points, const glm::dvec3& axis, int count);
 
-// Every (slice, cloud) polygon fanned into triangles, in drawing order: slice-major, then cloud.
+// Every (slice, hull) polygon fanned into triangles, in drawing order: slice-major, then hull.
 struct SliceMesh {
   std::vector<glm::vec3> vertices;  // world, metres
-  // first vertex and vertex count of slice k, cloud j at index k * clouds + j (count 0: none)
+  // first vertex and vertex count of slice k, hull j at index k * hulls + j (count 0: none)
   std::vector<int> first, count;
 };
-SliceMesh build_slice_mesh(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& axis,
-                           const SlicePlanes& planes);
+SliceMesh build_slice_mesh(const std::vector<ConvexHull>& hulls, const glm::dvec3& axis, const SlicePlanes& planes);
 
 // The light buffer's orthographic frame: a plane perpendicular to the light's propagation
-// direction l over the clouds' footprint, with a margin of `margin_texels` texels each side.
+// direction l over the footprint of `points`, with a margin of `margin_texels` texels each side.
 struct LightFrame {
   glm::dvec3 u_axis{1, 0, 0}, w_axis{0, 1, 0};  // unit, perpendicular to l and each other
   double u0 = 0, w0 = 0;                        // footprint corner, metres along the axes
@@ -61,7 +73,7 @@ struct LightFrame {
   glm::dmat4 world_to_clip{1.0};                // world -> (2u - 1, 2w - 1, 0, 1)
   glm::dvec2 texel_m{1.0};                      // texel size along u and w, metres
 };
-LightFrame light_frame(const std::vector<std::array<glm::dvec3, 8>>& boxes, const glm::dvec3& l, int resolution,
+LightFrame light_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& l, int resolution,
                        double margin_texels = 2.0);
 
 }  // namespace nimbus::render::cloud_detail

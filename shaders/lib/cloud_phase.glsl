@@ -7,12 +7,13 @@
 const float CLOUD_INV_4PI = 0.0795774715;
 
 // Henyey & Greenstein 1941, normalised per steradian; 1 + g^2 - 2 g cos is formed from the
-// small one of 1 -+ cos so that the peaks keep their precision in float.
+// small one of 1 -+ cos so that the peaks keep their precision in float, and d^(-3/2) as
+// inversesqrt(d)^3 (no division).
 float cloud_hg(float g, float one_minus_cos, float one_plus_cos) {
   float d = g >= 0.0 ? (1.0 - g) * (1.0 - g) + 2.0 * g * one_minus_cos
                      : (1.0 + g) * (1.0 + g) - 2.0 * g * one_plus_cos;
-  d = max(d, 1.0e-12);
-  return CLOUD_INV_4PI * (1.0 - g * g) / (d * sqrt(d));
+  float r = inversesqrt(max(d, 1.0e-12));
+  return CLOUD_INV_4PI * (1.0 - g * g) * (r * r * r);
 }
 
 // p = w HG(g_forward) + (1 - w) HG(g_back); phase = (g_forward, g_back, w); theta = 0 forward.
@@ -22,7 +23,8 @@ float cloud_dual_phase(vec3 phase, float cos_theta) {
 }
 
 // sum_{k=0..octaves} b^k p(cos; c^k g) exp(-a^k tau), abc = (occlusion a, contribution b,
-// eccentricity c); octaves = 0 is single scattering p exp(-tau).
+// eccentricity c); octaves = 0 is single scattering p exp(-tau). Pass a compile-time constant
+// for `octaves` so that the loop unrolls.
 float cloud_octaves(vec3 phase, vec3 abc, int octaves, float cos_theta, float tau) {
   float sum = 0.0;
   float a = 1.0;

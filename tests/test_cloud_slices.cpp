@@ -157,6 +157,40 @@ TEST(CloudSlices, IdenticalOctaveDoublesTheRadiance) {
   EXPECT_GT(sum, 1.0);
 }
 
+// Kniss's forward-scattering blur spreads the light buffer with weights that sum to 1: where the
+// light field is uniform across the light (inside a box lit along its axis, away from its sides)
+// it changes nothing, near the sides it does, and a vanishing cone gives the unblurred image.
+TEST(CloudSlices, BlurConservesAUniformLightField) {
+  NIMBUS_REQUIRE_GL();
+  CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(3.0))}, GL_R32F);
+  const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 24.0);
+  CloudLight light;
+  light.direction_to_light = {0.0, 0.0, 1.0};  // along the box's z axis, from the camera's side
+  CloudSliceSettings s;
+  s.slices = 64;
+  s.light_res = 128;
+  const Image sharp = r.render(cam, light, s);
+  s.blur_cone_rad = 0.3;
+  const Image blurred = r.render(cam, light, s);
+  s.blur_cone_rad = 1e-9;
+  const Image vanishing = r.render(cam, light, s);
+  double inner = 0.0, outer = 0.0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const glm::dvec3 d = pixel_ray(cam, x, y);
+      const glm::dvec3 q = cam.eye + d * (3.5 / -d.z);  // beyond the box
+      const bool interior = std::abs(q.x) < 0.35 && std::abs(q.y) < 0.35;
+      for (int c = 0; c < 3; ++c) {
+        const double v = sharp.pixel(x, y)[c];
+        const double change = std::abs(blurred.pixel(x, y)[c] - v) / (v + 1e-3);
+        (interior ? inner : outer) = std::max(interior ? inner : outer, change);
+        EXPECT_NEAR(vanishing.pixel(x, y)[c], v, 1e-6 * (1.0 + v));
+      }
+    }
+  EXPECT_LT(inner, 1e-4) << "relative change inside";  // the spread is ~0.02 m, 6 sigma from the sides
+  EXPECT_GT(outer, 3e-3) << "relative change near the sides";  // measured 6e-3
+}
+
 TEST(CloudSlices, ReportsTheSlicingAxisAndOrder) {
   NIMBUS_REQUIRE_GL();
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, grey_optics(4.0))});

@@ -2,11 +2,12 @@
 // Eye pass of the half-angle slicer (Kniss et al. 2003): one cloud's polygon of one slice, lit
 // from the light buffer (optical depth toward the light of the slices before it) and composited
 // into the eye buffer with the energy-conserving step integral (Hillaire 2015): colour =
-// (S / sigma_t) (1 - exp(-sigma_t rho dt)). dt = d / |dot(ray, s)| per fragment; the sample is
-// jittered along the ray within its slab (blue noise), which hides slice banding. The sample
+// (S / sigma_t) (1 - exp(-sigma_t rho dt)). dt = d / |dot(ray, s)| per fragment (less for the
+// slab around the eye); the sample is jittered along the ray within its slab (blue noise), which
+// hides slice banding. The sample
 // x = v_world + k q (q = v_world - eye) has texture coordinates (1 + k) v - k (those of the eye),
 // as both maps are affine: no matrix per fragment.
-// UNDERLAY 1: hidden behind the scene's surfaces, attenuated by the fog in front, and
+// UNDERLAY 1: cut at the scene's surfaces, attenuated by the fog in front, and
 // (alpha t, alpha (1 - exp(-sigma_fog t)) / sigma_fog, 0, alpha) into the second output for the
 // fog's airlight in front of the clouds (cloud_composite.frag.glsl). OCTAVES: extra
 // multiple-scattering octaves (0 = single scattering).
@@ -20,6 +21,8 @@ in vec3 v_world;
 in vec3 v_tc;
 in vec2 v_luv;
 uniform vec3 u_eye;               // metres
+uniform vec3 u_forward;           // the camera's view axis, unit
+uniform float u_near_m;           // the camera's near plane
 uniform vec3 u_tc_eye;            // the eye's density-texture coordinates
 uniform vec2 u_luv_eye;           // the eye's light-buffer coordinates
 uniform vec3 u_slice_axis;        // s, unit
@@ -55,23 +58,31 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   ivec2 tile = textureSize(u_jitter, 0);
   float noise = fract(texelFetch(u_jitter, (px + u_jitter_offset) & (tile - 1), 0).r + u_jitter_shift);
-  float offset = (mix(0.5, noise, u_jitter_on) - 0.5) * dt;  // metres along the ray
+  // This slab along the ray is [t - dt/2, t + dt/2] around the plane at t; where the plane
+  // before it is behind the eye or the near plane (no fragment there), it reaches back to the eye.
+  float t_plane = 1.0 / inv_len;
+  float start = (t_plane - dt) * (dot(q, u_forward) * inv_len) < u_near_m ? 0.0 : t_plane - 0.5 * dt;
+  float end = t_plane + 0.5 * dt;
+#if UNDERLAY
+  // A surface inside the slab ends it: the cloud behind the surface is hidden.
+  float surface = texelFetch(u_scene_distance, px, 0).r;
+  end = surface > 0.0 ? min(end, surface) : end;
+#endif
+  float slab = max(end - start, 0.0);
+  float offset = start + mix(0.5, noise, u_jitter_on) * slab - t_plane;  // metres along the ray
   float k = offset * inv_len;
   float rho = max(texture(u_density, v_tc + k * (v_tc - u_tc_eye)).r, 0.0);
   // Toward the light: the slices before this one, plus this slab up to the sample.
   float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
   float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * u_sigma_t * rho * u_light_slab_m;
-  float od = u_sigma_t * rho * dt;
+  float od = u_sigma_t * rho * slab;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
   float lit = cloud_octaves(u_phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
   vec3 color = u_albedo * (u_irradiance * lit + u_ambient) * alpha;  // (S / sigma_t) alpha
 #if UNDERLAY
-  float t = max((1.0 + k) / inv_len, 0.0);
-  float surface = texelFetch(u_scene_distance, px, 0).r;
-  float visible = (surface > 0.0 && t > surface) ? 0.0 : 1.0;
-  alpha *= visible;
+  float t = max(t_plane + offset, 0.0);
   float y = u_fog_sigma_t * t;
-  color *= visible * exp(-y);
+  color *= exp(-y);
   float span = y < 1.0e-3 ? t * (1.0 - 0.5 * y) : (1.0 - exp(-y)) / u_fog_sigma_t;  // int_0^t e^{-sigma x} dx
   o_distance = vec4(alpha * t, alpha * span, 0.0, alpha);
 #endif

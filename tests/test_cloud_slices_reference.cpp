@@ -72,6 +72,31 @@ INSTANTIATE_TEST_SUITE_P(CloudSlices, AgainstReference,
                                            RefCase{"back_lit_hg", {-0.3, 0.5, -0.8}, 0.6, 0.01}),
                          [](const ::testing::TestParamInfo<RefCase>& param) { return param.param.name; });
 
+// The camera inside the cloud: the slab around the eye reaches back to the eye (no plane is
+// drawn behind it). Measured rel RMSE 0.96 % and 0.55 %, bias -0.09 % and +0.07 %, where slabs
+// cut at the near plane gave a 1.4 % bias that more slices did not reduce.
+TEST(CloudSlices, CameraInsideMatchesReference) {
+  NIMBUS_REQUIRE_GL();
+  const std::vector<CloudVolume> clouds = {
+      cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, grey_optics(4.0, 0.9))};
+  CloudRenderer r(clouds, GL_R32F);
+  Camera cam = look_at_origin({0.05, 0.1, 0.2}, 64, 60.0);
+  cam.look_at = cam.eye + glm::dvec3(0.2, 0.1, -1.0);
+  for (const glm::dvec3& to_light : {glm::dvec3(0.5, 0.6, 0.8), glm::dvec3(-0.3, 0.5, -0.8)}) {
+    CloudLight light;
+    light.direction_to_light = to_light;
+    const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
+    CloudSliceSettings s;
+    s.slices = 64;
+    s.light_res = 128;
+    const ImageError e = compare_images(r.render(cam, light, s), ref);
+    std::printf("[ inside ] rel RMSE %.4f, bias %+.4f\n", e.rel_rmse, e.mean_bias);
+    EXPECT_GT(e.pixels, 3000u);
+    EXPECT_LT(e.rel_rmse, 0.02);
+    EXPECT_LT(std::abs(e.mean_bias), 0.005);
+  }
+}
+
 // Mean radiance of the covered pixels whose ray passes left (side < 0) or right of the centre.
 double side_mean(const Image& img, const Camera& cam, double side) {
   double sum = 0.0;

@@ -282,6 +282,8 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
   eye.set("u_view_proj", view_proj);
   eye.set("u_eye", to_float(camera.eye));
+  eye.set("u_forward", to_float(frame.forward));
+  eye.set("u_near_m", static_cast<float>(camera.near_m));
   eye.set("u_slice_axis", to_float(axis.axis));
   eye.set("u_spacing_m", static_cast<float>(planes.spacing_m));
   eye.set("u_light_slab_m", static_cast<float>(light_slab_m));

@@ -111,21 +111,34 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const ren
 }
 
 // The default view of the clouds: from the scene camera's side, far enough for their bounding
-// sphere to fit the vertical field of view; under a sky the eye stays at its height.
-render::Camera frame_clouds(render::Camera c, const std::vector<render::CloudVolume>& clouds, bool keep_eye_height) {
+// sphere to fit the field of view. Under a sky the eye stands 2 m above the ground and pitches
+// up only as far as it must, so the horizon (and the clouds' shadows) stay in the picture.
+render::Camera frame_clouds(render::Camera c, const std::vector<render::CloudVolume>& clouds, bool on_ground) {
   glm::dvec3 lo, hi;
   render::cloud_bounds(clouds, lo, hi);
   const glm::dvec3 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * glm::length(hi - lo);
-  const double tan_h = std::tan(0.5 * c.fov_deg * kPi / 180.0);
-  const double tan_v = tan_h * c.height / c.width;
-  const double distance = 1.15 * radius / std::sin(std::atan(std::min(tan_h, tan_v)));
+  const double h_half = 0.5 * c.fov_deg * kPi / 180.0;
+  const double v_half = std::atan(std::tan(h_half) * c.height / c.width);
+  double distance = 1.15 * radius / std::sin(std::min(h_half, v_half));
   glm::dvec3 back = c.eye - c.look_at;
-  if (keep_eye_height) back.y = 0.0;
+  if (on_ground) back.y = 0.0;
   back = glm::length(back) > 0 ? glm::normalize(back) : glm::dvec3(0, 0, 1);
   c.look_at = centre;
   c.eye = centre + back * distance;
-  if (keep_eye_height) c.eye = glm::dvec3(centre.x, 2.0, centre.z) + back * distance;  // standing on the ground
+  if (on_ground) {
+    const double eye_y = 2.0;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const double elevation = std::atan2(centre.y - eye_y, distance);  // of the clouds' centre
+      const double angular_radius = std::asin(std::min(1.0, radius / std::hypot(distance, centre.y - eye_y)));
+      const double pitch = std::max(0.0, elevation + angular_radius - 0.9 * v_half);
+      c.eye = glm::dvec3(centre.x, eye_y, centre.z) + back * distance;
+      c.look_at = c.eye - back * distance + glm::dvec3(0.0, distance * std::tan(pitch), 0.0);
+      // The bottom fits too, and the horizon shows in the lower fifth or above.
+      if (elevation - angular_radius >= pitch - 0.9 * v_half && pitch <= 0.6 * v_half) break;
+      distance *= 1.2;
+    }
+  }
   c.near_m = std::max(1e-4, 1e-3 * radius);
   c.far_m = std::max(c.far_m, 4.0 * (glm::length(c.eye - centre) + radius));
   return c;

@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <mutex>
 #include <regex>
+#include <tuple>
 
 #include "cli.hpp"
+#include "frame_range.hpp"
 #include "progress.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -48,19 +50,9 @@ int run_generate(const GenerateArgs& a) {
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
   if (a.res && (*a.res < 1 || *a.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
-  if (a.time && !std::isfinite(*a.time)) throw UsageError("--time: must be finite (seconds)");
-  if (!(std::isfinite(a.fps) && a.fps > 0)) throw UsageError("--fps: must be finite and > 0");
-  int first = 0, last = 0;
-  const bool sequence = !a.frames.empty();
-  if (sequence) {
-    if (a.time) throw UsageError("--time and --frames: give one, not both");
-    std::smatch m;
-    if (!std::regex_match(a.frames, m, std::regex(R"((-?\d{1,7})(?:-(-?\d{1,7}))?)")))
-      throw UsageError("--frames: '" + a.frames + "' must be A-B (e.g. 1-240) or one frame number");
-    first = std::stoi(m[1]);
-    last = m[2].matched ? std::stoi(m[2]) : first;
-    if (last < first) throw UsageError("--frames: the last frame comes before the first");
-  }
+  const FrameRange range = parse_frames(a.time, a.frames, a.fps);
+  const int first = range.first, last = range.last;
+  const bool sequence = range.sequence;
 
   nlohmann::json doc;
   try {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <mutex>
 #include <regex>
+#include <tuple>
 #include <variant>
 #include <algorithm>
 
@@ -20,6 +21,7 @@
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/up_axis.hpp"
 #include "nimbus/volume/vdb_read.hpp"
+#include "frame_range.hpp"
 #include "progress.hpp"
 #include "render_clouds.hpp"
 
@@ -196,19 +198,9 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
-  if (a.time && !std::isfinite(*a.time)) throw UsageError("--time: must be finite (seconds)");
-  if (!(std::isfinite(a.fps) && a.fps > 0)) throw UsageError("--fps: must be finite and > 0");
-  int first = 0, last = 0;
-  const bool sequence = !a.frames.empty();
-  if (sequence) {
-    if (a.time) throw UsageError("--time and --frames: give one, not both");
-    std::smatch m;
-    if (!std::regex_match(a.frames, m, std::regex(R"((-?\d{1,7})(?:-(-?\d{1,7}))?)")))
-      throw UsageError("--frames: '" + a.frames + "' must be A-B (e.g. 1-240) or one frame number");
-    first = std::stoi(m[1]);
-    last = m[2].matched ? std::stoi(m[2]) : first;
-    if (last < first) throw UsageError("--frames: the last frame comes before the first");
-  }
+  const FrameRange range = parse_frames(a.time, a.frames, a.fps);
+  const int first = range.first, last = range.last;
+  const bool sequence = range.sequence;
   check_pattern("-o", output);
   if (!preview.empty()) check_pattern("--preview", preview);
   for (const std::string& f : a.files) check_pattern("file", f);

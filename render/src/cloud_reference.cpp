@@ -1,6 +1,7 @@
 // The CPU reference of the cloud model (cloud_reference.hpp): single scattering of the sun plus
 // the ambient sky term, midpoint steps in double precision, Hillaire 2015 step integral.
 #include "nimbus/render/cloud_reference.hpp"
+#include "per_pixel.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,14 +17,9 @@
 namespace nimbus::render {
 namespace {
 
-bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using detail::fmt3;
 
-std::string fmt3(const glm::dvec3& v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v.x << "," << v.y << "," << v.z;
-  return s.str();
-}
+bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Edge length of the cloud's smallest voxel axis, metres.
 double voxel_size_m(const CloudVolume& c) {
@@ -264,30 +260,10 @@ Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camer
   const Prepared prepared(clouds, light);
   Image image(camera.width, camera.height);
   describe(image, clouds, camera, light, settings);
-  int rows_done = 0;
-  std::mutex progress_mutex;
-  const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      for (int x = 0; x < camera.width; ++x) {
-        const CloudSample px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
-        const double v[4] = {px.radiance.x, px.radiance.y, px.radiance.z, px.alpha};
-        float* out = image.pixel(x, y);
-        for (int c = 0; c < 4; ++c) {
-          const float f = static_cast<float>(v[c]);
-          if (!std::isfinite(f))
-            throw std::runtime_error("cloud reference: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                     ") is not finite");
-          out[c] = f;
-        }
-      }
-      if (settings.progress) {  // under the lock, so the reported fractions only grow
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        settings.progress(static_cast<double>(++rows_done) / camera.height);
-      }
-    }
-  };
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), render_rows); });
+  detail::render_pixels(image, settings.threads, settings.progress, "cloud reference", [&](int x, int y) {
+    const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
+    return glm::dvec4(px.radiance, px.alpha);
+  });
   return image;
 }
 

@@ -25,9 +25,12 @@
 #include "nimbus/render/image_io.hpp"
 #include "nimbus/render/shader_program.hpp"
 #include "nimbus/render/shaft_renderer.hpp"
+#include "per_pixel.hpp"
 
 namespace nimbus::render {
 namespace {
+
+using detail::fmt3;
 
 using namespace cloud_detail;
 
@@ -37,13 +40,6 @@ constexpr std::uint32_t kJitterSeed = 5;
 
 glm::mat4 to_float(const glm::dmat4& m) { return glm::mat4(m); }
 glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
-
-std::string fmt3(const glm::dvec3& v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v.x << "," << v.y << "," << v.z;
-  return s.str();
-}
 
 // Times passes of three kinds: GL_TIME_ELAPSED queries where the driver's are trustworthy,
 // else glFinish after each pass around std::chrono::steady_clock (llvmpipe's timer queries

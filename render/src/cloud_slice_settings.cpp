@@ -5,16 +5,12 @@
 #include <string>
 
 #include "nimbus/render/cloud_renderer.hpp"
+#include "per_pixel.hpp"
 
 namespace nimbus::render {
 namespace {
 
-std::string fmt3(const glm::dvec3& v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v.x << "," << v.y << "," << v.z;
-  return s.str();
-}
+using detail::fmt3;
 
 const char* branch_name(CloudSliceSettings::Branch b) {
   switch (b) {

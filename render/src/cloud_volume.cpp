@@ -1,19 +1,12 @@
 // Clouds for rendering and their trilinear density (cloud_volume.hpp).
 #include "nimbus/render/cloud_volume.hpp"
 
+#include "nimbus/render/volume_texture.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 namespace nimbus::render {
-namespace {
-
-glm::dvec3 to_world(const openvdb::math::Transform& t, double i, double j, double k) {
-  const openvdb::Vec3d w = t.indexToWorld(openvdb::Vec3d(i, j, k));
-  return {w.x(), w.y(), w.z()};
-}
-
-}  // namespace
-
 CloudVolume make_cloud_volume(const openvdb::FloatGrid& grid, const CloudOptics& optics, const std::string& name) {
   validate(optics);
   const openvdb::math::Transform& t = grid.transform();
@@ -24,9 +17,7 @@ CloudVolume make_cloud_volume(const openvdb::FloatGrid& grid, const CloudOptics&
   c.box = volume::dense_active_box(grid);
   if (c.box.values.empty()) throw std::invalid_argument("cloud '" + name + "': the grid has no active voxels");
   c.transform = t.copy();
-  const glm::dvec3 o = to_world(t, 0, 0, 0);
-  c.index_to_world = glm::dmat4(glm::dvec4(to_world(t, 1, 0, 0) - o, 0.0), glm::dvec4(to_world(t, 0, 1, 0) - o, 0.0),
-                                glm::dvec4(to_world(t, 0, 0, 1) - o, 0.0), glm::dvec4(o, 1.0));
+  c.index_to_world = index_to_world_matrix(t);
   c.world_to_index = glm::inverse(c.index_to_world);
   c.world_min = glm::dvec3(1e300);
   c.world_max = glm::dvec3(-1e300);

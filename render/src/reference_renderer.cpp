@@ -23,6 +23,7 @@
 #include "nimbus/render/reference_quadrature.hpp"
 #include "nimbus/render/reference_visibility.hpp"
 #include "nimbus/render/shaft_renderer.hpp"
+#include "per_pixel.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -218,31 +219,10 @@ Image render_reference(const Scene& scene, const Camera& camera, const Reference
   const Prepared prepared(scene);
   Image image(camera.width, camera.height);
   describe(image, scene, camera, settings);
-  int rows_done = 0;
-  std::mutex progress_mutex;
-  const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      for (int x = 0; x < camera.width; ++x) {
-        const ReferenceSample px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
-        const double v[4] = {px.radiance.x, px.radiance.y, px.radiance.z, px.alpha};
-        float* out = image.pixel(x, y);
-        for (int c = 0; c < 4; ++c) {
-          const float f = static_cast<float>(v[c]);
-          if (!std::isfinite(f)) {
-            throw std::runtime_error("reference: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                     ") is not finite");
-          }
-          out[c] = f;
-        }
-      }
-      if (settings.progress) {  // under the lock, so the reported fractions only grow
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        settings.progress(static_cast<double>(++rows_done) / camera.height);
-      }
-    }
-  };
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, camera.height, 1), render_rows); });
+  detail::render_pixels(image, settings.threads, settings.progress, "reference", [&](int x, int y) {
+    const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
+    return glm::dvec4(px.radiance, px.alpha);
+  });
   return image;
 }
 

@@ -23,9 +23,12 @@
 #include "nimbus/render/intersect.hpp"
 #include "nimbus/render/scene_mesh.hpp"
 #include "nimbus/render/shader_program.hpp"
+#include "per_pixel.hpp"
 
 namespace nimbus::render {
 namespace {
+
+using detail::fmt3;
 
 constexpr int kMaxPointLights = 4;
 constexpr float kFarDistanceM = 1.0e5f;  // what a shadow map stores where nothing occludes
@@ -82,13 +85,6 @@ double timed_ms(F&& f) {
   f();
   glFinish();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::string fmt3(const glm::dvec3& v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v.x << "," << v.y << "," << v.z;
-  return s.str();
 }
 
 }  // namespace
@@ -158,7 +154,7 @@ struct ShaftRenderer::Impl {
   double opaque_ceiling_m = -1e300;  // top of the occluders (world y)
   // The frame's render targets, kept while the image size stays the same.
   int target_w = 0, target_h = 0;
-  GlTexture radiance, distance, depth, out;
+  GlTexture radiance, distance, depth_target, out;
   GlFramebuffer surface_fbo, out_fbo;
   std::map<int, GlTexture> f_tables;
 
@@ -448,10 +444,10 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     const TextureParams nearest{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1};
     s.radiance = make_texture_2d(GL_RGBA32F, w, h, nearest);
     s.distance = make_texture_2d(GL_R32F, w, h, nearest);
-    s.depth = make_depth_texture(w, h);
+    s.depth_target = make_depth_texture(w, h);
     s.surface_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, s.radiance.id()},
                                       {GL_COLOR_ATTACHMENT1, s.distance.id()},
-                                      {GL_DEPTH_ATTACHMENT, s.depth.id()}});
+                                      {GL_DEPTH_ATTACHMENT, s.depth_target.id()}});
     s.out = make_texture_2d(GL_RGBA32F, w, h, nearest);
     s.out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, s.out.id()}});
     s.target_w = w;

@@ -15,6 +15,15 @@ glm::dvec3 index_to_world(const openvdb::math::Transform& t, double i, double j,
 
 }  // namespace
 
+glm::dmat4 index_to_world_matrix(const openvdb::math::Transform& transform) {
+  if (!transform.isLinear()) throw std::invalid_argument("volume transform is not affine (frustum grids are not supported)");
+  // Columns are the images of the index axes, then the origin.
+  const glm::dvec3 o = index_to_world(transform, 0, 0, 0);
+  return glm::dmat4(glm::dvec4(index_to_world(transform, 1, 0, 0) - o, 0.0),
+                    glm::dvec4(index_to_world(transform, 0, 1, 0) - o, 0.0),
+                    glm::dvec4(index_to_world(transform, 0, 0, 1) - o, 0.0), glm::dvec4(o, 1.0));
+}
+
 VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Transform& transform,
                             GLenum internal_format) {
   if (internal_format != GL_R16F && internal_format != GL_R32F)
@@ -45,11 +54,7 @@ VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Tr
   check_gl("uploading a volume texture");
   v.max_density = box.values.empty() ? 0.0f : *std::max_element(box.values.begin(), box.values.end());
 
-  // Index -> world is affine: columns are the images of the index axes, then the origin.
-  const glm::dvec3 o = index_to_world(transform, 0, 0, 0);
-  const glm::dmat4 index_to_world_m(glm::dvec4(index_to_world(transform, 1, 0, 0) - o, 0.0),
-                                    glm::dvec4(index_to_world(transform, 0, 1, 0) - o, 0.0),
-                                    glm::dvec4(index_to_world(transform, 0, 0, 1) - o, 0.0), glm::dvec4(o, 1.0));
+  const glm::dmat4 index_to_world_m = index_to_world_matrix(transform);
   // Index -> texture: (index - origin + 0.5) / size.
   glm::dmat4 index_to_texture(1.0);
   for (int a = 0; a < 3; ++a) {

@@ -30,6 +30,10 @@ struct VolumeTexture {
 // std::invalid_argument for an empty box, values that do not match the size, a non-affine
 // transform, or an axis longer than GL_MAX_3D_TEXTURE_SIZE (naming the axis and both sizes).
 // Needs a current GL 4.5 context.
+// The affine index-to-world map of a linear transform as a matrix: voxel (i, j, k) is centred
+// at M * (i, j, k, 1). std::invalid_argument for a non-affine (frustum) transform.
+glm::dmat4 index_to_world_matrix(const openvdb::math::Transform& transform);
+
 VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Transform& transform,
                             GLenum internal_format = GL_R16F);
 

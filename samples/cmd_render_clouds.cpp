@@ -286,9 +286,12 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     shaft = std::make_unique<render::ShaftRenderer>(scene, ss);
   }
 
+  std::unique_ptr<render::CloudRenderer> renderer;
+  std::unique_ptr<render::CloudShadowBuilder> shadow_builder;
   for (int frame = first; frame <= last; ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<render::CloudVolume> clouds = load_clouds(a, optics, frame, sequence);
+    std::vector<render::CloudVolume> clouds = load_clouds(a, optics, frame, sequence);
+    const std::size_t n_clouds = clouds.size();
     // Camera: framed on the clouds unless the flags place it.
     render::Camera camera = base;
     if (camera_args.eye.empty() && camera_args.look_at.empty()) {
@@ -318,16 +321,19 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       image = render::render_cloud_reference(clouds, camera, light, rs);
       device = "CPU (double precision)";
     } else {
-      render::CloudRenderer renderer(clouds);
+      // Programs are compiled once for the whole sequence; each frame uploads its clouds.
+      // (The renderer keeps the clouds: no copy of their voxels.)
+      if (renderer) renderer->set_clouds(std::move(clouds));
+      else renderer = std::make_unique<render::CloudRenderer>(std::move(clouds));
       render::CloudFrameStats stats;
       if (shaft) {
-        const render::CloudShadowMap map =
-            render::build_cloud_shadow_map(clouds, renderer.textures(), light, a.shadow_map_res);
+        if (!shadow_builder) shadow_builder = std::make_unique<render::CloudShadowBuilder>();
+        const render::CloudShadowMap map = shadow_builder->build(renderer->clouds(), renderer->textures(), light, a.shadow_map_res);
         shaft->set_cloud_shadow(&map);
         render::ShaftFrameStats sst;
         shaft->render(camera, shafts, &sst);
         render::SceneUnderlay under{shaft->color_texture(), shaft->distance_texture(), &scene};
-        image = renderer.render(camera, light, settings, &under, &stats);
+        image = renderer->render(camera, light, settings, &under, &stats);
         shaft->set_cloud_shadow(nullptr);
         char buf[256];
         std::snprintf(buf, sizeof buf, "scene %.0f ms (%s), clouds: light %.0f ms, slices %.0f ms, composite %.0f ms",
@@ -335,9 +341,9 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
                       stats.composite_ms);
         timing = buf;
         render::describe_frame(image, scene, camera, "slices over " + render::to_string(shafts));
-        render::describe_clouds(image, clouds, light, &settings);
+        render::describe_clouds(image, renderer->clouds(), light, &settings);
       } else {
-        image = renderer.render(camera, light, settings, nullptr, &stats);
+        image = renderer->render(camera, light, settings, nullptr, &stats);
         char buf[256];
         std::snprintf(buf, sizeof buf, "clouds: light %.0f ms, slices %.0f ms", stats.light_ms, stats.slices_ms);
         timing = buf;
@@ -357,7 +363,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
       render::write_png_preview(frame_path(preview, frame, sequence), image, po);
     }
-    std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), clouds.size(),
+    std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
                  no_scene ? "nothing" : scene.name.c_str(), camera.width, camera.height, method.c_str(), seconds,
                  device.c_str(), timing.empty() ? "" : "; ", timing.c_str());
   }

@@ -188,26 +188,37 @@ void CloudRenderer::Impl::ensure_eye_buffers(int w, int h, bool distance) {
 }
 
 CloudRenderer::CloudRenderer(std::vector<CloudVolume> clouds, GLenum format) : impl_(std::make_unique<Impl>()) {
-  if (clouds.empty()) throw std::invalid_argument("cloud renderer clouds: the list is empty");
+  set_clouds(std::move(clouds), format);
   Impl& s = *impl_;
-  for (const CloudVolume& c : clouds) {
-    try {
-      validate(c.optics);
-      if (!c.transform) throw std::invalid_argument("it has no transform");
-      s.textures.push_back(upload_volume(c.box, *c.transform, format));
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
-    }
-    s.hulls.push_back(cloud_hull(c));
-    const std::vector<glm::dvec3> v = hull_vertices(s.hulls.back());
-    s.hull_points.insert(s.hull_points.end(), v.begin(), v.end());
-  }
-  s.clouds = std::move(clouds);
   s.empty_vao = make_vertex_array();
   const std::vector<float> tile = blue_noise_tile(kJitterTile, kJitterSeed);
   s.jitter = make_texture_2d(GL_R32F, kJitterTile, kJitterTile, TextureParams{GL_NEAREST, GL_NEAREST, GL_REPEAT, 1});
   glTextureSubImage2D(s.jitter.id(), 0, 0, 0, kJitterTile, kJitterTile, GL_RED, GL_FLOAT, tile.data());
   check_gl("cloud renderer set-up");
+}
+
+void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
+  if (clouds.empty()) throw std::invalid_argument("cloud renderer clouds: the list is empty");
+  std::vector<VolumeTexture> textures;
+  std::vector<ConvexHull> hulls;
+  std::vector<glm::dvec3> hull_points;
+  for (const CloudVolume& c : clouds) {
+    try {
+      validate(c.optics);
+      if (!c.transform) throw std::invalid_argument("it has no transform");
+      textures.push_back(upload_volume(c.box, *c.transform, format));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
+    }
+    hulls.push_back(cloud_hull(c));
+    const std::vector<glm::dvec3> v = hull_vertices(hulls.back());
+    hull_points.insert(hull_points.end(), v.begin(), v.end());
+  }
+  Impl& s = *impl_;
+  s.textures = std::move(textures);
+  s.hulls = std::move(hulls);
+  s.hull_points = std::move(hull_points);
+  s.clouds = std::move(clouds);
 }
 
 CloudRenderer::~CloudRenderer() = default;

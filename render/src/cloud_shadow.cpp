@@ -28,9 +28,17 @@ double voxel_size_m(const CloudVolume& c) {
 
 }  // namespace
 
+CloudShadowBuilder::CloudShadowBuilder() : program_({"cloud_shadow_build.comp.glsl"}) {}
+
 CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
                                       const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
                                       int resolution) {
+  return CloudShadowBuilder().build(clouds, textures, light, resolution);
+}
+
+CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
+                                         const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
+                                         int resolution) const {
   validate(light);
   if (clouds.empty()) throw std::invalid_argument("cloud shadow map: no clouds");
   if (textures.size() != clouds.size())
@@ -84,7 +92,7 @@ CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
   glClearTexImage(map.optical_depth.id(), 0, GL_RED, GL_FLOAT, zero);
   glClearTexImage(map.depth_range.id(), 0, GL_RG, GL_FLOAT, empty_range);
 
-  const ShaderProgram p({"cloud_shadow_build.comp.glsl"});  // built once per map; maps are cached by their users
+  const ShaderProgram& p = program_;
   p.use();
   glBindImageTexture(0, map.optical_depth.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
   glBindImageTexture(1, map.depth_range.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);

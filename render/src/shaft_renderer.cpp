@@ -122,7 +122,7 @@ struct ShaftRenderer::Impl {
   std::vector<GpuMesh> bulbs;
   GlVertexArray empty_vao;
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
-  ShaderProgram surface_program{{"surface.vert.glsl", "surface.frag.glsl"}};
+  std::map<bool, ShaderProgram> surface_programs;  // by whether clouds cast shadows (CLOUD_SHADOW)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};
   ShaderProgram skirt_interval_program{{"shadow_volume_interval.vert.glsl", "shadow_volume_interval.frag.glsl"}};
   std::map<std::string, ShaderProgram> shaft_programs;
@@ -392,7 +392,7 @@ const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
   const bool table = m.kind == ShaftMethod::Kind::Analytic && m.airlight.kind == AirlightMethod::Table;
   const std::string defines = "#define METHOD " + std::to_string(method) + "\n#define STEPS " +
                               std::to_string(std::max(m.steps, 1)) + "\n#define AIRLIGHT_TABLE " +
-                              (table ? "1" : "0") + "\n";
+                              (table ? "1" : "0") + "\n#define CLOUD_SHADOW " + (cloud_shadow ? "1" : "0") + "\n";
   auto it = shaft_programs.find(defines);
   if (it == shaft_programs.end())
     it = shaft_programs.emplace(defines, ShaderProgram({"fullscreen.vert.glsl", "shafts.frag.glsl"}, defines)).first;
@@ -480,7 +480,14 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     glDepthFunc(GL_LESS);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    const ShaderProgram& p = s.surface_program;
+    const bool clouds = s.cloud_shadow != nullptr;
+    auto it = s.surface_programs.find(clouds);
+    if (it == s.surface_programs.end())
+      it = s.surface_programs
+               .emplace(clouds, ShaderProgram({"surface.vert.glsl", "surface.frag.glsl"},
+                                              std::string("#define CLOUD_SHADOW ") + (clouds ? "1" : "0") + "\n"))
+               .first;
+    const ShaderProgram& p = it->second;
     p.use();
     p.set("u_view_proj", view_proj);
     p.set("u_sigma_t", sigma_t);

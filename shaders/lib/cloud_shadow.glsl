@@ -1,5 +1,10 @@
 // The clouds' shadow (cloud_shadow.hpp): transmittance towards the sun through every cloud,
 // from the optical-depth map and the depth range of the cloud matter along each map texel.
+// Compiled in only with CLOUD_SHADOW 1, so scenes without clouds pay nothing per sample.
+#ifndef CLOUD_SHADOW
+#define CLOUD_SHADOW 0
+#endif
+#if CLOUD_SHADOW
 uniform int u_has_cloud_shadow;
 uniform sampler2D u_cloud_tau;      // R32F, linear, border 0
 uniform sampler2D u_cloud_range;    // RG32F, nearest: nearest and farthest depth with matter, metres
@@ -13,3 +18,6 @@ float cloud_transmittance(vec3 p) {
   float f = clamp((m.z - range.x) / max(range.y - range.x, 1.0e-3), 0.0, 1.0);
   return u_has_cloud_shadow != 0 ? exp(-tau * f) : 1.0;
 }
+#else
+float cloud_transmittance(vec3 p) { return 1.0; }
+#endif

@@ -60,6 +60,10 @@ class CloudRenderer {
   CloudRenderer(const CloudRenderer&) = delete;
   CloudRenderer& operator=(const CloudRenderer&) = delete;
 
+  // Replaces the clouds (a sequence's next frame), keeping the compiled programs. Same errors
+  // as the constructor; on an error the old clouds stay.
+  void set_clouds(std::vector<CloudVolume> clouds, GLenum format = GL_R16F);
+
   const std::vector<CloudVolume>& clouds() const;
   std::vector<const VolumeTexture*> textures() const;  // in the clouds' order (cloud_shadow.hpp)
 

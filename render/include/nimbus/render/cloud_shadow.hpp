@@ -11,6 +11,7 @@
 #include "nimbus/render/cloud_optics.hpp"
 #include "nimbus/render/cloud_volume.hpp"
 #include "nimbus/render/gl_resources.hpp"
+#include "nimbus/render/shader_program.hpp"
 #include "nimbus/render/volume_texture.hpp"
 
 namespace nimbus::render {
@@ -28,6 +29,17 @@ struct CloudShadowMap {
 // Marches each texel's light ray through the clouds (half-voxel steps). Points between the
 // nearest and farthest depth see tau scaled linearly between them; before, none; beyond, all.
 // Needs a current GL 4.5 context; `textures` are the clouds uploaded in the same order.
+// The same with the compute program compiled once (a sequence builds one map per frame).
+class CloudShadowBuilder {
+ public:
+  CloudShadowBuilder();  // compiles; needs a current GL 4.5 context
+  CloudShadowMap build(const std::vector<CloudVolume>& clouds, const std::vector<const VolumeTexture*>& textures,
+                       const CloudLight& light, int resolution = 512) const;
+
+ private:
+  ShaderProgram program_;
+};
+
 CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
                                       const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
                                       int resolution = 512);

@@ -11,7 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "nimbus/noise/memory.hpp"
+#include "nimbus/base/memory.hpp"
 
 namespace nimbus::volume {
 namespace {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "nimbus/volume/atomic_file.hpp"
+#include "nimbus/base/atomic_file.hpp"
 #include "vdb_common.hpp"
 #include "vdb_seal.hpp"
 

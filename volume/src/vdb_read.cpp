@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "nimbus/noise/memory.hpp"
+#include "nimbus/base/memory.hpp"
 #include "vdb_open.hpp"
 
 namespace nimbus::volume {

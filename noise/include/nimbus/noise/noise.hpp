@@ -4,6 +4,6 @@
 #include "nimbus/noise/field.hpp"
 #include "nimbus/noise/footprint.hpp"
 #include "nimbus/noise/gradient_bound.hpp"
-#include "nimbus/noise/memory.hpp"
+#include "nimbus/base/memory.hpp"
 #include "nimbus/noise/params.hpp"
 #include "nimbus/noise/wavelet_tile.hpp"

@@ -1,0 +1,49 @@
+// Temporary-file-then-rename writes.
+#include "nimbus/base/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <string>
+
+namespace nimbus {
+namespace {
+
+// Flushes a file's (or directory's) data to the disk, so that after a crash the renamed file
+// holds the complete content rather than an empty or partial one.
+bool sync_path(const std::filesystem::path& p, int flags) {
+  const int fd = ::open(p.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
+}
+
+}  // namespace
+
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path&)>& write) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw std::invalid_argument("output path is empty");
+  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw std::runtime_error("cannot create directory " + parent.string() + ": " + ec.message());
+  if (fs::is_directory(path)) throw std::runtime_error(path.string() + " is a directory");
+  static std::atomic<unsigned> counter{0};
+  const fs::path tmp = parent / ("." + path.filename().string() + ".tmp" +
+                                 std::to_string(::getpid()) + "." + std::to_string(counter++));
+  try {
+    write(tmp);
+    if (!sync_path(tmp, O_RDONLY)) throw std::runtime_error("cannot flush " + path.string() + " to disk");
+    fs::rename(tmp, path);
+    sync_path(parent, O_RDONLY | O_DIRECTORY);  // makes the rename durable; best effort
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace nimbus

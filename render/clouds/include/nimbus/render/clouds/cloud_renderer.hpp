@@ -1,0 +1,68 @@
+// The half-angle slice renderer (Kniss et al. 2002/2003; seed 004, "Wolken-Renderer mit OpenGL"):
+// slice planes perpendicular to the half vector of the view direction and the light's propagation
+// direction, drawn in light order; each slice is shaded from the light buffer, then attenuates it,
+// so the clouds shadow themselves. Optionally composited over an opaque scene with fog in front.
+// Draws into the current GL 4.5 context.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/gl/volume_texture.hpp"
+
+namespace nimbus::render {
+
+
+struct CloudFrameStats {
+  double light_ms = 0, slices_ms = 0, composite_ms = 0, total_ms = 0;  // GPU time per pass
+  int slices_drawn = 0;
+  bool front_to_back = false;    // the eye composites under (light behind the viewer)
+  double half_angle_rad = 0;     // between the slicing axis and the view direction
+  std::string timing;            // how the times were taken
+};
+
+// What lies behind and around the clouds: the opaque scene as ShaftRenderer drew it.
+struct SceneUnderlay {
+  GLuint color_texture = 0;     // RGBA32F, camera-sized: the scene's premultiplied radiance (shafts included)
+  GLuint distance_texture = 0;  // R32F, camera-sized: metres along each pixel's ray to the surface, 0 = none
+  const Scene* scene = nullptr; // its medium attenuates the clouds and adds unshadowed airlight in front of them
+};
+
+class CloudRenderer {
+ public:
+  // Uploads every cloud (volume_texture.hpp; GL_R16F or GL_R32F). Throws std::invalid_argument
+  // for an empty list or a bad cloud (naming it). Needs a current GL 4.5 context.
+  explicit CloudRenderer(std::vector<CloudVolume> clouds, GLenum format = GL_R16F);
+  ~CloudRenderer();
+  CloudRenderer(const CloudRenderer&) = delete;
+  CloudRenderer& operator=(const CloudRenderer&) = delete;
+
+  // Replaces the clouds (a sequence's next frame), keeping the compiled programs. Same errors
+  // as the constructor; on an error the old clouds stay.
+  void set_clouds(std::vector<CloudVolume> clouds, GLenum format = GL_R16F);
+
+  const std::vector<CloudVolume>& clouds() const;
+  std::vector<const VolumeTexture*> textures() const;  // in the clouds' order (cloud_shadow.hpp)
+
+  // One frame. Without an underlay: clouds over transparent black, RGB premultiplied radiance,
+  // alpha = 1 - transmittance (comparable with render_cloud_reference). With one: slices behind
+  // the scene's surfaces are hidden, fog in front of the clouds attenuates them and adds its
+  // airlight, and the result is the finished frame. Metadata: describe_clouds' and describe_slices'.
+  Image render(const Camera& camera, const CloudLight& light, const CloudSliceSettings& settings,
+               const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nimbus::render

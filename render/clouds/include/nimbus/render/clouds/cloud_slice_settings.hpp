@@ -1,0 +1,29 @@
+// The half-angle slicer's settings (cloud_renderer.hpp): slice count, light buffer, jitter,
+// forward-scattering blur, multiple-scattering octaves and the compositing branch.
+#pragma once
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/image.hpp"
+
+namespace nimbus::render {
+
+struct CloudSliceSettings {
+  int slices = 128;        // planes across the clouds' extent along the slicing axis, [2, 4096]
+  int light_res = 256;     // light buffer side, texels, [16, 4096]
+  bool jitter = true;      // blue-noise offset of each pixel's sample within its slab (no banding)
+  unsigned frame = 0;      // varies the jitter from frame to frame
+  bool ambient = true;     // add each cloud's optics.ambient_radiance
+  // Kniss forward-scattering blur: the light buffer is spread by a cone of this half-angle as it
+  // propagates (radius grows with depth). 0 switches it off.
+  double blur_cone_rad = 0.0;
+  MultipleScattering multiple;  // octaves = 0: single scattering
+  // Which compositing branch: Auto chooses by the angle between the view and light directions
+  // (the half-angle rule); the others force one, for tests at the switch.
+  enum class Branch { Auto, FrontToBack, BackToFront } branch = Branch::Auto;
+};
+
+void validate(const CloudSliceSettings& settings);
+
+// The "slices" metadata key: every setting above.
+void describe_slices(Image& image, const CloudSliceSettings& settings);
+
+}  // namespace nimbus::render

@@ -1,0 +1,496 @@
+// The half-angle slice renderer (cloud_renderer.hpp; Kniss et al. 2002/2003). Per frame: the
+// slicing axis and every slice's polygons inside each cloud's convex bound of non-zero density
+// on the CPU (cloud_slice_geometry.cpp), then per slice
+// an eye pass (shaders/cloud_slice.frag.glsl: lit from the light buffer, composited under or
+// over) and a light pass (shaders/cloud_light.frag.glsl: adds the slab's optical depth, after
+// an optional forward-scattering blur), and with a scene underlay a composite pass
+// (shaders/cloud_composite.frag.glsl) that puts the clouds and the fog in front of them over it.
+#include "nimbus/render/clouds/cloud_renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "cloud_slice_geometry.hpp"
+#include "nimbus/render/core/blue_noise.hpp"
+#include "nimbus/render/gl/readback.hpp"
+#include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/shader_program.hpp"
+#include "nimbus/render/core/metadata.hpp"
+
+namespace nimbus::render {
+namespace {
+
+using namespace cloud_detail;
+
+constexpr int kMaxPointLights = 4;     // cloud_composite.frag.glsl's arrays
+constexpr int kJitterTile = 64;        // blue-noise tile side, pixels (power of two)
+constexpr std::uint32_t kJitterSeed = 5;
+
+glm::mat4 to_float(const glm::dmat4& m) { return glm::mat4(m); }
+glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
+
+// Times passes of three kinds: GL_TIME_ELAPSED queries where the driver's are trustworthy,
+// else glFinish after each pass around std::chrono::steady_clock (llvmpipe's timer queries
+// are unreliable across framebuffer changes, and every slice changes framebuffers twice).
+// Nothing is timed (and nothing waits) when the caller wants no statistics.
+class PassTimer {
+ public:
+  enum Kind { Light = 0, Eye = 1, Composite = 2 };
+
+  explicit PassTimer(bool enabled) : enabled_(enabled) {
+    if (!enabled_) return;
+    GLint bits = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    queries_ = bits > 0 && !(renderer != nullptr && std::strstr(renderer, "llvmpipe") != nullptr);
+    if (!queries_) glFinish();
+  }
+
+  template <class F>
+  void time(Kind kind, F&& f) {
+    if (!enabled_) {
+      f();
+    } else if (queries_) {
+      pending_.emplace_back(kind, make_query(GL_TIME_ELAPSED));
+      glBeginQuery(GL_TIME_ELAPSED, pending_.back().second.id());
+      f();
+      glEndQuery(GL_TIME_ELAPSED);
+    } else {
+      const auto t0 = std::chrono::steady_clock::now();
+      f();
+      glFinish();
+      ms_[kind] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+  }
+
+  // Resolves the queries (waiting for them) and fills the times of `stats`.
+  void finish(CloudFrameStats& stats) {
+    for (const auto& [kind, query] : pending_) {
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);
+      ms_[kind] += static_cast<double>(ns) * 1e-6;
+    }
+    pending_.clear();
+    stats.light_ms = ms_[Light];
+    stats.slices_ms = ms_[Eye];
+    stats.composite_ms = ms_[Composite];
+    stats.total_ms = ms_[Light] + ms_[Eye] + ms_[Composite];
+    stats.timing = !enabled_ ? "not timed"
+                   : queries_ ? "GL_TIME_ELAPSED query per pass"
+                              : "glFinish + steady_clock per pass";
+  }
+
+ private:
+  bool enabled_ = false, queries_ = false;
+  std::vector<std::pair<Kind, GlQuery>> pending_;
+  double ms_[3] = {0, 0, 0};
+};
+
+}  // namespace
+
+struct CloudRenderer::Impl {
+  std::vector<CloudVolume> clouds;
+  std::vector<VolumeTexture> textures;
+  std::vector<ConvexHull> hulls;           // where each cloud's density can be non-zero
+  std::vector<glm::dvec3> hull_points;     // all their vertices
+  ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}};
+  ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
+  std::map<std::pair<bool, int>, ShaderProgram> eye_programs;  // by (underlay, octaves)
+  std::optional<ShaderProgram> composite_program;
+  GlVertexArray empty_vao, mesh_vao;
+  GlBuffer mesh_buffer;
+  std::size_t mesh_capacity = 0;  // vertices
+  GlTexture jitter;
+
+  int light_res = 0;
+  GlTexture light_tex[2];
+  GlFramebuffer light_fbo[2];
+
+  int eye_w = 0, eye_h = 0;
+  bool eye_has_distance = false;
+  GlTexture eye_color, eye_distance, out_color;
+  GlFramebuffer eye_fbo, out_fbo;
+
+  const ShaderProgram& eye_program(bool underlay, int octaves);
+  void upload_mesh(const SliceMesh& mesh);
+  void ensure_light_buffers(int res);
+  void ensure_eye_buffers(int w, int h, bool distance);
+};
+
+const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves) {
+  const auto key = std::make_pair(underlay, octaves);
+  auto it = eye_programs.find(key);
+  if (it == eye_programs.end()) {
+    const std::string defines = "#define UNDERLAY " + std::string(underlay ? "1" : "0") + "\n#define OCTAVES " +
+                                std::to_string(octaves) + "\n";
+    it = eye_programs.emplace(key, ShaderProgram({"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, defines)).first;
+  }
+  return it->second;
+}
+
+void CloudRenderer::Impl::upload_mesh(const SliceMesh& mesh) {
+  if (mesh.vertices.size() > mesh_capacity) {
+    mesh_capacity = std::max<std::size_t>(mesh.vertices.size(), 2 * mesh_capacity);
+    mesh_buffer = make_buffer(static_cast<GLsizeiptr>(mesh_capacity * sizeof(glm::vec3)));
+    mesh_vao = make_vertex_array();
+    const GLuint vao = mesh_vao.id();
+    glVertexArrayVertexBuffer(vao, 0, mesh_buffer.id(), 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+  }
+  if (!mesh.vertices.empty())
+    glNamedBufferSubData(mesh_buffer.id(), 0, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(glm::vec3)),
+                         mesh.vertices.data());
+  check_gl("uploading slice polygons");
+}
+
+void CloudRenderer::Impl::ensure_light_buffers(int res) {
+  if (res == light_res) return;
+  for (int i = 0; i < 2; ++i) {
+    // Linear filtering; border 0 outside the footprint (no cloud there).
+    light_tex[i] = make_texture_2d(GL_R32F, res, res, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_BORDER, 1});
+    light_fbo[i] = make_framebuffer({{GL_COLOR_ATTACHMENT0, light_tex[i].id()}});
+  }
+  light_res = res;
+}
+
+void CloudRenderer::Impl::ensure_eye_buffers(int w, int h, bool distance) {
+  if (w == eye_w && h == eye_h && distance == eye_has_distance) return;
+  const TextureParams nearest{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1};
+  eye_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
+  if (distance) {
+    eye_distance = make_texture_2d(GL_RGBA32F, w, h, nearest);
+    eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}, {GL_COLOR_ATTACHMENT1, eye_distance.id()}});
+    out_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
+    out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out_color.id()}});
+  } else {
+    eye_distance.reset();
+    out_color.reset();
+    out_fbo.reset();
+    eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}});
+  }
+  eye_w = w;
+  eye_h = h;
+  eye_has_distance = distance;
+}
+
+CloudRenderer::CloudRenderer(std::vector<CloudVolume> clouds, GLenum format) : impl_(std::make_unique<Impl>()) {
+  set_clouds(std::move(clouds), format);
+  Impl& s = *impl_;
+  s.empty_vao = make_vertex_array();
+  const std::vector<float> tile = blue_noise_tile(kJitterTile, kJitterSeed);
+  s.jitter = make_texture_2d(GL_R32F, kJitterTile, kJitterTile, TextureParams{GL_NEAREST, GL_NEAREST, GL_REPEAT, 1});
+  glTextureSubImage2D(s.jitter.id(), 0, 0, 0, kJitterTile, kJitterTile, GL_RED, GL_FLOAT, tile.data());
+  check_gl("cloud renderer set-up");
+}
+
+void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
+  if (clouds.empty()) throw std::invalid_argument("cloud renderer clouds: the list is empty");
+  std::vector<VolumeTexture> textures;
+  std::vector<ConvexHull> hulls;
+  std::vector<glm::dvec3> hull_points;
+  for (const CloudVolume& c : clouds) {
+    try {
+      validate(c.optics);
+      if (!c.transform) throw std::invalid_argument("it has no transform");
+      textures.push_back(upload_volume(c.box, *c.transform, format));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
+    }
+    hulls.push_back(cloud_hull(c));
+    const std::vector<glm::dvec3> v = hull_vertices(hulls.back());
+    hull_points.insert(hull_points.end(), v.begin(), v.end());
+  }
+  Impl& s = *impl_;
+  s.textures = std::move(textures);
+  s.hulls = std::move(hulls);
+  s.hull_points = std::move(hull_points);
+  s.clouds = std::move(clouds);
+}
+
+CloudRenderer::~CloudRenderer() = default;
+
+const std::vector<CloudVolume>& CloudRenderer::clouds() const { return impl_->clouds; }
+
+std::vector<const VolumeTexture*> CloudRenderer::textures() const {
+  std::vector<const VolumeTexture*> out;
+  for (const VolumeTexture& t : impl_->textures) out.push_back(&t);
+  return out;
+}
+
+Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const CloudSliceSettings& settings,
+                            const SceneUnderlay* underlay, CloudFrameStats* stats) {
+  validate(camera);
+  validate(light);
+  validate(settings);
+  const Scene* scene = underlay ? underlay->scene : nullptr;
+  if (underlay) {
+    if (underlay->color_texture == 0) throw std::invalid_argument("scene underlay color_texture: must be a texture");
+    if (underlay->distance_texture == 0)
+      throw std::invalid_argument("scene underlay distance_texture: must be a texture");
+    if (scene) {
+      validate(*scene);
+      if (scene->point_lights.size() > static_cast<std::size_t>(kMaxPointLights))
+        throw std::invalid_argument("scene underlay scene: the cloud composite takes at most 4 point lights, got " +
+                                    std::to_string(scene->point_lights.size()));
+    }
+  }
+  Impl& s = *impl_;
+  const int w = camera.width, h = camera.height;
+  const std::size_t n_clouds = s.clouds.size();
+
+  // Geometry: the axis, the planes and every polygon (Kniss et al. 2003).
+  const CameraFrame frame = camera_frame(camera);
+  const glm::dvec3 l = -glm::normalize(light.direction_to_light);
+  const SliceAxis axis = choose_slice_axis(frame.forward, l, settings.branch);
+  const SlicePlanes planes = slice_planes(s.hull_points, axis.axis, settings.slices);
+  // A jittered sample lies up to dt / 2 = d / (2 |dot(ray, s)|) along its ray from the plane, so
+  // a ray whose plane point misses the hull can still sample density inside it: the polygons
+  // are cut from the hulls grown by that much (the steepest ray at the image's corners).
+  double margin_m = 0.0;
+  if (settings.jitter) {
+    double min_cos = 1.0;
+    for (int c = 0; c < 4; ++c) {
+      const glm::dvec3 r = pixel_ray(camera, (c & 1) ? w - 1 : 0, (c & 2) ? h - 1 : 0);
+      min_cos = std::min(min_cos, std::abs(glm::dot(r, axis.axis)));
+    }
+    margin_m = std::min(0.5 / std::max(min_cos, 0.125), 4.0) * planes.spacing_m;
+  }
+  std::vector<ConvexHull> hulls;
+  for (const ConvexHull& hull : s.hulls) hulls.push_back(grown(hull, margin_m));
+  const SliceMesh mesh = build_slice_mesh(hulls, axis.axis, planes);
+  s.upload_mesh(mesh);
+  // The slab between two planes is spacing / dot(l, s) thick along the light (issue 5: d / cos).
+  const double light_slab_m = planes.spacing_m / std::max(glm::dot(l, axis.axis), 1e-3);
+  const LightFrame lf = light_frame(s.hull_points, l, settings.light_res);
+  s.ensure_light_buffers(settings.light_res);
+  s.ensure_eye_buffers(w, h, underlay != nullptr);
+  if (underlay && !s.composite_program)
+    s.composite_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"});
+  const ShaderProgram& eye = s.eye_program(underlay != nullptr, settings.multiple.octaves);
+  const ShaderProgram& lp = s.light_program;
+  const bool blur = settings.blur_cone_rad > 0.0;
+  PassTimer timer(stats != nullptr);
+
+  // Frame-constant uniforms.
+  const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
+  eye.set("u_view_proj", view_proj);
+  eye.set("u_eye", to_float(camera.eye));
+  eye.set("u_forward", to_float(frame.forward));
+  eye.set("u_near_m", static_cast<float>(camera.near_m));
+  eye.set("u_slice_axis", to_float(axis.axis));
+  eye.set("u_spacing_m", static_cast<float>(planes.spacing_m));
+  eye.set("u_light_slab_m", static_cast<float>(light_slab_m));
+  eye.set("u_light_dir", to_float(l));
+  eye.set("u_irradiance", to_float(light.irradiance_w_m2));
+  const MultipleScattering& ms = settings.multiple;
+  eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
+                                    static_cast<float>(ms.eccentricity)));
+  eye.set("u_world_to_light", to_float(lf.world_to_uv));
+  eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
+  eye.set("u_density", 0);
+  eye.set("u_light", 1);
+  eye.set("u_jitter", 2);
+  // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the
+  // golden ratio (Cranley-Patterson), so every pixel sees a new offset each frame.
+  const double f = static_cast<double>(settings.frame);
+  eye.set("u_jitter_offset", glm::ivec2(static_cast<int>(kJitterTile * (f * 0.7548776662466927 - std::floor(f * 0.7548776662466927))),
+                                        static_cast<int>(kJitterTile * (f * 0.5698402909980532 - std::floor(f * 0.5698402909980532)))));
+  eye.set("u_jitter_shift", static_cast<float>(f * 0.6180339887498949 - std::floor(f * 0.6180339887498949)));
+  eye.set("u_jitter_on", settings.jitter ? 1.0f : 0.0f);
+  if (underlay) {
+    eye.set("u_scene_distance", 3);
+    eye.set("u_fog_sigma_t", scene ? static_cast<float>(scene->medium.extinction_per_m) : 0.0f);
+  }
+  lp.set("u_view_proj", to_float(lf.world_to_clip));
+  lp.set("u_density", 0);
+  s.blur_program.set("u_previous", 1);
+  if (blur) {
+    // Kniss's cone: the light spreads by radius (slab along the light) tan(cone) per slice; a
+    // disk of radius R has variance R^2 / 4 per axis, which the 5-tap kernel reproduces.
+    glm::ivec2 step;
+    glm::vec2 weight;
+    for (int a = 0; a < 2; ++a) {
+      const double r = light_slab_m * std::tan(settings.blur_cone_rad) / lf.texel_m[a];  // texels
+      step[a] = std::max(1, static_cast<int>(std::ceil(r / std::sqrt(2.0))));
+      weight[a] = static_cast<float>(std::min(0.25, r * r / (8.0 * step[a] * step[a])));
+    }
+    s.blur_program.set("u_step", step);
+    s.blur_program.set("u_weight", weight);
+  }
+
+  // Per-cloud uniforms, set when the cloud changes.
+  auto bind_cloud = [&](std::size_t j) {
+    const CloudVolume& c = s.clouds[j];
+    const VolumeTexture& t = s.textures[j];
+    const float sigma_t = static_cast<float>(c.optics.extinction_per_m);
+    eye.set("u_world_to_texture", to_float(t.world_to_texture));
+    eye.set("u_tc_eye", glm::vec3(t.world_to_texture * glm::dvec4(camera.eye, 1.0)));
+    eye.set("u_sigma_t", sigma_t);
+    eye.set("u_albedo", to_float(c.optics.albedo));
+    eye.set("u_ambient", settings.ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f));
+    eye.set("u_phase", glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
+                                 static_cast<float>(c.optics.phase.forward_weight)));
+    lp.set("u_world_to_texture", to_float(t.world_to_texture));
+    lp.set("u_tau_per_density", static_cast<float>(c.optics.extinction_per_m * light_slab_m));
+    glBindTextureUnit(0, t.texture.id());
+  };
+  std::size_t bound = n_clouds;  // none yet
+  auto draw_slice = [&](int k) {
+    for (std::size_t j = 0; j < n_clouds; ++j) {
+      const std::size_t idx = static_cast<std::size_t>(k) * n_clouds + j;
+      if (mesh.count[idx] == 0) continue;
+      if (bound != j) bind_cloud(j);
+      bound = j;
+      glDrawArrays(GL_TRIANGLES, mesh.first[idx], mesh.count[idx]);
+    }
+  };
+
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glBlendEquation(GL_FUNC_ADD);
+  const float zero[4] = {0, 0, 0, 0};
+  int cur = 0;
+  timer.time(PassTimer::Light, [&] {
+    glClearNamedFramebufferfv(s.light_fbo[0].id(), GL_COLOR, 0, zero);
+  });
+  timer.time(PassTimer::Eye, [&] {
+    glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 0, zero);
+    if (underlay) glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 1, zero);
+  });
+  glBindTextureUnit(2, s.jitter.id());
+  if (underlay) glBindTextureUnit(3, underlay->distance_texture);
+  glBindVertexArray(s.mesh_vao.id());
+  int drawn = 0;
+  for (int k = 0; k < planes.count; ++k) {
+    bool any = false;
+    for (std::size_t j = 0; j < n_clouds; ++j) any = any || mesh.count[static_cast<std::size_t>(k) * n_clouds + j] > 0;
+    if (any) {
+      ++drawn;
+      timer.time(PassTimer::Eye, [&] {
+        glBindFramebuffer(GL_FRAMEBUFFER, s.eye_fbo.id());
+        glViewport(0, 0, w, h);
+        glEnable(GL_BLEND);
+        if (axis.front_to_back) {
+          glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ONE);  // "under"
+        } else {
+          glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over"
+        }
+        glBindTextureUnit(1, s.light_tex[cur].id());
+        eye.use();
+        draw_slice(k);
+      });
+    }
+    if (k + 1 == planes.count) break;  // nothing reads the light buffer after the last slice
+    if (!any && !blur) continue;
+    timer.time(PassTimer::Light, [&] {
+      glViewport(0, 0, s.light_res, s.light_res);
+      if (blur) {  // next = blur(previous) + this slice
+        const int next = 1 - cur;
+        glBindFramebuffer(GL_FRAMEBUFFER, s.light_fbo[next].id());
+        glDisable(GL_BLEND);
+        glBindTextureUnit(1, s.light_tex[cur].id());
+        s.blur_program.use();
+        draw_fullscreen_triangle(s.empty_vao);
+        glBindVertexArray(s.mesh_vao.id());
+        cur = next;
+      } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, s.light_fbo[cur].id());
+      }
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      lp.use();
+      draw_slice(k);
+    });
+  }
+  glDisable(GL_BLEND);
+  check_gl("cloud slices");
+
+  Image img;
+  if (underlay) {
+    const ShaderProgram& cp = *s.composite_program;
+    const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
+    cp.set("u_eye", to_float(camera.eye));
+    cp.set("u_forward", to_float(frame.forward));
+    cp.set("u_right_scaled", to_float(frame.right * tan_half));
+    cp.set("u_up_scaled", to_float(frame.up * (tan_half * h / w)));
+    cp.set("u_viewport", glm::vec2(static_cast<float>(w), static_cast<float>(h)));
+    cp.set("u_scene_color", 4);
+    cp.set("u_cloud_color", 5);
+    cp.set("u_cloud_distance", 6);
+    const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
+    cp.set("u_sigma_t", static_cast<float>(fog.extinction_per_m));
+    cp.set("u_sigma_s", static_cast<float>(fog.scattering_per_m()));
+    cp.set("u_phase_kind", static_cast<int>(fog.phase.kind));
+    cp.set("u_phase_g", static_cast<float>(fog.phase.g));
+    const int n_point = scene ? static_cast<int>(scene->point_lights.size()) : 0;
+    std::array<glm::vec3, kMaxPointLights> pos{}, inten{};
+    for (int i = 0; i < n_point; ++i) {
+      pos[static_cast<std::size_t>(i)] = to_float(scene->point_lights[static_cast<std::size_t>(i)].position_m);
+      inten[static_cast<std::size_t>(i)] = to_float(scene->point_lights[static_cast<std::size_t>(i)].intensity_w_sr);
+    }
+    cp.set("u_num_point_lights", n_point);
+    if (GLint loc = cp.uniform_location("u_point_pos[0]"); loc >= 0)
+      glProgramUniform3fv(cp.id(), loc, kMaxPointLights, &pos[0].x);
+    if (GLint loc = cp.uniform_location("u_point_intensity[0]"); loc >= 0)
+      glProgramUniform3fv(cp.id(), loc, kMaxPointLights, &inten[0].x);
+    const bool sun = scene && scene->sun;
+    cp.set("u_has_sun", sun ? 1 : 0);
+    cp.set("u_sun_to", sun ? to_float(glm::normalize(scene->sun->direction_to_sun)) : glm::vec3(0, 1, 0));
+    cp.set("u_sun_irradiance", sun ? to_float(scene->sun->irradiance_w_m2) : glm::vec3(0.0f));
+    timer.time(PassTimer::Composite, [&] {
+      glBindFramebuffer(GL_FRAMEBUFFER, s.out_fbo.id());
+      glViewport(0, 0, w, h);
+      glBindTextureUnit(4, underlay->color_texture);
+      glBindTextureUnit(5, s.eye_color.id());
+      glBindTextureUnit(6, s.eye_distance.id());
+      cp.use();
+      draw_fullscreen_triangle(s.empty_vao);
+    });
+    check_gl("cloud composite");
+    img = read_rgba(s.out_fbo, w, h);
+  } else {
+    img = read_rgba(s.eye_fbo, w, h);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+
+  try {
+    check_image(img, "cloud slices");
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  if (scene) {
+    describe_frame(img, *scene, camera, "cloud-slices");
+  } else {
+    img.metadata["method"] = "cloud-slices";
+    img.metadata["camera"] = describe_camera(camera);
+  }
+  describe_clouds(img, s.clouds, light);
+  describe_slices(img, settings);
+  std::ostringstream ax;
+  ax.precision(9);
+  ax << fmt3(axis.axis) << ", " << (axis.front_to_back ? "front-to-back (under)" : "back-to-front (over)")
+     << ", half angle " << axis.half_angle_rad << " rad, spacing_m " << planes.spacing_m;
+  img.metadata["slice_axis"] = ax.str();
+  if (stats) {
+    CloudFrameStats st;
+    timer.finish(st);
+    st.slices_drawn = drawn;
+    st.front_to_back = axis.front_to_back;
+    st.half_angle_rad = axis.half_angle_rad;
+    *stats = st;
+  }
+  return img;
+}
+
+}  // namespace nimbus::render

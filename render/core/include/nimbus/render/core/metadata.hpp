@@ -1,0 +1,31 @@
+// The metadata every renderer writes into its image (camera, scene, lights, medium, clouds), in
+// one format, so that an EXR from the GPU and one from a CPU reference describe a frame alike.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/scene.hpp"
+
+namespace nimbus::render {
+
+// "x,y,z" with 9 significant digits.
+std::string fmt3(const glm::dvec3& v);
+
+// "eye X,Y,Z look_at X,Y,Z up X,Y,Z fov_deg F": the value of the "camera" key.
+std::string describe_camera(const Camera& camera);
+// "sun towards X,Y,Z E_w_m2 R,G,B": the value of the "light" key of a cloud frame.
+std::string describe_light(const CloudLight& light);
+
+// Keys "scene", "method", "camera", "medium", "lights" and, under a sky, "sky".
+void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method);
+
+// Keys "clouds" (their names), "cloud_optics" (size and optics of each) and "light".
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const CloudLight& light);
+
+}  // namespace nimbus::render

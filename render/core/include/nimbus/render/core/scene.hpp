@@ -1,0 +1,97 @@
+// The light-shaft scene: ground (plane or heightfield terrain), simple occluders (boxes,
+// spheres) and point lights or the sun, inside a homogeneous medium. Units are metres, y up.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/medium.hpp"
+
+namespace nimbus::render {
+
+// Lambertian surface colour (reflectance in [0, 1] per channel).
+struct Material {
+  glm::dvec3 albedo{0.6, 0.6, 0.6};
+};
+
+// Infinite horizontal plane y = height_m.
+struct GroundPlane {
+  double height_m = 0.0;
+  Material material;
+};
+
+// Heightfield terrain over [x0, x0 + (nx-1) dx] x [z0, z0 + (nz-1) dx], heights row-major
+// (index = iz * nx + ix). Each cell is two triangles split along the diagonal from
+// (ix, iz) to (ix+1, iz+1), so the GL mesh and the CPU reference see the same surface.
+struct Heightfield {
+  double x0_m = 0.0, z0_m = 0.0, spacing_m = 1.0;
+  int nx = 0, nz = 0;
+  std::vector<double> heights_m;
+  Material material;
+};
+
+struct Box {  // axis-aligned
+  glm::dvec3 min_m{0.0}, max_m{1.0};
+  Material material;
+};
+
+struct Sphere {
+  glm::dvec3 centre_m{0.0};
+  double radius_m = 1.0;
+  Material material;
+};
+
+// Isotropic point light (a street lamp). Seen directly it is a small emissive sphere of
+// radius bulb_radius_m and radiance intensity / (pi r^2); the bulb casts no shadow. A radius of
+// 0 hides the bulb (the benchmarks do, so that the error measures the shafts, not the source).
+struct PointLight {
+  glm::dvec3 position_m{0.0, 4.0, 0.0};
+  glm::dvec3 intensity_w_sr{100.0};  // radiant intensity I0 per channel, W/sr
+  double bulb_radius_m = 0.05;
+};
+
+// Directional light. Its irradiance is given where it enters the scene; the medium
+// attenuates view rays and scattered light, not the sunlight itself (no finite fog top).
+struct SunLight {
+  glm::dvec3 direction_to_sun{0.3, 0.8, -0.5};  // normalised on use
+  glm::dvec3 irradiance_w_m2{3.0};
+};
+
+// The sky behind everything: rays that meet no surface end at distance_m, where the sky's
+// radiance (a gradient from the horizon to the zenith, sky_radiance) shines through the fog.
+struct Sky {
+  glm::dvec3 zenith_radiance_w_sr_m2{0.04, 0.08, 0.2};
+  glm::dvec3 horizon_radiance_w_sr_m2{0.22, 0.26, 0.32};
+  double distance_m = 30000.0;  // where the fog ends, metres
+};
+
+// Radiance of the sky in unit direction `dir` (y up): horizon + (zenith - horizon) sqrt(max(dir.y, 0)).
+// shaders/lib/sky.glsl computes the same.
+glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir);
+
+struct Scene {
+  std::string name;
+  Medium medium;
+  std::optional<GroundPlane> ground;
+  std::optional<Heightfield> terrain;
+  std::vector<Box> boxes;
+  std::vector<Sphere> spheres;
+  std::vector<PointLight> point_lights;
+  std::optional<SunLight> sun;
+  std::optional<Sky> sky;  // none: rays that meet nothing see black (through the fog's airlight)
+  Camera camera;  // the scene's default view
+};
+
+// Throws std::invalid_argument naming the bad field (negative radius, inverted box, bad
+// heightfield size, non-finite values, no light at all, bad medium).
+void validate(const Scene& scene);
+
+// Named scenes for `nimbus render --scene NAME`.
+std::vector<std::string> scene_names();
+// Throws std::invalid_argument listing the known names when `name` is unknown.
+Scene make_scene(const std::string& name);
+
+}  // namespace nimbus::render

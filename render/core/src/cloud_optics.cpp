@@ -1,0 +1,117 @@
+// Validation, phase and parsing of the cloud optics (cloud_optics.hpp).
+#include "nimbus/render/core/cloud_optics.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "nimbus/render/core/phase.hpp"
+
+namespace nimbus::render {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void validate_g(double g, const char* field) {
+  require(std::isfinite(g) && g > -1.0 && g < 1.0, std::string(field) + " must be in (-1, 1)");
+}
+
+}  // namespace
+
+void validate(const CloudOptics& o) {
+  require(std::isfinite(o.extinction_per_m) && o.extinction_per_m >= 0.0,
+          "cloud extinction_per_m must be finite and >= 0");
+  for (int c = 0; c < 3; ++c)
+    require(std::isfinite(o.albedo[c]) && o.albedo[c] >= 0.0 && o.albedo[c] <= 1.0,
+            "cloud albedo must be in [0, 1] per channel");
+  validate_g(o.phase.g_forward, "cloud phase g_forward");
+  validate_g(o.phase.g_back, "cloud phase g_back");
+  require(std::isfinite(o.phase.forward_weight) && o.phase.forward_weight >= 0.0 && o.phase.forward_weight <= 1.0,
+          "cloud phase forward_weight must be in [0, 1]");
+  for (int c = 0; c < 3; ++c)
+    require(std::isfinite(o.ambient_radiance[c]) && o.ambient_radiance[c] >= 0.0,
+            "cloud ambient_radiance must be finite and >= 0 per channel");
+}
+
+void validate(const CloudLight& l) {
+  require(finite3(l.direction_to_light) && glm::length(l.direction_to_light) > 1e-12,
+          "light direction_to_light must be finite and non-zero");
+  for (int c = 0; c < 3; ++c)
+    require(std::isfinite(l.irradiance_w_m2[c]) && l.irradiance_w_m2[c] >= 0.0,
+            "light irradiance_w_m2 must be finite and >= 0 per channel");
+}
+
+void validate(const MultipleScattering& m) {
+  require(m.octaves >= 0 && m.octaves <= 3, "multiple-scattering octaves must be in [0, 3]");
+  require(std::isfinite(m.occlusion) && m.occlusion > 0.0 && m.occlusion <= 1.0,
+          "multiple-scattering occlusion must be in (0, 1]");
+  require(std::isfinite(m.contribution) && m.contribution >= 0.0 && m.contribution <= 1.0,
+          "multiple-scattering contribution must be in [0, 1]");
+  require(std::isfinite(m.eccentricity) && m.eccentricity >= 0.0 && m.eccentricity <= 1.0,
+          "multiple-scattering eccentricity must be in [0, 1]");
+}
+
+double cloud_phase_value(const DualLobePhase& p, double cos_theta) {
+  const Phase f{PhaseKind::HenyeyGreenstein, p.g_forward};
+  const Phase b{PhaseKind::HenyeyGreenstein, p.g_back};
+  return p.forward_weight * phase_value(f, cos_theta) + (1.0 - p.forward_weight) * phase_value(b, cos_theta);
+}
+
+DualLobePhase parse_cloud_phase(const std::string& text) {
+  DualLobePhase p;
+  auto number = [&](const std::string& s) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != s.size())
+      throw std::invalid_argument("cloud phase '" + text + "': '" + s + "' is not a number");
+    return v;
+  };
+  if (text == "isotropic") return p;
+  if (text.rfind("hg:", 0) == 0) {
+    p.g_forward = number(text.substr(3));
+  } else if (text.rfind("dual:", 0) == 0) {
+    std::stringstream ss(text.substr(5));
+    std::string part[3];
+    int n = 0;
+    for (std::string item; std::getline(ss, item, ',');) {
+      if (n == 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+      part[n++] = item;
+    }
+    if (n != 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+    p.g_forward = number(part[0]);
+    p.g_back = number(part[1]);
+    p.forward_weight = number(part[2]);
+  } else {
+    throw std::invalid_argument("cloud phase '" + text + "': expected isotropic, hg:G or dual:GF,GB,W");
+  }
+  try {
+    CloudOptics o;
+    o.phase = p;
+    validate(o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("cloud phase '" + text + "': " + e.what());
+  }
+  return p;
+}
+
+std::string to_string(const DualLobePhase& p) {
+  std::ostringstream s;
+  if (p.forward_weight == 1.0 && p.g_forward == 0.0) return "isotropic";
+  if (p.forward_weight == 1.0) {
+    s << "hg:" << p.g_forward;
+  } else {
+    s << "dual:" << p.g_forward << "," << p.g_back << "," << p.forward_weight;
+  }
+  return s.str();
+}
+
+}  // namespace nimbus::render

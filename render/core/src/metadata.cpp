@@ -1,0 +1,65 @@
+// Image metadata shared by every renderer (metadata.hpp).
+#include "nimbus/render/core/metadata.hpp"
+
+#include <sstream>
+
+namespace nimbus::render {
+
+std::string fmt3(const glm::dvec3& v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v.x << "," << v.y << "," << v.z;
+  return s.str();
+}
+
+std::string describe_camera(const Camera& camera) {
+  return "eye " + fmt3(camera.eye) + " look_at " + fmt3(camera.look_at) + " up " + fmt3(camera.up) + " fov_deg " +
+         std::to_string(camera.fov_deg);
+}
+
+std::string describe_light(const CloudLight& light) {
+  return "sun towards " + fmt3(light.direction_to_light) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
+}
+
+void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method) {
+  std::ostringstream s;
+  s.precision(9);
+  image.metadata["scene"] = scene.name;
+  image.metadata["method"] = method;
+  image.metadata["camera"] = describe_camera(camera);
+  s << "extinction_per_m " << scene.medium.extinction_per_m << " albedo " << scene.medium.albedo << " phase "
+    << to_string(scene.medium.phase);
+  image.metadata["medium"] = s.str();
+  std::string lights;
+  for (const PointLight& l : scene.point_lights) {
+    lights += (lights.empty() ? "" : "; ") + std::string("point ") + fmt3(l.position_m) + " I_w_sr " + fmt3(l.intensity_w_sr);
+  }
+  if (scene.sun) {
+    lights += (lights.empty() ? "" : "; ") + std::string("sun towards ") + fmt3(scene.sun->direction_to_sun) +
+              " E_w_m2 " + fmt3(scene.sun->irradiance_w_m2);
+  }
+  image.metadata["lights"] = lights;
+  if (scene.sky) {
+    image.metadata["sky"] = "zenith " + fmt3(scene.sky->zenith_radiance_w_sr_m2) + " horizon " +
+                            fmt3(scene.sky->horizon_radiance_w_sr_m2) + " distance_m " +
+                            std::to_string(scene.sky->distance_m);
+  }
+}
+
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const CloudLight& light) {
+  std::string names, optics;
+  for (const CloudVolume& c : clouds) {
+    std::ostringstream o;
+    o.precision(9);
+    o << c.name << ": " << c.box.size[0] << "x" << c.box.size[1] << "x" << c.box.size[2] << " voxels, extinction_per_m "
+      << c.optics.extinction_per_m << " albedo " << fmt3(c.optics.albedo) << " phase " << to_string(c.optics.phase)
+      << " ambient " << fmt3(c.optics.ambient_radiance);
+    names += (names.empty() ? "" : ", ") + c.name;
+    optics += (optics.empty() ? "" : "; ") + o.str();
+  }
+  image.metadata["clouds"] = names;
+  image.metadata["cloud_optics"] = optics;
+  image.metadata["light"] = describe_light(light);
+}
+
+}  // namespace nimbus::render

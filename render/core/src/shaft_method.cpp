@@ -1,0 +1,80 @@
+// Parsing and printing of light-shaft method names (shaft_method.hpp).
+#include "nimbus/render/core/shaft_method.hpp"
+
+#include <charconv>
+#include <stdexcept>
+
+namespace nimbus::render {
+namespace {
+
+int parse_count(const std::string& text, const std::string& digits, int lo, int hi) {
+  int n = 0;
+  const char* end = digits.data() + digits.size();
+  auto [ptr, ec] = std::from_chars(digits.data(), end, n);
+  if (digits.empty() || ec != std::errc() || ptr != end || n < lo || n > hi) {
+    throw std::invalid_argument("method '" + text + "': the count must be an integer in [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return n;
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+}  // namespace
+
+ShaftMethod parse_shaft_method(const std::string& text) {
+  ShaftMethod m;
+  if (starts_with(text, "raymarch:")) {
+    m.kind = ShaftMethod::Kind::RayMarch;
+    m.steps = parse_count(text, text.substr(9), 1, 4096);
+  } else if (text == "analytic" || text == "analytic:stable") {
+    m.kind = ShaftMethod::Kind::Analytic;
+    m.airlight.kind = AirlightMethod::Stable;
+  } else if (starts_with(text, "analytic:table:")) {
+    m.kind = ShaftMethod::Kind::Analytic;
+    m.airlight.kind = AirlightMethod::Table;
+    m.airlight.n = parse_count(text, text.substr(15), 16, 1024);
+  } else if (starts_with(text, "shadowvolume:")) {
+    m.kind = ShaftMethod::Kind::ShadowVolume;
+    m.steps = parse_count(text, text.substr(13), 1, 4096);
+  } else if (text == "reference") {
+    m.kind = ShaftMethod::Kind::Reference;
+  } else {
+    throw std::invalid_argument("method '" + text +
+                                "': expected raymarch:N, analytic, analytic:table:N, "
+                                "shadowvolume:N or reference");
+  }
+  return m;
+}
+
+std::string to_string(const ShaftMethod& m) {
+  switch (m.kind) {
+    case ShaftMethod::Kind::RayMarch: return "raymarch:" + std::to_string(m.steps);
+    case ShaftMethod::Kind::Analytic:
+      return m.airlight.kind == AirlightMethod::Table ? "analytic:table:" + std::to_string(m.airlight.n)
+                                                      : std::string("analytic:stable");
+    case ShaftMethod::Kind::ShadowVolume: return "shadowvolume:" + std::to_string(m.steps);
+    case ShaftMethod::Kind::Reference: return "reference";
+  }
+  return "?";
+}
+
+Jitter parse_jitter(const std::string& text) {
+  if (text == "none") return Jitter::None;
+  if (text == "white") return Jitter::White;
+  if (text == "blue") return Jitter::BlueNoise;
+  throw std::invalid_argument("jitter '" + text + "': expected none, white or blue");
+}
+
+std::string to_string(Jitter j) {
+  switch (j) {
+    case Jitter::None: return "none";
+    case Jitter::White: return "white";
+    case Jitter::BlueNoise: return "blue";
+  }
+  return "?";
+}
+
+}  // namespace nimbus::render

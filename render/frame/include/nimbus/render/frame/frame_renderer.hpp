@@ -1,0 +1,92 @@
+// The frame pipeline: clouds over a scene, one frame at a time. For the half-angle slicer it
+// builds the clouds' shadow map, draws the scene's surfaces and light shafts under that shadow
+// (shafts/), slices the clouds over them (clouds/) and writes the frame's metadata; for the CPU
+// reference it renders the clouds alone. `nimbus render` and the viewer draw through it, so a
+// frame is the same whichever program asks for it.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "nimbus/render/clouds/cloud_renderer.hpp"
+#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/cloud_method.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/reference/cloud_reference.hpp"
+#include "nimbus/render/shafts/shaft_renderer.hpp"
+
+namespace nimbus::render {
+
+class CloudShadowBuilder;
+
+struct FrameSettings {
+  CloudMethod method = CloudMethod::Slices;
+  CloudSliceSettings slices;         // Slices
+  CloudReferenceSettings reference;  // Reference (its progress callback too)
+  // The scene under the clouds: a GPU method (not Reference), and its shadow maps.
+  ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
+  ShaftSettings shaft_settings;
+  int cloud_shadow_res = 512;        // texels per side of the clouds' shadow on the scene, [16, 8192]
+  GLenum volume_format = GL_R16F;    // cloud textures: GL_R16F or GL_R32F
+};
+
+// Throws std::invalid_argument naming the field (slices, reference, shafts, cloud_shadow_res,
+// volume_format).
+void validate(const FrameSettings& settings);
+
+// What a frame cost, pass by pass.
+struct FrameStats {
+  ShaftFrameStats scene;    // the surfaces and shafts under the clouds (zeros without a scene)
+  CloudFrameStats clouds;   // the slicer's passes (zeros for the reference)
+  std::string device;       // GL_RENDERER, or "CPU (double precision)"
+  std::string summary;      // one line of the times above; empty for the reference
+};
+
+class FrameRenderer {
+ public:
+  // `scene`: what lies behind and around the clouds (its sun is set to `light`, and gets one if
+  // it had none), or nullopt: the clouds alone over transparent black. The Reference method takes
+  // no scene. The Slices method draws into the GL 4.5 context current on the calling thread.
+  // Throws std::invalid_argument naming a bad scene, light or setting.
+  FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings);
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  // The clouds of the next frames (uploaded for Slices; the programs stay compiled). Throws
+  // std::invalid_argument for an empty list or a bad cloud, keeping the old clouds.
+  void set_clouds(std::vector<CloudVolume> clouds);
+  const std::vector<CloudVolume>& clouds() const;
+
+  // Moves the sun (the scene's too): its shadow maps are rebuilt at the next frame.
+  void set_light(const CloudLight& light);
+  const CloudLight& light() const { return light_; }
+  const std::optional<Scene>& scene() const { return scene_; }
+  const FrameSettings& settings() const { return settings_; }
+
+  // One frame through `camera` (validated). With `stats`, every pass is timed (on llvmpipe that
+  // waits for each pass to finish); without, nothing waits. Metadata: the scene's (describe_frame, method
+  // "slices over <shafts>"), the clouds', the slicer's or the reference's settings, and "device".
+  // Throws std::logic_error when no clouds were set, std::runtime_error when a pixel came out
+  // NaN or infinite.
+  Image render(const Camera& camera, FrameStats* stats = nullptr);
+
+ private:
+  std::optional<Scene> scene_;
+  CloudLight light_;
+  FrameSettings settings_;
+  std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds (Slices keeps them in cloud_renderer_)
+  std::unique_ptr<CloudRenderer> cloud_renderer_;
+  std::unique_ptr<ShaftRenderer> shaft_renderer_;
+  std::unique_ptr<CloudShadowBuilder> shadow_builder_;
+};
+
+}  // namespace nimbus::render

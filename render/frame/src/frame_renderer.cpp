@@ -1,0 +1,117 @@
+// The frame pipeline (frame_renderer.hpp).
+#include "nimbus/render/frame/frame_renderer.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include "nimbus/render/clouds/cloud_shadow.hpp"
+#include "nimbus/render/core/metadata.hpp"
+
+namespace nimbus::render {
+
+void validate(const FrameSettings& s) {
+  try {
+    validate(s.slices);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("frame settings slices: ") + e.what());
+  }
+  try {
+    validate(s.reference);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("frame settings reference: ") + e.what());
+  }
+  if (s.shafts.kind == ShaftMethod::Kind::Reference)
+    throw std::invalid_argument("frame settings shafts: the scene under GPU clouds needs a GPU method, not reference");
+  if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192)
+    throw std::invalid_argument("frame settings cloud_shadow_res: must be in [16, 8192], got " +
+                                std::to_string(s.cloud_shadow_res));
+  if (s.volume_format != GL_R16F && s.volume_format != GL_R32F)
+    throw std::invalid_argument("frame settings volume_format: must be GL_R16F or GL_R32F");
+}
+
+FrameRenderer::FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings)
+    : scene_(std::move(scene)), light_(light), settings_(settings) {
+  validate(settings_);
+  validate(light_);
+  if (settings_.method == CloudMethod::Reference && scene_)
+    throw std::invalid_argument("the cloud reference renders clouds alone, without a scene");
+  set_light(light_);
+  if (scene_) validate(*scene_);
+}
+
+FrameRenderer::~FrameRenderer() = default;
+
+void FrameRenderer::set_light(const CloudLight& light) {
+  validate(light);
+  light_ = light;
+  if (!scene_) return;
+  if (!scene_->sun) scene_->sun = SunLight{};
+  const bool moved = scene_->sun->direction_to_sun != light.direction_to_light ||
+                     scene_->sun->irradiance_w_m2 != light.irradiance_w_m2;
+  scene_->sun->direction_to_sun = light.direction_to_light;
+  scene_->sun->irradiance_w_m2 = light.irradiance_w_m2;
+  if (moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
+}
+
+void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
+  if (settings_.method == CloudMethod::Reference) {
+    if (clouds.empty()) throw std::invalid_argument("frame clouds: the list is empty");
+    reference_clouds_ = std::move(clouds);
+  } else if (cloud_renderer_) {
+    cloud_renderer_->set_clouds(std::move(clouds), settings_.volume_format);
+  } else {
+    cloud_renderer_ = std::make_unique<CloudRenderer>(std::move(clouds), settings_.volume_format);
+  }
+}
+
+const std::vector<CloudVolume>& FrameRenderer::clouds() const {
+  return cloud_renderer_ ? cloud_renderer_->clouds() : reference_clouds_;
+}
+
+Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
+  validate(camera);
+  FrameStats st;
+  Image image;
+  if (settings_.method == CloudMethod::Reference) {
+    if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
+    image = render_cloud_reference(reference_clouds_, camera, light_, settings_.reference);
+    st.device = "CPU (double precision)";
+  } else {
+    if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
+    char buf[256];
+    if (scene_) {
+      if (!shaft_renderer_) shaft_renderer_ = std::make_unique<ShaftRenderer>(*scene_, settings_.shaft_settings);
+      if (!shadow_builder_) shadow_builder_ = std::make_unique<CloudShadowBuilder>();
+      const CloudShadowMap map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light_,
+                                                        settings_.cloud_shadow_res);
+      shaft_renderer_->set_cloud_shadow(&map);
+      try {
+        shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);
+        const SceneUnderlay under{shaft_renderer_->color_texture(), shaft_renderer_->distance_texture(), &*scene_};
+        image = cloud_renderer_->render(camera, light_, settings_.slices, &under, stats ? &st.clouds : nullptr);
+      } catch (...) {
+        shaft_renderer_->set_cloud_shadow(nullptr);  // the map dies here
+        throw;
+      }
+      shaft_renderer_->set_cloud_shadow(nullptr);
+      std::snprintf(buf, sizeof buf, "scene %.0f ms (%s), clouds: light %.0f ms, slices %.0f ms, composite %.0f ms",
+                    st.scene.total_ms, to_string(settings_.shafts).c_str(), st.clouds.light_ms, st.clouds.slices_ms,
+                    st.clouds.composite_ms);
+      describe_frame(image, *scene_, camera, "slices over " + to_string(settings_.shafts));
+      describe_clouds(image, cloud_renderer_->clouds(), light_);
+      describe_slices(image, settings_.slices);
+    } else {
+      image = cloud_renderer_->render(camera, light_, settings_.slices, nullptr, stats ? &st.clouds : nullptr);
+      std::snprintf(buf, sizeof buf, "clouds: light %.0f ms, slices %.0f ms", st.clouds.light_ms, st.clouds.slices_ms);
+    }
+    st.summary = buf;
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    st.device = renderer ? renderer : "OpenGL";
+  }
+  image.metadata["device"] = st.device;
+  if (stats) *stats = st;
+  return image;
+}
+
+}  // namespace nimbus::render

@@ -1,0 +1,29 @@
+// The clouds' shadow in the scene, as the GPU holds it: the optical depth through every cloud
+// along the sun's direction on an orthographic map over the clouds' footprint, with the range of
+// depths where the cloud matter lies. The clouds layer builds it (clouds/cloud_shadow.hpp); the
+// ground and the fog's light shafts take its transmittance as visibility next to the opaque
+// shadow map (shaders/lib/cloud_shadow.glsl). Here, between the two, so neither depends on the
+// other.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/shader_program.hpp"
+
+namespace nimbus::render {
+
+struct CloudShadowMap {
+  GlTexture optical_depth;  // R32F: tau along the light through all clouds (linear filtering)
+  GlTexture depth_range;    // RG32F: nearest and farthest depth along the light (metres) with matter
+  int resolution = 0;
+  // World -> map: x, y in [0, 1] across the footprint, z = depth in metres along the light's
+  // propagation direction from the map's plane (which lies on the light's side of every cloud).
+  glm::dmat4 world_to_map{1.0};
+  double top_y_m = -1e300;  // highest point of the clouds' support (world y): no cloud shadow above it
+};
+
+// Binds `map` for shaders that include lib/cloud_shadow.glsl, on texture units `unit` and
+// `unit + 1` of `program`; a null map binds "no clouds" (transmittance 1 everywhere).
+void bind_cloud_shadow(GLuint program, const CloudShadowMap* map, int unit);
+
+}  // namespace nimbus::render

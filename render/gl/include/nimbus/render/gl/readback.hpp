@@ -1,0 +1,43 @@
+// Reading results back from the GPU (pixels as an Image or a float array, row 0 at the top) and
+// timing GPU work for the benchmarks.
+#pragma once
+#include <epoxy/gl.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/core/image.hpp"
+
+namespace nimbus::render {
+
+// RGBA float pixels of a framebuffer's color buffer (`read_buffer`: GL_COLOR_ATTACHMENTi; for
+// framebuffer 0, GL_BACK) or of a texture's level, flipped so row 0 is the top (highest GL y).
+// The read region is (0, 0)-(width, height). Bad sizes -> std::invalid_argument.
+Image read_rgba(GLuint framebuffer, int width, int height, GLenum read_buffer = GL_COLOR_ATTACHMENT0);
+Image read_rgba(const GlFramebuffer& framebuffer, int width, int height,
+                GLenum read_buffer = GL_COLOR_ATTACHMENT0);
+Image read_rgba_texture(GLuint texture, int width, int height, int level = 0);
+Image read_rgba(const GlTexture& texture, int width, int height, int level = 0);
+
+// The red channel alone (single-channel results), same layout and flip: width * height floats.
+std::vector<float> read_red(GLuint framebuffer, int width, int height, GLenum read_buffer = GL_COLOR_ATTACHMENT0);
+std::vector<float> read_red(const GlFramebuffer& framebuffer, int width, int height,
+                            GLenum read_buffer = GL_COLOR_ATTACHMENT0);
+std::vector<float> read_red_texture(GLuint texture, int width, int height, int level = 0);
+std::vector<float> read_red(const GlTexture& texture, int width, int height, int level = 0);
+// A depth texture's values in [0, 1], same layout and flip.
+std::vector<float> read_depth_texture(GLuint texture, int width, int height);
+
+struct GpuTiming {
+  double ms = 0.0;
+  std::string method;  // "GL_TIME_ELAPSED query" or "glFinish + steady_clock"
+};
+
+// Runs `draw` once and measures it: GL_TIME_ELAPSED when the context has timer bits, else
+// glFinish before and after around std::chrono::steady_clock. Earlier work is finished first.
+GpuTiming gpu_time(const std::function<void()>& draw);
+double gpu_time_ms(const std::function<void()>& draw);
+
+}  // namespace nimbus::render

@@ -1,0 +1,229 @@
+// The exact CPU reference: per pixel-centre ray, in double precision,
+//   L = L_surface(P) e^(-sigma_t t_P) + sum over lights of the airlight over [0, t_P]
+// (thesis eq. 23 without emission; t_P = inf for rays that escape), with the surface lit by
+// Lambert's law (thesis eq. 24) and the airlight of a point light
+//   int sigma_s p(theta) I0 e^(-sigma_t d(x)) / d(x)^2 e^(-sigma_t x) V(x) dx
+// (thesis eq. 25 / Sun et al. eq. 5 with visibility V), of the sun
+//   int sigma_s p(theta) E e^(-sigma_t x) V(x) dx  (closed form on each lit interval).
+#include "nimbus/render/reference/reference_renderer.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/core/intersect.hpp"
+#include "nimbus/render/core/quadrature.hpp"
+#include "nimbus/render/reference/reference_visibility.hpp"
+#include "nimbus/render/core/metadata.hpp"
+#include "per_pixel.hpp"
+
+namespace nimbus::render {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Escaping rays are integrated to where the view-ray transmittance is e^-35 (6e-16) beyond
+// the light; the rest is far below the quadrature tolerance.
+constexpr double kTailOpticalDepth = 35.0;
+
+// The scene prepared for rendering: intersection, and each point light's shadow regions of
+// each occluder (reference_visibility.hpp).
+struct Prepared {
+  explicit Prepared(const Scene& scene) : tracer(scene) {
+    for (const PointLight& l : scene.point_lights) {
+      std::vector<ShadowRegion>& r = regions.emplace_back();
+      for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
+        glm::dvec3 lo, hi;
+        tracer.occluder_bounds(k, lo, hi);
+        r.push_back(point_shadow_region(l.position_m, lo, hi));
+      }
+    }
+  }
+  SceneTracer tracer;
+  std::vector<std::vector<ShadowRegion>> regions;  // [light][occluder]
+};
+
+struct RayContext {
+  const Prepared& prepared;
+  const SceneTracer& tracer;
+  const ReferenceSettings& settings;
+  glm::dvec3 o, d;   // eye, unit direction
+  double t_end;      // surface or bulb distance, or +inf
+};
+
+// Airlight of one point light per unit intensity (multiply by I0).
+double point_airlight(const RayContext& ray, std::size_t index) {
+  const PointLight& light = ray.tracer.scene().point_lights[index];
+  const Medium& m = ray.tracer.scene().medium;
+  const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
+  const glm::dvec3 v = light.position_m - ray.o;
+  const double xc = glm::dot(v, ray.d);                  // closest approach along the ray
+  const double h = glm::length(glm::cross(v, ray.d));    // its distance from the light
+  const double x_end = std::isfinite(ray.t_end) ? ray.t_end : std::max(0.0, xc) + kTailOpticalDepth / sigma_t;
+
+  const Intervals lit = point_light_lit_intervals(ray.tracer, ray.prepared.regions[index], light.position_m,
+                                                  ray.o, ray.d, x_end, ray.settings.visibility_samples);
+  if (lit.empty()) return 0.0;
+
+  // Resolve the peak at the closest approach: cut at xc and at xc +- h 4^k, so that each piece
+  // sees the 1 / (h^2 + (x - xc)^2) profile vary smoothly.
+  std::vector<double> cuts{xc};
+  if (h > 0.0) {
+    for (double w = 0.25 * h; w < 4.0 * (x_end + std::abs(xc)); w *= 4.0) {
+      cuts.push_back(xc - w);
+      cuts.push_back(xc + w);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  Intervals pieces;
+  for (const auto& [a, b] : lit) {
+    double start = a;
+    for (const double c : cuts) {
+      if (c > start && c < b) {
+        pieces.emplace_back(start, c);
+        start = c;
+      }
+    }
+    pieces.emplace_back(start, b);
+  }
+  const Phase phase = m.phase;
+  const auto integrand = [&](double x) {
+    const double dist = std::hypot(h, x - xc);
+    const double cos_theta = (xc - x) / dist;  // light's travel direction vs. toward the eye
+    return sigma_s * phase_value(phase, cos_theta) * std::exp(-sigma_t * (x + dist)) / (dist * dist);
+  };
+  return integrate_adaptive(integrand, pieces, ray.settings.rel_tol).value;
+}
+
+// Airlight of the sun per unit irradiance (multiply by E): closed form per lit interval.
+double sun_airlight(const RayContext& ray, const SunLight& sun) {
+  const Medium& m = ray.tracer.scene().medium;
+  const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
+  const glm::dvec3 u = glm::normalize(sun.direction_to_sun);
+  const bool escapes = !std::isfinite(ray.t_end);
+  const double x_end = escapes ? kTailOpticalDepth / sigma_t : ray.t_end;
+  const Intervals lit = sun_lit_intervals(ray.tracer, u, ray.o, ray.d, x_end, ray.settings.visibility_samples);
+  // Light travels along -u, scatters toward the eye along -d: cos(theta) = u . d.
+  const double p = phase_value(m.phase, glm::dot(u, ray.d));
+  double sum = 0.0;
+  for (const auto& [a, b] : lit) {
+    // int_a^b e^(-sigma_t x) dx = e^(-sigma_t a) (1 - e^(-sigma_t (b - a))) / sigma_t
+    const double span = (escapes && b == x_end) ? kInf : b - a;
+    sum += std::exp(-sigma_t * a) * -std::expm1(-sigma_t * span) / sigma_t;
+  }
+  return sigma_s * p * sum;
+}
+
+// Lambert surface radiance at P (thesis eq. 24): albedo / pi * sum of the irradiances.
+glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm::dvec3 n,
+                            const glm::dvec3& view_dir, const glm::dvec3& albedo) {
+  const Scene& s = tracer.scene();
+  if (glm::dot(n, view_dir) > 0.0) n = -n;  // the side the eye sees
+  const double scale = 1.0 + std::max({std::abs(P.x), std::abs(P.y), std::abs(P.z)});
+  const glm::dvec3 start = P + (1e-8 * scale) * n;  // off the surface for shadow rays
+  glm::dvec3 irradiance{0.0};
+  for (const PointLight& l : s.point_lights) {
+    const glm::dvec3 to_light = l.position_m - P;
+    const double dist = glm::length(to_light);
+    const double cos_i = glm::dot(n, to_light) / dist;
+    if (cos_i <= 0.0 || tracer.occluded(start, l.position_m)) continue;
+    irradiance += l.intensity_w_sr * (cos_i * std::exp(-s.medium.extinction_per_m * dist) / (dist * dist));
+  }
+  if (s.sun) {
+    const glm::dvec3 u = glm::normalize(s.sun->direction_to_sun);
+    const double cos_i = glm::dot(n, u);
+    if (cos_i > 0.0 && !tracer.occluded_toward(start, u)) irradiance += s.sun->irradiance_w_m2 * cos_i;
+  }
+  return albedo / M_PI * irradiance;
+}
+
+ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm::dvec3& dir,
+                      const ReferenceSettings& settings) {
+  const SceneTracer& tracer = prepared.tracer;
+  const Scene& s = tracer.scene();
+  const double sigma_t = s.medium.extinction_per_m;
+  std::optional<Hit> hit = tracer.intersect(eye, dir);
+  if (hit && s.sky && hit->t > s.sky->distance_m) hit.reset();  // the world ends at the sky
+  const std::optional<BulbHit> bulb = tracer.intersect_bulbs(eye, dir, hit ? hit->t : kInf);
+  ReferenceSample out;
+  double t_end = kInf;
+  if (bulb) {
+    const PointLight& l = s.point_lights[bulb->light];
+    t_end = bulb->t;
+    out.radiance = l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m) * std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else if (hit) {
+    t_end = hit->t;
+    out.radiance = surface_radiance(tracer, eye + t_end * dir, hit->normal, dir, hit->albedo) *
+                   std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else if (s.sky) {
+    t_end = s.sky->distance_m;
+    out.radiance = sky_radiance(*s.sky, dir) * std::exp(-sigma_t * t_end);
+    out.alpha = 1.0;
+  } else {
+    out.alpha = sigma_t > 0.0 ? 1.0 : 0.0;
+  }
+  if (s.medium.scattering_per_m() > 0.0) {
+    const RayContext ray{prepared, tracer, settings, eye, dir, t_end};
+    for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
+      out.radiance += s.point_lights[i].intensity_w_sr * point_airlight(ray, i);
+    }
+    if (s.sun) out.radiance += s.sun->irradiance_w_m2 * sun_airlight(ray, *s.sun);
+  }
+  return out;
+}
+
+// The frame's metadata as every renderer writes it (describe_frame), plus the reference's own
+// settings.
+void describe(Image& image, const Scene& s, const Camera& c, const ReferenceSettings& settings) {
+  describe_frame(image, s, c, "reference");
+  std::ostringstream tol;
+  tol << settings.rel_tol;
+  image.metadata["rel_tol"] = tol.str();
+  image.metadata["visibility_samples"] = std::to_string(settings.visibility_samples);
+}
+
+}  // namespace
+
+void validate(const ReferenceSettings& s) {
+  if (!std::isfinite(s.rel_tol) || !(s.rel_tol > 0.0) || !(s.rel_tol <= 0.1)) {
+    throw std::invalid_argument("reference rel_tol: must be in (0, 0.1], got " + std::to_string(s.rel_tol));
+  }
+  if (s.threads < 0) throw std::invalid_argument("reference threads: must be >= 0 (0 = all cores)");
+  if (s.visibility_samples < 16 || s.visibility_samples > (1 << 20)) {
+    throw std::invalid_argument("reference visibility_samples: must be in [16, 1048576], got " +
+                                std::to_string(s.visibility_samples));
+  }
+}
+
+ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const glm::dvec3& dir,
+                              const ReferenceSettings& settings) {
+  validate(scene);
+  validate(settings);
+  const Prepared prepared(scene);
+  return trace(prepared, eye, glm::normalize(dir), settings);
+}
+
+Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings) {
+  validate(scene);
+  validate(camera);
+  validate(settings);
+  const Prepared prepared(scene);
+  Image image(camera.width, camera.height);
+  describe(image, scene, camera, settings);
+  detail::render_pixels(image, settings.threads, settings.progress, "reference", [&](int x, int y) {
+    const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
+    return glm::dvec4(px.radiance, px.alpha);
+  });
+  return image;
+}
+
+}  // namespace nimbus::render

@@ -1,0 +1,64 @@
+// The GPU light-shaft renderer: the scene's surfaces lit with shadow maps and attenuated by the
+// medium, plus the single-scattered airlight of each light by ray marching, the analytic
+// airlight or shadow-volume intervals (shaft_method.hpp). Draws into the current GL 4.5 context.
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/gl/cloud_shadow_map.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
+
+namespace nimbus::render {
+
+struct ShaftSettings {
+  int point_shadow_res = 1024;    // texels per cube face side
+  int sun_shadow_res = 2048;      // texels per side of the sun's orthographic map
+  double ground_extent_m = 1000;  // half-size of the ground quad standing for the infinite plane (under a sky: at least 3x its distance)
+  double march_cutoff_optical = 9.21;  // rays hitting nothing are marched to this optical depth (e^-9.21 = 1e-4)
+  double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
+  std::size_t max_skirt_quads = 1u << 19;  // per light; beyond it the whole ray is sampled
+  unsigned jitter_seed = 1;
+};
+
+// Per-frame costs (GPU time per pass, ms) and what the shadow-volume pass built.
+struct ShaftFrameStats {
+  double shadow_maps_ms = 0, surfaces_ms = 0, shadow_volume_ms = 0, shafts_ms = 0, total_ms = 0;
+  std::size_t skirt_quads = 0;   // summed over lights
+  bool skirt_overflow = false;   // a light's skirts exceeded max_skirt_quads
+  std::string timing;            // how the times were taken
+};
+
+class ShaftRenderer {
+ public:
+  // Validates the scene (std::invalid_argument) and uploads its geometry. Needs a current GL
+  // 4.5 context; at most 4 point lights and one sun.
+  ShaftRenderer(const Scene& scene, const ShaftSettings& settings = {});
+  ~ShaftRenderer();
+  ShaftRenderer(const ShaftRenderer&) = delete;
+  ShaftRenderer& operator=(const ShaftRenderer&) = delete;
+
+  // One frame. `method` must not be Reference (that is render_reference, on the CPU); the
+  // analytic table form covers the isotropic phase only (std::invalid_argument otherwise).
+  Image render(const Camera& camera, const ShaftMethod& method, ShaftFrameStats* stats = nullptr);
+
+  // The clouds' shadow (gl/cloud_shadow_map.hpp), multiplied into the sun's visibility on surfaces in
+  // every method and in the fog's shafts by ray marching (the analytic and shadow-volume
+  // methods' closed forms assume no cloud). The map must outlive its use; null removes it.
+  void set_cloud_shadow(const CloudShadowMap* map);
+
+  // The last frame's GL textures, valid until the next render (cloud_renderer.hpp's underlay):
+  // RGBA32F premultiplied radiance, and R32F distance to the surface (metres, 0 = none).
+  GLuint color_texture() const;
+  GLuint distance_texture() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nimbus::render

@@ -1,0 +1,101 @@
+// Airlight on an OpenGL context: shaders/airlight_eval.comp.glsl runs the shaders' own GLSL
+// functions (stable, table:N with FTable::data() as an R32F texture, raymarch:N) on each query.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/shafts/airlight_gl.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/shader_program.hpp"
+
+namespace nimbus::render {
+
+namespace {
+
+struct GpuQuery {  // std430 layout of `Query` in airlight_eval.comp.glsl
+  float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma, march_length, unused;
+};
+static_assert(sizeof(GpuQuery) == 32);
+
+// PHASE_* of shaders/lib/phase.glsl.
+int phase_kind_index(PhaseKind kind) {
+  switch (kind) {
+    case PhaseKind::Isotropic:
+      return 0;
+    case PhaseKind::HenyeyGreenstein:
+      return 1;
+    case PhaseKind::Schlick:
+      return 2;
+    case PhaseKind::Rayleigh:
+      return 3;
+  }
+  return 0;
+}
+
+constexpr int kGroupSize = 64;         // local_size_x
+constexpr int kMaxGroupsPerCall = 16384;
+
+}  // namespace
+
+std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,
+                                         const Phase& phase) {
+  if (method.kind == AirlightMethod::Quadrature)
+    throw std::invalid_argument("airlight method 'quadrature' is CPU only (double precision); use --device cpu");
+  if (method.kind == AirlightMethod::Table && phase.kind != PhaseKind::Isotropic)
+    throw std::invalid_argument("airlight method '" + to_string(method) + "' is isotropic only (Sun's F(u, v))");
+  std::vector<GpuQuery> input;
+  input.reserve(queries.size());
+  for (const AirlightQuery& q : queries) {
+    validate(q);
+    // cos and sin of gamma in double, then rounded, as airlight_stable does on the CPU.
+    input.push_back({float(q.beta), float(q.I0), float(q.Dsv), float(q.Dvp), float(std::cos(q.gamma)),
+                     float(std::sin(q.gamma)),
+                     method.kind == AirlightMethod::RayMarch ? float(airlight_raymarch_length(q)) : 0.0f, 0.0f});
+  }
+  if (input.empty()) return {};
+  const int count = static_cast<int>(input.size());
+
+  auto context = GlContext::create_headless();  // destroyed last
+  ShaderProgram program({"airlight_eval.comp.glsl"});
+  GlBuffer in = make_buffer(static_cast<GLsizeiptr>(input.size() * sizeof(GpuQuery)), input.data(), 0);
+  GlBuffer out = make_buffer(static_cast<GLsizeiptr>(input.size() * sizeof(float)), nullptr, 0);
+  GlTexture table_texture;
+  int method_index = 0;
+  if (method.kind == AirlightMethod::Table) {
+    method_index = 1;
+    const FTable table(method.n);
+    TextureParams params;
+    params.min_filter = params.mag_filter = GL_NEAREST;  // the shader interpolates itself
+    table_texture = make_texture_2d(GL_R32F, method.n, method.n, params);
+    glTextureSubImage2D(table_texture.id(), 0, 0, 0, method.n, method.n, GL_RED, GL_FLOAT, table.data());
+    glBindTextureUnit(0, table_texture.id());
+  } else if (method.kind == AirlightMethod::RayMarch) {
+    method_index = 2;
+  }
+  program.use();
+  program.set("u_method", method_index);
+  program.set("u_n", method.n);
+  program.set("u_count", count);
+  program.set("u_phase_kind", phase_kind_index(phase.kind));
+  program.set("u_phase_g", float(phase.g));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+  const int per_call = kGroupSize * kMaxGroupsPerCall;
+  for (int offset = 0; offset < count; offset += per_call) {
+    const int n = std::min(per_call, count - offset);
+    program.set("u_offset", offset);
+    glDispatchCompute(static_cast<GLuint>((n + kGroupSize - 1) / kGroupSize), 1, 1);
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> result(input.size());
+  glGetNamedBufferSubData(out.id(), 0, static_cast<GLsizeiptr>(result.size() * sizeof(float)), result.data());
+  check_gl("airlight evaluation (airlight_eval.comp.glsl)");
+  return std::vector<double>(result.begin(), result.end());
+}
+
+}  // namespace nimbus::render

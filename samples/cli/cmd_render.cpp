@@ -1,0 +1,148 @@
+// `nimbus render`: a light-shaft scene rendered by one of the GPU methods (on a headless GL
+// context) or by the exact CPU reference, written as a linear half-float EXR (and a PNG preview).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <optional>
+#include <regex>
+
+#include "cli.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/image/image_io.hpp"
+#include "nimbus/render/reference/reference_renderer.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/shafts/shaft_renderer.hpp"
+#include "progress.hpp"
+#include "render_args.hpp"
+#include "render_clouds.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+struct RenderArgs {
+  std::string scene = "lamps";
+  std::string method = "shadowvolume:32";
+  CameraArgs camera;
+  std::string jitter = "blue";
+  int shadow_res = 1024;
+  std::optional<double> extinction, albedo;
+  std::string phase;
+  std::string preview;
+  std::optional<double> exposure;
+  std::string output;
+  bool hide_bulbs = false;
+  CloudRenderArgs clouds;
+  bool scene_given = false, method_given = false;
+};
+
+int run_render(const RenderArgs& a) {
+  if (a.output.empty()) throw UsageError("-o: an output file (.exr) is required");
+  if (!a.clouds.files.empty() || !a.clouds.presets.empty())
+    return run_render_clouds(a.clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
+                             a.exposure);
+  render::Scene scene;
+  try {
+    scene = render::make_scene(a.scene);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--scene: ") + e.what());
+  }
+  if (a.hide_bulbs)
+    for (render::PointLight& l : scene.point_lights) l.bulb_radius_m = 0.0;
+  if (a.extinction) scene.medium.extinction_per_m = *a.extinction;
+  if (a.albedo) scene.medium.albedo = *a.albedo;
+  if (!a.phase.empty()) {
+    try {
+      scene.medium.phase = render::parse_phase(a.phase);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--phase: ") + e.what());
+    }
+  }
+  try {
+    render::validate(scene.medium);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--extinction/--albedo: ") + e.what());
+  }
+  const render::Camera camera = apply_camera_args(a.camera, scene.camera);
+  render::ShaftMethod method;
+  try {
+    method = render::parse_shaft_method(a.method);
+    method.jitter = render::parse_jitter(a.jitter);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--method/--jitter: ") + e.what());
+  }
+  if (a.shadow_res < 16 || a.shadow_res > 8192) throw UsageError("--shadow-res: must be in [16, 8192]");
+  if (a.exposure && !std::isfinite(*a.exposure)) throw UsageError("--exposure: must be finite (stops)");
+
+  const auto start = std::chrono::steady_clock::now();
+  render::Image image;
+  std::string device;
+  if (method.kind == render::ShaftMethod::Kind::Reference) {
+    image = render_reference_with_progress(scene, camera);
+    device = "CPU (double precision)";
+  } else {
+    std::unique_ptr<render::GlContext> gl;
+    try {
+      gl = render::GlContext::create_headless();
+    } catch (const render::GlUnavailable& e) {
+      throw std::runtime_error(std::string("method ") + a.method + " needs OpenGL: " + e.what());
+    }
+    render::ShaftSettings settings;
+    settings.point_shadow_res = a.shadow_res;
+    settings.sun_shadow_res = 2 * a.shadow_res;
+    render::ShaftRenderer renderer(scene, settings);
+    render::ShaftFrameStats stats;
+    image = renderer.render(camera, method, &stats);
+    device = gl->renderer();
+    std::fprintf(stderr, "GPU ms: shadow maps %.1f, surfaces %.1f, shadow volume %.1f (%zu skirts), shafts %.1f (%s)\n",
+                 stats.shadow_maps_ms, stats.surfaces_ms, stats.shadow_volume_ms, stats.skirt_quads, stats.shafts_ms,
+                 stats.timing.c_str());
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  image.metadata["device"] = device;
+  render::write_exr(a.output, image);
+  if (!a.preview.empty()) {
+    render::PreviewOptions po;
+    po.exposure_stops = a.exposure ? *a.exposure : render::auto_exposure_stops(image);
+    render::write_png_preview(a.preview, image, po);
+  }
+  std::fprintf(stderr, "%s: %s %dx%d, %s, %.2f s on %s\n", a.output.c_str(), scene.name.c_str(), camera.width,
+               camera.height, render::to_string(method).c_str(), seconds, device.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, Action& action) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render clouds (FILE.vdb or --preset) over a scene, or a light-shaft scene alone, to a linear half-float EXR");
+  cmd->add_option("--scene", a->scene, "Scene: " + [] {
+    std::string names;
+    for (const std::string& n : render::scene_names()) names += (names.empty() ? "" : ", ") + n;
+    return names + "; with clouds also none (default with clouds: sky)";
+  }())->capture_default_str();
+  cmd->add_option("--method", a->method,
+                  "Scene alone: raymarch:N | analytic | analytic:table:N | shadowvolume:N | reference. "
+                  "With clouds: slices | reference (reference: --scene none only)")
+      ->capture_default_str();
+  add_cloud_render_options(cmd, a->clouds);
+  add_camera_options(cmd, a->camera);
+  cmd->add_option("--jitter", a->jitter, "Ray-march jitter: blue, white or none")->capture_default_str();
+  cmd->add_option("--shadow-res", a->shadow_res, "Point-light shadow map size per cube face (sun: twice)")
+      ->capture_default_str();
+  cmd->add_option("--extinction", a->extinction, "Override the fog's extinction, per metre");
+  cmd->add_option("--albedo", a->albedo, "Override the fog's single-scattering albedo, [0, 1]");
+  cmd->add_option("--phase", a->phase, "Override the phase function: isotropic, hg:G, schlick:G, rayleigh");
+  cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
+  cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
+  cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
+  cmd->add_option("-o,--output", a->output, "Output EXR file")->required();
+  cmd->callback([&action, a, cmd] {
+    a->scene_given = cmd->count("--scene") > 0;
+    a->method_given = cmd->count("--method") > 0;
+    action = [a] { return run_render(*a); };
+  });
+}
+
+}  // namespace nimbus::cli

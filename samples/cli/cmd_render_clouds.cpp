@@ -1,0 +1,281 @@
+// `nimbus render FILE.vdb | --preset NAME`: clouds by half-angle slicing over a scene (the sky
+// by default: ground, sun, haze, sky), or alone; the CPU reference for clouds alone; sequences.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <regex>
+
+#include "frame_range.hpp"
+#include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/frame/frame_renderer.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/image/image_io.hpp"
+#include "progress.hpp"
+#include "render_clouds.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// "name.exr" -> "name.0007.exr"; a pattern with a printf field ("name.%04d.exr") is used as is.
+std::string frame_path(const std::string& pattern, int frame, bool sequence) {
+  if (!sequence) return pattern;
+  char buf[4096];
+  if (pattern.find('%') != std::string::npos) {
+    std::snprintf(buf, sizeof buf, pattern.c_str(), frame);
+    return buf;
+  }
+  const std::size_t dot = pattern.rfind('.');
+  const std::size_t slash = pattern.rfind('/');
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  std::snprintf(buf, sizeof buf, ".%04d", frame);
+  return has_ext ? pattern.substr(0, dot) + buf + pattern.substr(dot) : pattern + buf;
+}
+
+void check_pattern(const std::string& flag, const std::string& p) {
+  const std::size_t n = std::count(p.begin(), p.end(), '%');
+  if (n == 0) return;
+  if (n != 1 || !std::regex_search(p, std::regex(R"(%0?\d*d)")))
+    throw UsageError(flag + ": '" + p + "' may hold one frame-number field such as %04d, and no other %");
+}
+
+glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
+  if (text.find(',') == std::string::npos) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || !std::isfinite(v)) throw UsageError(flag + ": '" + text + "' must be V or R,G,B");
+    return glm::dvec3(v);
+  }
+  return parse_vec3(flag, text);
+}
+
+// The clouds of one frame (library calls): files as they are, turned y-up, presets generated at
+// the frame's time, with their progress on stderr.
+std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std::vector<render::PresetCloud>& presets,
+                                             const render::CloudOptics& optics, int frame, bool sequence) {
+  std::vector<render::CloudVolume> clouds;
+  const render::UpAxis up = render::parse_up_axis(a.up);
+  for (const std::string& pattern : a.files) {
+    const std::string path = frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos);
+    clouds.push_back(render::load_cloud_file(path, a.grid, up, optics));
+  }
+  for (const render::PresetCloud& preset : presets) {
+    Progress progress("generating " + preset.name);
+    std::mutex m;
+    const double time = sequence ? frame / a.fps : a.time.value_or(0.0);
+    clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
+      std::lock_guard<std::mutex> lock(m);
+      progress.update(x);
+    }));
+  }
+  return clouds;
+}
+
+}  // namespace
+
+void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
+  cmd->add_option("file", a.files, "VDB file(s) of clouds (a %04d pattern with --frames)");
+  cmd->add_option("--preset", a.presets, "Cloud preset(s) to generate (nimbus presets)");
+  cmd->add_option("--grid", a.grid, "Grid name in the files (default: density, else the first float grid)");
+  cmd->add_option("--up-axis", a.up, "Up axis of the files: auto (their up_axis metadata, else y), y or z")
+      ->capture_default_str();
+  cmd->add_option("--voxel-size", a.voxel_size, "Voxel size of generated presets, metres (default: the preset's)");
+  cmd->add_option("--time", a.time, "Time of generated presets, seconds");
+  cmd->add_option("--frames", a.frames, "Frame range A-B: a sequence name.%04d.exr (presets at frame/fps)");
+  cmd->add_option("--fps", a.fps, "Frames per second of a sequence")->capture_default_str();
+  cmd->add_option("--sun", a.sun, "Direction towards the sun X,Y,Z (replaces the scene's; adds one if it has none)");
+  cmd->add_option("--slices", a.slices, "Half-angle slices")->capture_default_str();
+  cmd->add_option("--light-res", a.light_res, "Light buffer size, texels per side")->capture_default_str();
+  cmd->add_option("--cloud-shadow-res", a.shadow_map_res, "Texels per side of the clouds' shadow on the scene")
+      ->capture_default_str();
+  cmd->add_option("--shafts", a.shafts, "The scene's light-shaft method under the clouds (see --method)")
+      ->capture_default_str();
+  cmd->add_option("--cloud-extinction", a.cloud_extinction, "Cloud extinction per unit density, per metre (default 0.04)");
+  cmd->add_option("--cloud-albedo", a.cloud_albedo, "Cloud single-scattering albedo, V or R,G,B (default 0.99)");
+  cmd->add_option("--cloud-phase", a.cloud_phase, "Cloud phase: isotropic, hg:G or dual:GF,GB,W")->capture_default_str();
+  cmd->add_option("--ambient", a.ambient, "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)")
+      ->capture_default_str();
+  cmd->add_option("--multiple", a.multiple, "Multiple-scattering octaves, 0-3 (0: single scattering)")
+      ->capture_default_str();
+  cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
+  cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
+}
+
+int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
+                      const std::string& method_text, bool method_given, const CameraArgs& camera_args,
+                      const std::string& output, const std::string& preview, std::optional<double> exposure) {
+  // Flags first: every usage error before any work.
+  const std::string method = method_given ? method_text : "slices";
+  if (method != "slices" && method != "reference")
+    throw UsageError("--method: '" + method + "' is not a cloud method (slices or reference)");
+  const std::string scene_choice = scene_given ? scene_name : "sky";
+  const bool no_scene = scene_choice == "none";
+  if (method == "reference" && !no_scene)
+    throw UsageError("--method reference renders clouds alone, without a scene: add --scene none");
+  render::Scene scene;
+  if (!no_scene) {
+    try {
+      scene = render::make_scene(scene_choice);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scene: ") + e.what() + " (or none)");
+    }
+  }
+  if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
+  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
+    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  const FrameRange range = parse_frames(a.time, a.frames, a.fps);
+  const int first = range.first, last = range.last;
+  const bool sequence = range.sequence;
+  check_pattern("-o", output);
+  if (!preview.empty()) check_pattern("--preview", preview);
+  for (const std::string& f : a.files) check_pattern("file", f);
+  if (exposure && !std::isfinite(*exposure)) throw UsageError("--exposure: must be finite (stops)");
+  if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
+
+  render::CloudOptics optics;
+  if (a.cloud_extinction) optics.extinction_per_m = *a.cloud_extinction;
+  if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
+  try {
+    optics.phase = render::parse_cloud_phase(a.cloud_phase);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--cloud-phase: ") + e.what());
+  }
+  if (a.ambient == "auto") {
+    optics.ambient_radiance = scene.sky ? 0.5 * (scene.sky->zenith_radiance_w_sr_m2 + scene.sky->horizon_radiance_w_sr_m2)
+                                        : glm::dvec3(0.0);
+  } else {
+    optics.ambient_radiance = parse_colour("--ambient", a.ambient);
+  }
+  try {
+    render::validate(optics);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--cloud-extinction/--cloud-albedo/--ambient: ") + e.what());
+  }
+
+  render::CloudLight light;
+  if (!a.sun.empty()) {
+    light.direction_to_light = parse_vec3("--sun", a.sun);
+    if (glm::length(light.direction_to_light) == 0.0) throw UsageError("--sun: the direction must not be zero");
+    if (!no_scene) {
+      if (!scene.sun) scene.sun = render::SunLight{};
+      scene.sun->direction_to_sun = light.direction_to_light;
+      light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+    }
+  } else if (!no_scene) {
+    if (!scene.sun)
+      throw UsageError("--sun: the clouds need the sun, and scene '" + scene.name + "' has none; give --sun X,Y,Z");
+    light.direction_to_light = scene.sun->direction_to_sun;
+    light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+  }
+
+  render::CloudSliceSettings settings;
+  settings.slices = a.slices;
+  settings.light_res = a.light_res;
+  settings.jitter = !a.no_jitter;
+  settings.ambient = true;
+  settings.blur_cone_rad = a.blur_deg * kPi / 180.0;
+  settings.multiple.octaves = a.multiple;
+  try {
+    render::validate(settings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--slices/--light-res/--multiple/--blur: ") + e.what());
+  }
+  render::ShaftMethod shafts;
+  if (!no_scene) {
+    try {
+      shafts = render::parse_shaft_method(a.shafts);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--shafts: ") + e.what());
+    }
+    if (shafts.kind == render::ShaftMethod::Kind::Reference)
+      throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
+  }
+  render::Camera base = no_scene ? render::Camera{} : scene.camera;
+  if (no_scene) {
+    base.width = 512;
+    base.height = 512;
+    base.fov_deg = 44.8;  // vdb_render's default
+  }
+
+  std::vector<render::PresetCloud> presets;
+  for (const std::string& name : a.presets) {
+    try {
+      presets.push_back(render::load_preset_cloud(name));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--preset: ") + e.what());
+    }
+  }
+
+  render::FrameSettings fs;
+  fs.method = method == "reference" ? render::CloudMethod::Reference : render::CloudMethod::Slices;
+  fs.slices = settings;
+  fs.shafts = shafts;
+  fs.cloud_shadow_res = a.shadow_map_res;
+  std::unique_ptr<render::GlContext> gl;
+  if (fs.method == render::CloudMethod::Slices) {
+    try {
+      gl = render::GlContext::create_headless();
+    } catch (const render::GlUnavailable& e) {
+      throw std::runtime_error(std::string("method slices needs OpenGL: ") + e.what());
+    }
+  }
+  std::unique_ptr<Progress> reference_progress;
+  std::mutex progress_mutex;
+  fs.reference.progress = [&](double x) {
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    if (reference_progress) reference_progress->update(x);
+  };
+  render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), light, fs);
+
+  for (int frame = first; frame <= last; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer.set_clouds(load_clouds(a, presets, optics, frame, sequence));
+    const std::size_t n_clouds = renderer.clouds().size();
+    // Camera: framed on the clouds unless the flags place it.
+    render::Camera camera = base;
+    if (camera_args.eye.empty() && camera_args.look_at.empty()) {
+      CameraArgs size_only;
+      size_only.res = camera_args.res;
+      size_only.fov_deg = camera_args.fov_deg;
+      camera = render::frame_clouds(apply_camera_args(size_only, base), renderer.clouds(),
+                                    !no_scene && scene.ground.has_value());
+    }
+    camera = apply_camera_args(camera_args, camera);
+    if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, renderer.clouds());
+
+    if (fs.method == render::CloudMethod::Reference)
+      reference_progress = std::make_unique<Progress>("cloud reference" + (sequence ? " frame " + std::to_string(frame) : ""));
+    render::FrameStats stats;
+    render::Image image = renderer.render(camera, &stats);
+    reference_progress.reset();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (sequence) {
+      image.metadata["frame"] = std::to_string(frame);
+      image.metadata["fps"] = std::to_string(a.fps);
+    }
+    const std::string out = frame_path(output, frame, sequence);
+    render::write_exr(out, image);
+    if (!preview.empty()) {
+      render::PreviewOptions po;
+      po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
+      render::write_png_preview(frame_path(preview, frame, sequence), image, po);
+    }
+    std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
+                 no_scene ? "nothing" : scene.name.c_str(), camera.width, camera.height, method.c_str(), seconds,
+                 stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());
+  }
+  return 0;
+}
+
+}  // namespace nimbus::cli

@@ -1,0 +1,37 @@
+// Camera and image-size flags shared by `nimbus render` and `nimbus bench shafts`, spelled as
+// OpenVDB's vdb_render spells them: --eye X,Y,Z --look-at X,Y,Z --up X,Y,Z --fov DEG --res WxH.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "cli.hpp"
+#include <vector>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/scene.hpp"
+
+namespace nimbus::cli {
+
+struct CameraArgs {
+  std::string eye, look_at, up, res;
+  std::optional<double> fov_deg;
+};
+
+void add_camera_options(CLI::App* cmd, CameraArgs& args);
+
+// The scene's default camera with the given flags applied; bad values -> UsageError naming the flag.
+render::Camera apply_camera_args(const CameraArgs& args, render::Camera camera);
+
+// "X,Y,Z" -> vector; UsageError naming `flag` when malformed or not finite.
+glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
+// "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
+std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
+
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated lists of the benchmarks' flags.
+std::vector<std::string> split_list(const std::string& text);
+
+// The exact CPU reference with its progress on stderr (shared by render and bench shafts).
+render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera);
+
+}  // namespace nimbus::cli

@@ -1,0 +1,138 @@
+// `nimbus render FILE.vdb | --preset NAME` from the command line: clouds over the sky scene and
+// alone, the CPU reference, sequences named name.%04d.exr, a nimbus VDB file read back, and bad
+// input refused with a clear message and the right exit code.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "nimbus/render/image/image_io.hpp"
+#include "support/run_nimbus.hpp"
+
+namespace nimbus::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("nimbus_clouds_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// A hand-sized steam plume (about 30 voxels across) keeps every run small.
+const std::string kSteam = " --preset steam --voxel-size 0.012 --res 48x32 --slices 24 --light-res 64 ";
+
+bool finite_non_negative(const render::Image& img) {
+  for (float v : img.rgba)
+    if (!std::isfinite(v) || v < 0.0f) return false;
+  return true;
+}
+
+TEST(RenderCloudsCli, PresetOverTheSkySceneWritesAFinishedFrame) {
+  const fs::path d = temp_dir("sky");
+  const auto r = run_nimbus("render" + kSteam + "--scene sky --sun 0.5,0.6,0.3 --multiple 2 -o " +
+                            (d / "a.exr").string() + " --preview " + (d / "a.png").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image img = render::read_exr(d / "a.exr");
+  EXPECT_EQ(img.width, 48);
+  EXPECT_TRUE(finite_non_negative(img));
+  EXPECT_EQ(img.metadata.at("scene"), "sky");
+  EXPECT_NE(img.metadata.at("lights").find("sun towards 0.5,0.6,0.3"), std::string::npos) << img.metadata.at("lights");
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) ASSERT_EQ(img.rgba[i], 1.0f);  // sky everywhere behind
+  EXPECT_TRUE(fs::exists(d / "a.png"));
+  fs::remove_all(d);
+}
+
+TEST(RenderCloudsCli, GeneratedFileAndPresetGiveTheSameImage) {
+  const fs::path d = temp_dir("file");
+  // nimbus writes z-up files with up_axis metadata; render turns them to y-up as it does presets.
+  auto g = run_nimbus("generate --preset steam --voxel-size 0.012 --float -o " + (d / "steam.vdb").string());
+  ASSERT_EQ(g.code, 0) << g.output;
+  const std::string common = " --scene none --sun 0.3,0.8,-0.5 --cloud-extinction 40 --res 40x40 --slices 24 --light-res 64 --no-jitter ";
+  auto a = run_nimbus("render " + (d / "steam.vdb").string() + common + "-o " + (d / "f.exr").string());
+  ASSERT_EQ(a.code, 0) << a.output;
+  auto b = run_nimbus("render --preset steam --voxel-size 0.012" + common + "-o " + (d / "p.exr").string());
+  ASSERT_EQ(b.code, 0) << b.output;
+  const render::Image f = render::read_exr(d / "f.exr"), p = render::read_exr(d / "p.exr");
+  ASSERT_EQ(f.rgba.size(), p.rgba.size());
+  double covered = 0, diff = 0;
+  for (std::size_t i = 0; i < f.rgba.size(); ++i) {
+    diff = std::max(diff, static_cast<double>(std::abs(f.rgba[i] - p.rgba[i])));
+    if (i % 4 == 3) covered += p.rgba[i];
+  }
+  EXPECT_GT(covered, 10.0);  // the plume is in the picture
+  EXPECT_LT(diff, 2e-3);     // half-float EXR rounding only
+  fs::remove_all(d);
+}
+
+TEST(RenderCloudsCli, ReferenceRendersCloudsAloneOnTheCpu) {
+  const fs::path d = temp_dir("ref");
+  const auto r = run_nimbus("render --preset steam --voxel-size 0.02 --scene none --method reference --res 16x16 -o " +
+                            (d / "r.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image img = render::read_exr(d / "r.exr");
+  EXPECT_TRUE(finite_non_negative(img));
+  EXPECT_EQ(img.metadata.at("method"), "cloud-reference");
+  fs::remove_all(d);
+}
+
+TEST(RenderCloudsCli, FramesWriteANumberedSequence) {
+  const fs::path d = temp_dir("seq");
+  const auto r = run_nimbus("render" + kSteam + "--scene none --frames 3-4 --fps 12 -o " + (d / "s.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(d / "s.0003.exr"));
+  EXPECT_TRUE(fs::exists(d / "s.0004.exr"));
+  EXPECT_FALSE(fs::exists(d / "s.exr"));
+  EXPECT_EQ(render::read_exr(d / "s.0004.exr").metadata.at("frame"), "4");
+  const auto p = run_nimbus("render" + kSteam + "--scene none --frames 1-1 -o " + (d / "t_%03d.exr").string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  EXPECT_TRUE(fs::exists(d / "t_001.exr"));
+  fs::remove_all(d);
+}
+
+TEST(RenderCloudsCli, BadInputIsAUsageError) {
+  const fs::path d = temp_dir("bad");
+  const std::string out = " -o " + (d / "x.exr").string();
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {kSteam + "--method reference", "--scene none"},
+      {kSteam + "--method raymarch:8", "--method"},
+      {kSteam + "--scene lamps", "--sun"},
+      {kSteam + "--scene nowhere", "--scene"},
+      {kSteam + "--cloud-phase hg:1.5", "--cloud-phase"},
+      {kSteam + "--cloud-albedo 2", "albedo"},
+      {kSteam + "--slices 1", "--slices"},
+      {kSteam + "--multiple 9", "--multiple"},
+      {kSteam + "--frames 5-2", "--frames"},
+      {kSteam + "--sun 0,0,0", "--sun"},
+      {kSteam + "--shafts reference", "--shafts"},
+      {" --preset no-such-cloud --res 8x8", "--preset"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_nimbus("render" + c.args + out);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(d / "x.exr"));
+  fs::remove_all(d);
+}
+
+TEST(RenderCloudsCli, MissingOrCorruptFileIsARuntimeError) {
+  const fs::path d = temp_dir("missing");
+  auto r = run_nimbus("render " + (d / "none.vdb").string() + " --scene none --res 8x8 -o " + (d / "x.exr").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("none.vdb"), std::string::npos) << r.output;
+  { std::ofstream(d / "junk.vdb") << "not a vdb"; }
+  r = run_nimbus("render " + (d / "junk.vdb").string() + " --scene none --res 8x8 -o " + (d / "x.exr").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_FALSE(fs::exists(d / "x.exr"));
+  fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace nimbus::test

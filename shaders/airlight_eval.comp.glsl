@@ -1,6 +1,6 @@
 #version 450 core
 // Evaluates one airlight method per query with the shaders' own GLSL functions, for
-// `nimbus airlight --device gl` and the tests (render/src/airlight_gl.cpp): queries in, La out.
+// `nimbus airlight --device gl` and the tests (render/shafts/src/airlight_gl.cpp): queries in, La out.
 #include "lib/airlight.glsl"
 #include "lib/airlight_table.glsl"
 
@@ -11,15 +11,15 @@ struct Query {
   float march_length;  // raymarch: Dvp, or the cut-off of an infinite ray (computed on the CPU)
   float unused;
 };
-layout(std430, binding = 0) readonly buffer Queries { Query queries[]; };
-layout(std430, binding = 1) writeonly buffer Results { float results[]; };
+layout(std430, binding = STORAGE_AIRLIGHT_QUERIES) readonly buffer Queries { Query queries[]; };
+layout(std430, binding = STORAGE_AIRLIGHT_RESULTS) writeonly buffer Results { float results[]; };
 
-layout(binding = 0) uniform sampler2D u_F_table;
-uniform int u_method;  // 0 stable, 1 table:N, 2 raymarch:N
+layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
+uniform int u_method;  // AIRLIGHT_EVAL_* code
 uniform int u_n;       // table size or steps
 uniform int u_count;
 uniform int u_offset;
-uniform int u_phase_kind;  // PHASE_* of lib/phase.glsl (stable and raymarch)
+uniform int u_phase_kind;  // PHASE_* code (stable and raymarch)
 uniform float u_phase_g;
 
 // N midpoint samples of Sun eq. 5 (thesis eq. 33 with a phase function) over [0, len] in float
@@ -43,9 +43,9 @@ void main() {
   if (i >= u_count) return;
   Query q = queries[i];
   float La;
-  if (u_method == 1)
+  if (u_method == AIRLIGHT_EVAL_TABLE)
     La = airlight_table(u_F_table, u_n, q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
-  else if (u_method == 2)
+  else if (u_method == AIRLIGHT_EVAL_RAYMARCH)
     La = airlight_raymarch(q.beta, q.I0, q.Dsv, q.cos_gamma, q.march_length, u_n);
   else
     La = point_segment_airlight(q.beta, q.beta, q.I0, q.Dsv, q.cos_gamma, q.sin_gamma, 0.0, q.Dvp, u_phase_kind,

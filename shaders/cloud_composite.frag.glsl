@@ -6,22 +6,17 @@
 // (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; point
 // lights take A * A_fog(0, D) at the alpha-weighted mean distance D. Output alpha 1.
 in vec2 uv;
-uniform sampler2D u_scene_color;     // RGBA32F premultiplied scene radiance
-uniform sampler2D u_cloud_color;     // premultiplied cloud radiance, alpha
-uniform sampler2D u_cloud_distance;  // (sum w t, sum w (1 - e^{-sigma t}) / sigma, 0, alpha)
+#include "lib/camera_ray.glsl"
+#include "lib/light_list.glsl"
+#include "lib/airlight.glsl"
+layout(binding = UNIT_SCENE_COLOR) uniform sampler2D u_scene_color;  // RGBA32F premultiplied scene radiance
+layout(binding = UNIT_CLOUD_COLOR) uniform sampler2D u_cloud_color;  // premultiplied cloud radiance, alpha
+layout(binding = UNIT_CLOUD_DISTANCE) uniform sampler2D u_cloud_distance;  // (sum w t, sum w (1 - e^{-sigma t}) / sigma, 0, alpha)
 uniform float u_sigma_t;             // fog extinction, per metre
 uniform float u_sigma_s;             // fog scattering, per metre
-uniform int u_phase_kind;            // lib/phase.glsl kinds
+uniform int u_phase_kind;            // PHASE_* code
 uniform float u_phase_g;
-uniform int u_num_point_lights;
-uniform vec3 u_point_pos[4];         // metres
-uniform vec3 u_point_intensity[4];   // W/sr per channel
-uniform int u_has_sun;
-uniform vec3 u_sun_to;               // unit, toward the sun
-uniform vec3 u_sun_irradiance;       // W/m^2 per channel
 layout(location = 0) out vec4 o_color;
-#include "lib/camera_ray.glsl"
-#include "lib/airlight.glsl"
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -32,15 +27,15 @@ void main() {
   float D = weighted.a > 1.0e-12 ? max(weighted.r / weighted.a, 0.0) : 0.0;
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
   vec3 air = vec3(0.0);
-  for (int i = 0; i < u_num_point_lights; ++i) {
-    vec3 to_light = u_point_pos[i] - u_eye;
+  for (int i = 0; i < lights.point_count; ++i) {
+    vec3 to_light = lights.point_position[i].xyz - camera.eye;
     float Dsv = length(to_light);
     float cg = clamp(dot(dir, to_light) / max(Dsv, 1.0e-20), -1.0, 1.0);
     float sg = min(length(cross(dir, to_light)) / max(Dsv, 1.0e-20), 1.0);
-    air += (A * u_point_intensity[i]) *
+    air += (A * lights.point_intensity[i].rgb) *
            point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, 0.0, D, u_phase_kind, u_phase_g);
   }
-  float sun = float(u_has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-u_sun_to, -dir));
-  air += u_sun_irradiance * (sun * max(weighted.g, 0.0));
+  float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun_to, -dir));
+  air += lights.sun_irradiance * (sun * max(weighted.g, 0.0));
   o_color = vec4(scene * (1.0 - A) + cloud.rgb + air, 1.0);
 }

@@ -3,7 +3,8 @@
 // optical depth before it by a cone's disk, here the 5-tap kernel with the disk's variance per
 // axis (radius^2 / 4): neighbours at u_step texels weigh u_weight each (at most 1/4), so blurs
 // repeated slice after slice grow with depth. Additive slice polygons follow in the same buffer.
-uniform sampler2D u_previous;  // R32F optical depth
+#include "lib/contract.glsl"
+layout(binding = UNIT_LIGHT_BUFFER) uniform sampler2D u_previous;  // R32F optical depth
 uniform ivec2 u_step;          // texels along u and w, >= 1
 uniform vec2 u_weight;         // per neighbour along u and w
 layout(location = 0) out vec4 o_tau;

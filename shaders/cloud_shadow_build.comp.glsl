@@ -1,12 +1,12 @@
 #version 450 core
-// The clouds' shadow map (cloud_shadow.hpp): one invocation per map texel marches that texel's
+// The clouds' shadow map (clouds/cloud_shadow.hpp): one invocation per map texel marches that texel's
 // light ray through one cloud, adding its optical depth and widening the depth range of its
 // matter. Dispatched once per cloud; the texel's values accumulate across clouds.
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(r32f, binding = 0) uniform image2D u_tau;
-layout(rg32f, binding = 1) uniform image2D u_range;
-uniform sampler3D u_density;       // the cloud, border 0
-uniform mat4 u_world_to_texture;   // world -> texture coordinates of the cloud
+#include "lib/cloud_block.glsl"
+layout(r32f, binding = IMAGE_CLOUD_TAU) uniform image2D u_tau;
+layout(rg32f, binding = IMAGE_CLOUD_RANGE) uniform image2D u_range;
+layout(binding = UNIT_CLOUD_DENSITY) uniform sampler3D u_density;  // the cloud (its CloudBlock: world_to_texture, sigma_t), border 0
 uniform vec3 u_origin;             // world point of the map's corner (texel 0, 0) on its plane
 uniform vec3 u_axis_x;             // map width vector, metres
 uniform vec3 u_axis_y;             // map height vector, metres
@@ -14,7 +14,6 @@ uniform vec3 u_dir;                // light propagation direction (unit)
 uniform float u_depth0;            // march from this depth (metres along u_dir from the plane)
 uniform float u_step;              // metres
 uniform int u_steps;
-uniform float u_sigma_t;           // extinction per unit density, per metre
 uniform int u_res;
 
 void main() {
@@ -26,9 +25,9 @@ void main() {
   float first = 3.0e38, last = -3.0e38;
   for (int k = 0; k < u_steps; ++k) {
     float depth = u_depth0 + (float(k) + 0.5) * u_step;  // midpoint rule
-    vec3 tc = (u_world_to_texture * vec4(p0 + depth * u_dir, 1.0)).xyz;
+    vec3 tc = (cloud.world_to_texture * vec4(p0 + depth * u_dir, 1.0)).xyz;
     float rho = textureLod(u_density, tc, 0.0).r;
-    tau += u_sigma_t * rho * u_step;
+    tau += cloud.sigma_t * rho * u_step;
     bool matter = rho > 0.0;
     first = matter ? min(first, depth - 0.5 * u_step) : first;
     last = matter ? max(last, depth + 0.5 * u_step) : last;

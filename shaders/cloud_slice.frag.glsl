@@ -11,6 +11,9 @@
 // (alpha t, alpha (1 - exp(-sigma_fog t)) / sigma_fog, 0, alpha) into the second output for the
 // fog's airlight in front of the clouds (cloud_composite.frag.glsl). OCTAVES: extra
 // multiple-scattering octaves (0 = single scattering).
+// The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
+#include "lib/camera_ray.glsl"
+#include "lib/cloud_block.glsl"
 #ifndef UNDERLAY
 #define UNDERLAY 0
 #endif
@@ -20,29 +23,21 @@
 in vec3 v_world;
 in vec3 v_tc;
 in vec2 v_luv;
-uniform vec3 u_eye;               // metres
-uniform vec3 u_forward;           // the camera's view axis, unit
-uniform float u_near_m;           // the camera's near plane
-uniform vec3 u_tc_eye;            // the eye's density-texture coordinates
 uniform vec2 u_luv_eye;           // the eye's light-buffer coordinates
 uniform vec3 u_slice_axis;        // s, unit
 uniform float u_spacing_m;        // d, slice spacing along s
 uniform float u_light_slab_m;     // d / |dot(l, s)|: a slab's thickness along the light
 uniform vec3 u_light_dir;         // l, the light's propagation direction, unit
 uniform vec3 u_irradiance;        // E, W m^-2 per channel
-uniform sampler3D u_density;      // border 0 outside the active box
-uniform float u_sigma_t;          // extinction per unit density, per metre
-uniform vec3 u_albedo;            // sigma_s / sigma_t per channel
-uniform vec3 u_ambient;           // sky radiance (0 when off)
-uniform vec3 u_phase;             // g_forward, g_back, forward weight
+layout(binding = UNIT_CLOUD_DENSITY) uniform sampler3D u_density;  // border 0 outside the active box
 uniform vec3 u_octave_abc;        // occlusion a, contribution b, eccentricity c
-uniform sampler2D u_light;        // R32F optical depth of the slices before this one
-uniform sampler2D u_jitter;       // blue-noise tile (power-of-two side), values in (0, 1)
+layout(binding = UNIT_LIGHT_BUFFER) uniform sampler2D u_light;  // R32F optical depth of the slices before this one
+layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // blue-noise tile (power-of-two side), values in (0, 1)
 uniform ivec2 u_jitter_offset;    // this frame's tile shift, pixels (>= 0)
 uniform float u_jitter_shift;     // this frame's shift of the values, modulo 1
 uniform float u_jitter_on;        // 1: jitter; 0: the slab's middle
 #if UNDERLAY
-uniform sampler2D u_scene_distance;  // R32F metres along the pixel's ray, 0 = no surface
+layout(binding = UNIT_SCENE_DISTANCE) uniform sampler2D u_scene_distance;  // R32F metres along the pixel's ray, 0 = no surface
 uniform float u_fog_sigma_t;         // per metre
 layout(location = 1) out vec4 o_distance;
 #endif
@@ -50,7 +45,7 @@ layout(location = 0) out vec4 o_color;
 #include "lib/cloud_phase.glsl"
 
 void main() {
-  vec3 q = v_world - u_eye;
+  vec3 q = v_world - camera.eye;
   float inv_len = inversesqrt(max(dot(q, q), 1.0e-30));
   float qs = dot(q, u_slice_axis) * inv_len;  // dot(ray, s)
   float cos_rs = max(abs(qs), 1.0e-3);
@@ -61,7 +56,7 @@ void main() {
   // This slab along the ray is [t - dt/2, t + dt/2] around the plane at t; where the plane
   // before it is behind the eye or the near plane (no fragment there), it reaches back to the eye.
   float t_plane = 1.0 / inv_len;
-  float start = (t_plane - dt) * (dot(q, u_forward) * inv_len) < u_near_m ? 0.0 : t_plane - 0.5 * dt;
+  float start = (t_plane - dt) * (dot(q, camera.forward) * inv_len) < camera.near_m ? 0.0 : t_plane - 0.5 * dt;
   float end = t_plane + 0.5 * dt;
 #if UNDERLAY
   // A surface inside the slab ends it: the cloud behind the surface is hidden.
@@ -71,14 +66,14 @@ void main() {
   float slab = max(end - start, 0.0);
   float offset = start + mix(0.5, noise, u_jitter_on) * slab - t_plane;  // metres along the ray
   float k = offset * inv_len;
-  float rho = max(texture(u_density, v_tc + k * (v_tc - u_tc_eye)).r, 0.0);
+  float rho = max(texture(u_density, v_tc + k * (v_tc - cloud.tc_eye)).r, 0.0);
   // Toward the light: the slices before this one, plus this slab up to the sample.
   float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
-  float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * u_sigma_t * rho * u_light_slab_m;
-  float od = u_sigma_t * rho * slab;
+  float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * cloud.sigma_t * rho * u_light_slab_m;
+  float od = cloud.sigma_t * rho * slab;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
-  float lit = cloud_octaves(u_phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
-  vec3 color = u_albedo * (u_irradiance * lit + u_ambient) * alpha;  // (S / sigma_t) alpha
+  float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
+  vec3 color = cloud.albedo * (u_irradiance * lit + cloud.ambient) * alpha;  // (S / sigma_t) alpha
 #if UNDERLAY
   float t = max(t_plane + offset, 0.0);
   float y = u_fog_sigma_t * t;

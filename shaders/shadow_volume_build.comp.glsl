@@ -10,8 +10,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 uniform int u_mode;          // 0: point light (cube map array layer u_layer), 1: sun
 uniform int u_layer;
 uniform int u_res;           // shadow-map resolution (texels per face side)
-uniform samplerCubeArray u_cube;
-uniform sampler2D u_map;
+#include "lib/contract.glsl"
+layout(binding = UNIT_POINT_SHADOW) uniform samplerCubeArray u_cube;
+layout(binding = UNIT_SUN_SHADOW) uniform sampler2D u_map;
 uniform vec3 u_origin;       // light position, or the sun map's corner
 uniform vec3 u_axis_x;       // sun map width vector (metres)
 uniform vec3 u_axis_y;       // sun map height vector (metres)
@@ -19,8 +20,8 @@ uniform vec3 u_dir;          // sun propagation direction (unit)
 uniform float u_rel_threshold;  // relative distance jump that makes a silhouette
 uniform float u_max_distance;   // skirts end here (metres): beyond it the airlight is negligible
 uniform uint u_max_quads;
-layout(std430, binding = 0) buffer Quads { vec4 verts[]; };
-layout(std430, binding = 1) buffer Counter { uint quad_count; uint overflow; };
+layout(std430, binding = STORAGE_SKIRT_QUADS) buffer Quads { vec4 verts[]; };
+layout(std430, binding = STORAGE_SKIRT_COUNTER) buffer Counter { uint quad_count; uint overflow; };
 
 // GL 4.5 spec table 8.19: direction of cube face f at face coordinates sc, tc in [-1, 1].
 vec3 cube_dir(int f, float sc, float tc) {

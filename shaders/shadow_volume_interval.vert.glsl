@@ -1,9 +1,9 @@
 #version 450 core
 // Shadow-volume skirts seen from the camera (positions in metres, from the build pass).
+#include "lib/camera_ray.glsl"
 layout(location = 0) in vec4 a_position;
-uniform mat4 u_view_proj;
 out vec3 v_world;
 void main() {
   v_world = a_position.xyz;
-  gl_Position = u_view_proj * vec4(a_position.xyz, 1.0);
+  gl_Position = camera.view_proj * vec4(a_position.xyz, 1.0);
 }

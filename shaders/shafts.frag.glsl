@@ -1,14 +1,18 @@
 #version 450 core
 // The light-shaft pass: per pixel, the attenuated surface radiance (thesis eq. 23) plus the
-// single-scattered airlight of every light, by one of three methods chosen at compile time:
-//   METHOD 0: ray marching with shadow-map visibility and a per-pixel jitter (thesis 4.1, Alg. 1)
-//   METHOD 1: the analytic airlight of Sun et al. (eqs. 7-12), no volumetric shadows
-//   METHOD 2: shadow-volume intervals (thesis 4.3, Biri et al. eqs. 10-12): closed form on the
-//             parts of the ray before the nearest and after the farthest shadow-volume crossing,
-//             STEPS samples only in between.
-// Defines: METHOD, STEPS, AIRLIGHT_TABLE (1: Sun's F table for METHOD 1, else the stable form).
+// single-scattered airlight of every light, by one of three methods chosen at compile time
+// (METHOD, a SHAFT_METHOD_* code of lib/contract.glsl):
+//   SHAFT_METHOD_RAYMARCH: ray marching with shadow-map visibility and a per-pixel jitter
+//             (thesis 4.1, Alg. 1)
+//   SHAFT_METHOD_ANALYTIC: the analytic airlight of Sun et al. (eqs. 7-12), no volumetric shadows
+//   SHAFT_METHOD_SHADOW_VOLUME: shadow-volume intervals (thesis 4.3, Biri et al. eqs. 10-12):
+//             closed form on the parts of the ray before the nearest and after the farthest
+//             shadow-volume crossing, STEPS samples only in between.
+// Defines: METHOD, STEPS, AIRLIGHT_TABLE (1: Sun's F table for the analytic method, else the
+// stable form).
+#include "lib/contract.glsl"
 #ifndef METHOD
-#define METHOD 0
+#define METHOD SHAFT_METHOD_RAYMARCH
 #endif
 #ifndef STEPS
 #define STEPS 64
@@ -17,29 +21,29 @@
 #define AIRLIGHT_TABLE 0
 #endif
 in vec2 uv;
-uniform sampler2D u_surface_radiance;  // RGBA32F: radiance leaving the surface, alpha 1 on hits
-uniform sampler2D u_surface_distance;  // R32F: metres from the eye, 0 where nothing was hit
+layout(binding = UNIT_SURFACE_RADIANCE) uniform sampler2D u_surface_radiance;  // RGBA32F: radiance leaving the surface, alpha 1 on hits
+layout(binding = UNIT_SCENE_DISTANCE) uniform sampler2D u_surface_distance;  // R32F: metres from the eye, 0 where nothing was hit
 uniform float u_sigma_t;    // extinction, per metre
 uniform float u_sigma_s;    // scattering, per metre
-uniform int u_phase_kind;   // 0 isotropic, 1 Henyey-Greenstein, 2 Schlick, 3 Rayleigh
+uniform int u_phase_kind;   // PHASE_* code
 uniform float u_phase_g;
 uniform float u_march_cutoff_m;  // ray-march end for rays that hit nothing
 uniform float u_shadow_ceiling_m;  // no shadow of the sun (opaque or cloud) above this height; 1e30 = none known
-uniform sampler2D u_jitter;      // tiled jitter values in [0, 1)
-uniform int u_jitter_mode;       // 0: none (0.5), 1: white, 2: tiled (blue noise)
+layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // tiled jitter values in [0, 1)
+uniform int u_jitter_mode;       // JITTER_* code
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 #include "lib/phase.glsl"
 #include "lib/sky.glsl"
 #include "lib/airlight.glsl"
-#if METHOD == 1 && AIRLIGHT_TABLE
+#if METHOD == SHAFT_METHOD_ANALYTIC && AIRLIGHT_TABLE
 #include "lib/airlight_table.glsl"
-uniform sampler2D u_F_table;
+layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
 uniform int u_F_size;
 #endif
-#if METHOD == 2
-uniform sampler2DArray u_sv_near;  // layer = point light index, last layer = sun
-uniform sampler2DArray u_sv_far;
+#if METHOD == SHAFT_METHOD_SHADOW_VOLUME
+layout(binding = UNIT_SV_NEAR) uniform sampler2DArray u_sv_near;  // layer = point light index, last layer = sun
+layout(binding = UNIT_SV_FAR) uniform sampler2DArray u_sv_far;
 #endif
 layout(location = 0) out vec4 o_color;
 
@@ -52,8 +56,8 @@ float hash_jitter(uvec2 p) {
 }
 
 float pixel_jitter(ivec2 px) {
-  if (u_jitter_mode == 1) return hash_jitter(uvec2(px));
-  if (u_jitter_mode == 2) {
+  if (u_jitter_mode == JITTER_WHITE) return hash_jitter(uvec2(px));
+  if (u_jitter_mode == JITTER_BLUE_NOISE) {
     ivec2 size = textureSize(u_jitter, 0);
     return texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r;
   }
@@ -67,8 +71,8 @@ float march_point(int i, vec3 dir, float a, float b, int n, float jitter) {
   float sum = 0.0;
   for (int k = 0; k < n; ++k) {
     float x = a + (float(k) + jitter) * h;
-    vec3 p = u_eye + dir * x;
-    vec3 lv = p - u_light_pos[i];
+    vec3 p = camera.eye + dir * x;
+    vec3 lv = p - lights.point_position[i].xyz;
     float d = length(lv);
     float vis = point_visibility(i, p);
     if (vis > 0.0)
@@ -82,13 +86,13 @@ float march_sun(vec3 dir, float a, float b, int n, float jitter) {
   float sum = 0.0;
   for (int k = 0; k < n; ++k) {
     float x = a + (float(k) + jitter) * h;
-    sum += sun_light_visibility(u_eye + dir * x) * exp(-u_sigma_t * x);
+    sum += sun_light_visibility(camera.eye + dir * x) * exp(-u_sigma_t * x);
   }
-  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-u_sun_to, -dir)) * sum * h;
+  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun_to, -dir)) * sum * h;
 }
 
 float closed_point(int i, vec3 dir, float x0, float x1) {
-  vec3 to_light = u_light_pos[i] - u_eye;
+  vec3 to_light = lights.point_position[i].xyz - camera.eye;
   float Dsv = length(to_light);
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
   float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
@@ -96,13 +100,13 @@ float closed_point(int i, vec3 dir, float x0, float x1) {
 }
 
 float closed_sun(vec3 dir, float x0, float x1) {
-  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-u_sun_to, -dir), x0, x1, u_phase_kind, u_phase_g);
+  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.sun_to, -dir), x0, x1, u_phase_kind, u_phase_g);
 }
 
 // The part [lo, hi] of [a, b] below the shadow ceiling (lo > hi: none). Above it the sun (above
 // the horizon) meets no occluder and no cloud, so the airlight there has its closed form.
 vec2 shadowed_span(vec3 dir, float a, float b) {
-  float y0 = u_eye.y - u_shadow_ceiling_m;  // < 0: the eye is below the ceiling
+  float y0 = camera.eye.y - u_shadow_ceiling_m;  // < 0: the eye is below the ceiling
   float dy = dir.y;
   float cross_t = -y0 / (abs(dy) > 1.0e-12 ? dy : 1.0e-12);  // where the ray meets the ceiling
   float lo = a, hi = b;
@@ -123,12 +127,12 @@ void main() {
   float jitter = pixel_jitter(px);
   float t_march = hit ? t : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
 
-  for (int i = 0; i < u_num_point_lights; ++i) {
-#if METHOD == 0
+  for (int i = 0; i < lights.point_count; ++i) {
+#if METHOD == SHAFT_METHOD_RAYMARCH
     float a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
-#elif METHOD == 1
+#elif METHOD == SHAFT_METHOD_ANALYTIC
 #if AIRLIGHT_TABLE
-    vec3 to_light = u_light_pos[i] - u_eye;
+    vec3 to_light = lights.point_position[i].xyz - camera.eye;
     float Dsv = length(to_light);
     float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
     float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
@@ -148,47 +152,47 @@ void main() {
     if (tn >= 1.0e29) {  // no shadow-volume crossing before the surface: one state
       // Two probes; where they disagree a boundary slipped between the skirts (a silhouette
       // grazed within a texel), and the whole ray is sampled instead.
-      float v0 = point_visibility(i, u_eye + dir * (0.5 * min(t_end, 10.0)));
-      float v1 = point_visibility(i, u_eye + dir * (0.999 * t_march));
+      float v0 = point_visibility(i, camera.eye + dir * (0.5 * min(t_end, 10.0)));
+      float v1 = point_visibility(i, camera.eye + dir * (0.999 * t_march));
       if (v0 != v1) a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
       else if (v0 > 0.0) a = closed_point(i, dir, 0.0, t_end);
     } else {
-      if (point_visibility(i, u_eye + dir * (0.5 * tn)) > 0.0) a += closed_point(i, dir, 0.0, tn);
+      if (point_visibility(i, camera.eye + dir * (0.5 * tn)) > 0.0) a += closed_point(i, dir, 0.0, tn);
       a += march_point(i, dir, tn, tf, STEPS, jitter);
       float probe = tf + 0.5 * (min(t_end, tf + 10.0) - tf);
-      if (point_visibility(i, u_eye + dir * probe) > 0.0) a += closed_point(i, dir, tf, t_end);
+      if (point_visibility(i, camera.eye + dir * probe) > 0.0) a += closed_point(i, dir, tf, t_end);
     }
 #endif
-    L += u_light_intensity[i] * a;
+    L += lights.point_intensity[i].rgb * a;
   }
 
-  if (u_has_sun != 0) {
-#if METHOD == 0
+  if (lights.has_sun != 0) {
+#if METHOD == SHAFT_METHOD_RAYMARCH
     // Samples only where a shadow can fall; the closed form before and after.
     vec2 span = shadowed_span(dir, 0.0, t_march);
     float a = span.x < span.y ? march_sun(dir, span.x, span.y, STEPS, jitter) +
                                 closed_sun(dir, 0.0, span.x) + closed_sun(dir, span.y, t_end)
                               : closed_sun(dir, 0.0, t_end);
-#elif METHOD == 1
+#elif METHOD == SHAFT_METHOD_ANALYTIC
     float a = closed_sun(dir, 0.0, t_end);
 #else
-    int layer = u_num_point_lights;
+    int layer = lights.point_count;
     float tn = texelFetch(u_sv_near, ivec3(px, layer), 0).r;
     float tf = texelFetch(u_sv_far, ivec3(px, layer), 0).r;
     float a = 0.0;
     if (tn >= 1.0e29) {
-      float v0 = sun_visibility(u_eye + dir * (0.5 * min(t_end, 10.0)));
-      float v1 = sun_visibility(u_eye + dir * (0.999 * t_march));
+      float v0 = sun_visibility(camera.eye + dir * (0.5 * min(t_end, 10.0)));
+      float v1 = sun_visibility(camera.eye + dir * (0.999 * t_march));
       if (v0 != v1) a = march_sun(dir, 0.0, t_march, STEPS, jitter);
       else if (v0 > 0.0) a = closed_sun(dir, 0.0, t_end);
     } else {
-      if (sun_visibility(u_eye + dir * (0.5 * tn)) > 0.0) a += closed_sun(dir, 0.0, tn);
+      if (sun_visibility(camera.eye + dir * (0.5 * tn)) > 0.0) a += closed_sun(dir, 0.0, tn);
       a += march_sun(dir, tn, tf, STEPS, jitter);
       float probe = tf + 0.5 * (min(t_end, tf + 10.0) - tf);
-      if (sun_visibility(u_eye + dir * probe) > 0.0) a += closed_sun(dir, tf, t_end);
+      if (sun_visibility(camera.eye + dir * probe) > 0.0) a += closed_sun(dir, tf, t_end);
     }
 #endif
-    L += u_sun_irradiance * a;
+    L += lights.sun_irradiance * a;
   }
   float alpha = (hit || sky || u_sigma_t > 0.0) ? 1.0 : 0.0;
   o_color = vec4(L, alpha);

@@ -14,25 +14,25 @@ layout(location = 0) out vec4 o_radiance;
 layout(location = 1) out float o_distance;
 void main() {
   vec3 n = normalize(v_normal);
-  vec3 to_eye = u_eye - v_world;
+  vec3 to_eye = camera.eye - v_world;
   if (dot(n, to_eye) < 0.0) n = -n;  // two-sided
   vec3 L = vec3(0.0);
   if (u_emissive != 0) {
     L = u_emissive_radiance;
   } else {
-    for (int i = 0; i < u_num_point_lights; ++i) {
-      vec3 l = u_light_pos[i] - v_world;
+    for (int i = 0; i < lights.point_count; ++i) {
+      vec3 l = lights.point_position[i].xyz - v_world;
       float d = length(l);
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.
       float v = point_visibility(i, v_world + n * (u_normal_offset_texels * d * u_point_texel_angle));
-      L += v_albedo / 3.14159265358979 * u_light_intensity[i] * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
+      L += v_albedo / 3.14159265358979 * lights.point_intensity[i].rgb * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
-    if (u_has_sun != 0) {
-      float cos_s = max(dot(n, u_sun_to), 0.0);
+    if (lights.has_sun != 0) {
+      float cos_s = max(dot(n, lights.sun_to), 0.0);
       if (cos_s > 0.0)
-        L += v_albedo / 3.14159265358979 * u_sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
+        L += v_albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
     }
   }
   o_radiance = vec4(L, 1.0);

@@ -15,6 +15,7 @@
 #include "cli/cli.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
@@ -88,9 +89,9 @@ const char* kEvalShader = R"(#version 450 core
 #include "lib/airlight_table.glsl"
 layout(local_size_x = 64) in;
 struct Query { float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma, march_length, unused; };
-layout(std430, binding = 0) readonly buffer Queries { Query queries[]; };
-layout(std430, binding = 1) writeonly buffer Results { float results[]; };
-layout(binding = 0) uniform sampler2D u_F_table;
+layout(std430, binding = STORAGE_AIRLIGHT_QUERIES) readonly buffer Queries { Query queries[]; };
+layout(std430, binding = STORAGE_AIRLIGHT_RESULTS) writeonly buffer Results { float results[]; };
+layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
 uniform int u_n;
 uniform int u_count;
 uniform int u_phase_kind;
@@ -100,9 +101,9 @@ void main() {
   if (i >= u_count) return;
   Query q = queries[i];
   float La = 0.0;
-#if METHOD == 1
+#if defined(METHOD_TABLE)
   La = airlight_table(u_F_table, u_n, q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
-#elif METHOD == 2
+#elif defined(METHOD_RAYMARCH)
   if (q.beta > 0.0 && q.march_length > 0.0) {  // N midpoint samples of thesis eq. 33
     float dx = q.march_length / float(u_n), sum = 0.0;
     for (int k = 0; k < u_n; ++k) {
@@ -122,20 +123,6 @@ void main() {
 }
 )";
 
-int phase_index(render::PhaseKind kind) {  // PHASE_* of shaders/lib/phase.glsl
-  switch (kind) {
-    case render::PhaseKind::Isotropic:
-      return 0;
-    case render::PhaseKind::HenyeyGreenstein:
-      return 1;
-    case render::PhaseKind::Schlick:
-      return 2;
-    case render::PhaseKind::Rayleigh:
-      return 3;
-  }
-  return 0;
-}
-
 // Times one method on the GL context: compile (cold) + a one-query dispatch, then the best of
 // `repeat` passes over all queries. Fills ns, compile_ms and the errors over the first ref.size().
 void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phase,
@@ -150,10 +137,11 @@ void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phas
                 float(std::sin(q.gamma)),
                 m.kind == render::AirlightMethod::RayMarch ? float(render::airlight_raymarch_length(q)) : 0.0f, 0.0f};
   }
-  const int method_index = m.kind == render::AirlightMethod::Table ? 1 : m.kind == render::AirlightMethod::RayMarch ? 2 : 0;
+  const char* method_define = m.kind == render::AirlightMethod::Table      ? "#define METHOD_TABLE\n"
+                              : m.kind == render::AirlightMethod::RayMarch ? "#define METHOD_RAYMARCH\n"
+                                                                            : "";
   static int nonce = int(std::chrono::steady_clock::now().time_since_epoch().count() % 1000000000);
-  const std::string defines =
-      "#define METHOD " + std::to_string(method_index) + "\n#define AL_NONCE " + std::to_string(++nonce) + "\n";
+  const std::string defines = method_define + std::string("#define AL_NONCE ") + std::to_string(++nonce) + "\n";
   render::GlBuffer in = render::make_buffer(GLsizeiptr(input.size() * sizeof(GpuQuery)), input.data(), 0);
   render::GlBuffer out = render::make_buffer(GLsizeiptr(input.size() * sizeof(float)), nullptr, 0);
   render::GlTexture table_texture;
@@ -163,10 +151,10 @@ void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phas
     params.min_filter = params.mag_filter = GL_NEAREST;  // the shader interpolates itself
     table_texture = render::make_texture_2d(GL_R32F, m.n, m.n, params);
     glTextureSubImage2D(table_texture.id(), 0, 0, 0, m.n, m.n, GL_RED, GL_FLOAT, table.data());
-    glBindTextureUnit(0, table_texture.id());
+    glBindTextureUnit(render::contract::UNIT_F_TABLE, table_texture.id());
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, render::contract::STORAGE_AIRLIGHT_QUERIES, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, render::contract::STORAGE_AIRLIGHT_RESULTS, out.id());
   const int count = int(qs.size());
   auto dispatch = [&](const render::ShaderProgram& p, int n) {
     p.set("u_count", n);
@@ -179,7 +167,7 @@ void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phas
       render::ShaderProgram::from_sources({{"bench_airlight.comp.glsl", kEvalShader}}, {"bench_airlight.comp.glsl"}, defines);
   program.use();
   program.set("u_n", m.n);
-  program.set("u_phase_kind", phase_index(phase.kind));
+  program.set("u_phase_kind", render::phase_code(phase.kind));
   program.set("u_phase_g", float(phase.g));
   dispatch(program, 1);  // drivers that compile at first use (llvmpipe) do it here
   row.compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -1,12 +1,18 @@
-// View ray through a pixel centre, exactly as nimbus::render::pixel_ray (camera.hpp): GL window
+// The camera (CameraBlock of lib/contract.glsl; C++: render/gl/uniform_blocks.hpp) and the view
+// ray through a pixel centre, exactly as nimbus::render::pixel_ray (camera.hpp): GL window
 // coordinates have y up, so row 0 of the read-back (top) image is the last GL row.
-uniform vec3 u_eye;            // metres
-uniform vec3 u_forward;        // unit
-uniform vec3 u_right_scaled;   // right * tan(fov/2)
-uniform vec3 u_up_scaled;      // up * tan(fov/2) * height / width
-uniform vec2 u_viewport;       // width, height in pixels
+#include "lib/contract.glsl"
+layout(std140, binding = BLOCK_CAMERA) uniform CameraBlock {
+  mat4 view_proj;      // world -> clip
+  vec3 eye;            // metres
+  float near_m;        // the near plane, metres
+  vec3 forward;        // unit
+  vec3 right_scaled;   // right * tan(fov/2)
+  vec3 up_scaled;      // up * tan(fov/2) * height / width
+  vec2 viewport;       // width, height in pixels
+} camera;
 
 vec3 pixel_ray_dir(vec2 frag_coord) {
-  vec2 ndc = 2.0 * frag_coord / u_viewport - 1.0;
-  return normalize(u_forward + ndc.x * u_right_scaled + ndc.y * u_up_scaled);
+  vec2 ndc = 2.0 * frag_coord / camera.viewport - 1.0;
+  return normalize(camera.forward + ndc.x * camera.right_scaled + ndc.y * camera.up_scaled);
 }

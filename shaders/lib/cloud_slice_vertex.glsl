@@ -2,9 +2,9 @@
 // polygon's world position (metres) through u_view_proj (the camera's, or the light buffer's
 // orthographic map), with its density-texture and light-buffer coordinates (affine in the
 // position, so interpolated exactly).
+#include "lib/cloud_block.glsl"
 layout(location = 0) in vec3 a_world;
 uniform mat4 u_view_proj;
-uniform mat4 u_world_to_texture;  // VolumeTexture::world_to_texture
 uniform mat4 u_world_to_light;    // world -> light-buffer uv
 out vec3 v_world;
 out vec3 v_tc;
@@ -13,7 +13,7 @@ out vec2 v_luv;
 void main() {
   vec4 p = vec4(a_world, 1.0);
   v_world = a_world;
-  v_tc = (u_world_to_texture * p).xyz;
+  v_tc = (cloud.world_to_texture * p).xyz;
   v_luv = (u_world_to_light * p).xy;
   gl_Position = u_view_proj * p;
 }

@@ -1,14 +1,9 @@
-// The scene's lights and their shadow maps (distances in metres, see shadow_distance.frag.glsl).
+// The scene's lights (lib/light_list.glsl) and their shadow maps (distances in metres, see
+// shadow_distance.frag.glsl).
+#include "lib/light_list.glsl"
 #include "lib/cloud_shadow.glsl"
-#define MAX_POINT_LIGHTS 4
-uniform int u_num_point_lights;
-uniform vec3 u_light_pos[MAX_POINT_LIGHTS];        // metres
-uniform vec3 u_light_intensity[MAX_POINT_LIGHTS];  // W/sr per channel
-uniform int u_has_sun;
-uniform vec3 u_sun_to;          // unit direction towards the sun
-uniform vec3 u_sun_irradiance;  // W/m^2 per channel
-uniform samplerCubeArray u_point_shadow;  // layer = light index, R32F distance
-uniform sampler2D u_sun_shadow;           // R32F distance along -u_sun_to from the map's plane
+layout(binding = UNIT_POINT_SHADOW) uniform samplerCubeArray u_point_shadow;  // layer = light index, R32F distance
+layout(binding = UNIT_SUN_SHADOW) uniform sampler2D u_sun_shadow;  // R32F distance along -sun_to from the map's plane
 uniform vec3 u_sun_origin;      // the map's corner (texel coords 0,0) on its plane
 uniform vec3 u_sun_axis_x;      // map width vector, metres
 uniform vec3 u_sun_axis_y;      // map height vector, metres
@@ -18,7 +13,7 @@ uniform float u_point_texel_angle;   // angular size of a cube-map texel at a fa
 uniform float u_sun_texel_m;         // size of a sun-map texel, metres
 
 float point_visibility(int i, vec3 p) {
-  vec3 v = p - u_light_pos[i];
+  vec3 v = p - lights.point_position[i].xyz;
   float d = length(v);
   float stored = textureLod(u_point_shadow, vec4(v, float(i)), 0.0).r;
   return d <= stored * (1.0 + u_point_shadow_bias) ? 1.0 : 0.0;
@@ -29,7 +24,7 @@ float sun_visibility(vec3 p) {
   vec2 st = vec2(dot(q, u_sun_axis_x) / dot(u_sun_axis_x, u_sun_axis_x),
                  dot(q, u_sun_axis_y) / dot(u_sun_axis_y, u_sun_axis_y));
   if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0)))) return 1.0;
-  float d = dot(q, -u_sun_to);
+  float d = dot(q, -lights.sun_to);
   float stored = textureLod(u_sun_shadow, st, 0.0).r;
   return d <= stored + u_sun_shadow_bias ? 1.0 : 0.0;
 }

@@ -1,12 +1,11 @@
-// Phase functions (thesis eqs. 13-17), normalised over the sphere, theta = 0 forward. Written
-// in the common subset of GLSL 4.50 and C++ (glm); render/src/airlight_stable.cpp compiles it.
+// Phase functions (thesis eqs. 13-17), normalised over the sphere, theta = 0 forward: the one
+// float implementation of each, for the fog (any kind, by its PHASE_* code of lib/contract.glsl)
+// and for the clouds' dual-lobe Henyey-Greenstein (lib/cloud_phase.glsl). Written in the common
+// subset of GLSL 4.50 and C++ (glm); render/core/src/airlight_stable.cpp compiles it.
 #ifndef NIMBUS_PHASE_GLSL
 #define NIMBUS_PHASE_GLSL
 
-const int PHASE_ISOTROPIC = 0;
-const int PHASE_HENYEY_GREENSTEIN = 1;
-const int PHASE_SCHLICK = 2;
-const int PHASE_RAYLEIGH = 3;
+#include "lib/contract.glsl"
 const float PHASE_INV_4PI = 0.0795774715f;
 const float PHASE_SCHLICK_MAX_K = 0.999f;  // eq. 16 gives |k| > 1 for |g| > 0.938
 
@@ -59,6 +58,11 @@ float phase_value_coeffs(PhaseCoeffs pc, float one_minus_cos, float one_plus_cos
   float d = pc.d0 + pc.d_minus * one_minus_cos + pc.d_plus * one_plus_cos;
   float c = 0.5f * (one_plus_cos - one_minus_cos);
   return pc.scale * (1.0f + pc.rayleigh * c * c) / (d * mix(sqrt(d), d, pc.schlick));
+}
+
+// Henyey & Greenstein (thesis eq. 14): the one HG of the shaders, also the clouds' lobes.
+float phase_hg(float g, float one_minus_cos, float one_plus_cos) {
+  return phase_value_coeffs(phase_coeffs(PHASE_HENYEY_GREENSTEIN, g), one_minus_cos, one_plus_cos);
 }
 
 float phase_value_pair(int kind, float g, float one_minus_cos, float one_plus_cos) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
@@ -62,9 +63,11 @@ TEST(GlReadback, FullScreenPassReadsBackExactlyTopRowFirst) {
 TEST(GlReadback, EveryUniformSetterReachesTheShader) {
   NIMBUS_REQUIRE_GL();
   GlTexture t0 = make_texture_2d(GL_RGBA32F, 2, 2), t1 = make_texture_2d(GL_RGBA32F, 2, 2),
-            t2 = make_texture_2d(GL_RGBA32F, 2, 2);
-  GlFramebuffer fb = make_framebuffer(
-      {{GL_COLOR_ATTACHMENT0, t0.id()}, {GL_COLOR_ATTACHMENT1, t1.id()}, {GL_COLOR_ATTACHMENT2, t2.id()}});
+            t2 = make_texture_2d(GL_RGBA32F, 2, 2), t3 = make_texture_2d(GL_RGBA32F, 2, 2);
+  GlFramebuffer fb = make_framebuffer({{GL_COLOR_ATTACHMENT0, t0.id()},
+                                       {GL_COLOR_ATTACHMENT1, t1.id()},
+                                       {GL_COLOR_ATTACHMENT2, t2.id()},
+                                       {GL_COLOR_ATTACHMENT3, t3.id()}});
   ShaderProgram program({"fullscreen.vert.glsl", "test_uniforms.frag.glsl"});
   const glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)) * glm::scale(glm::mat4(1.0f), glm::vec3(2));
   program.set("i1", -7);
@@ -74,7 +77,15 @@ TEST(GlReadback, EveryUniformSetterReachesTheShader) {
   program.set("f4", glm::vec4(9, 8, 7, 6));
   program.set("i2", glm::ivec2(11, -12));
   program.set("m4", m);
-  program.set("not_a_uniform", 1.0f);  // ignored
+  program.set("u1", 42u);
+  // A name no stage declares is an error (a misspelt uniform is never silently ignored); one the
+  // compiler dropped because this shader never reads it is skipped.
+  EXPECT_THROW(program.set("not_a_uniform", 1.0f), UniformError);
+  EXPECT_THROW(program.set("f_1", 1.0f), UniformError);
+  EXPECT_NO_THROW(program.set("unused_f", 1.0f));
+  EXPECT_FALSE(program.has_uniform("unused_f"));
+  EXPECT_TRUE(program.declares("unused_f"));
+  EXPECT_FALSE(program.declares("not_a_uniform"));
   EXPECT_FALSE(program.has_uniform("not_a_uniform"));
   EXPECT_TRUE(program.has_uniform("m4"));
   GlVertexArray vao = make_vertex_array();
@@ -97,6 +108,7 @@ TEST(GlReadback, EveryUniformSetterReachesTheShader) {
   const Image c = read_rgba(fb, 2, 2, GL_COLOR_ATTACHMENT2);
   const double expect[4] = {2 * 1.0 + 1 * 4, 2 * -2.0 + 2 * 4, 2 * 3.0 + 3 * 4, 4 + 0.5};
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(c.pixel(1, 1)[i], expect[i], 1e-6) << i;
+  EXPECT_EQ(read_rgba(fb, 2, 2, GL_COLOR_ATTACHMENT3).pixel(0, 0)[0], 42.0f);
 }
 
 TEST(GlReadback, DepthAndCubeTargetsAttach) {

@@ -8,10 +8,7 @@
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -20,8 +17,12 @@
 
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/to_float.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/core/metadata.hpp"
 
@@ -30,69 +31,11 @@ namespace {
 
 using namespace cloud_detail;
 
-constexpr int kMaxPointLights = 4;     // cloud_composite.frag.glsl's arrays
 constexpr int kJitterTile = 64;        // blue-noise tile side, pixels (power of two)
 constexpr std::uint32_t kJitterSeed = 5;
 
-glm::mat4 to_float(const glm::dmat4& m) { return glm::mat4(m); }
-glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
-
-// Times passes of three kinds: GL_TIME_ELAPSED queries where the driver's are trustworthy,
-// else glFinish after each pass around std::chrono::steady_clock (llvmpipe's timer queries
-// are unreliable across framebuffer changes, and every slice changes framebuffers twice).
-// Nothing is timed (and nothing waits) when the caller wants no statistics.
-class PassTimer {
- public:
-  enum Kind { Light = 0, Eye = 1, Composite = 2 };
-
-  explicit PassTimer(bool enabled) : enabled_(enabled) {
-    if (!enabled_) return;
-    GLint bits = 0;
-    glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
-    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    queries_ = bits > 0 && !(renderer != nullptr && std::strstr(renderer, "llvmpipe") != nullptr);
-    if (!queries_) glFinish();
-  }
-
-  template <class F>
-  void time(Kind kind, F&& f) {
-    if (!enabled_) {
-      f();
-    } else if (queries_) {
-      pending_.emplace_back(kind, make_query(GL_TIME_ELAPSED));
-      glBeginQuery(GL_TIME_ELAPSED, pending_.back().second.id());
-      f();
-      glEndQuery(GL_TIME_ELAPSED);
-    } else {
-      const auto t0 = std::chrono::steady_clock::now();
-      f();
-      glFinish();
-      ms_[kind] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    }
-  }
-
-  // Resolves the queries (waiting for them) and fills the times of `stats`.
-  void finish(CloudFrameStats& stats) {
-    for (const auto& [kind, query] : pending_) {
-      GLuint64 ns = 0;
-      glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);
-      ms_[kind] += static_cast<double>(ns) * 1e-6;
-    }
-    pending_.clear();
-    stats.light_ms = ms_[Light];
-    stats.slices_ms = ms_[Eye];
-    stats.composite_ms = ms_[Composite];
-    stats.total_ms = ms_[Light] + ms_[Eye] + ms_[Composite];
-    stats.timing = !enabled_ ? "not timed"
-                   : queries_ ? "GL_TIME_ELAPSED query per pass"
-                              : "glFinish + steady_clock per pass";
-  }
-
- private:
-  bool enabled_ = false, queries_ = false;
-  std::vector<std::pair<Kind, GlQuery>> pending_;
-  double ms_[3] = {0, 0, 0};
-};
+// The frame's passes as GpuTimer slots.
+enum Pass { kLight = 0, kEye, kComposite, kPassCount };
 
 }  // namespace
 
@@ -105,6 +48,9 @@ struct CloudRenderer::Impl {
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
   std::map<std::pair<bool, int>, ShaderProgram> eye_programs;  // by (underlay, octaves)
   std::optional<ShaderProgram> composite_program;
+  UniformBuffer<CameraBlock> camera_ubo;
+  UniformBuffer<LightsBlock> lights_ubo;
+  UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
   GlVertexArray empty_vao, mesh_vao;
   GlBuffer mesh_buffer;
   std::size_t mesh_capacity = 0;  // vertices
@@ -239,8 +185,9 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
       throw std::invalid_argument("scene underlay distance_texture: must be a texture");
     if (scene) {
       validate(*scene);
-      if (scene->point_lights.size() > static_cast<std::size_t>(kMaxPointLights))
-        throw std::invalid_argument("scene underlay scene: the cloud composite takes at most 4 point lights, got " +
+      if (scene->point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+        throw std::invalid_argument("scene underlay scene: the cloud composite takes at most " +
+                                    std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
                                     std::to_string(scene->point_lights.size()));
     }
   }
@@ -279,14 +226,13 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   const ShaderProgram& eye = s.eye_program(underlay != nullptr, settings.multiple.octaves);
   const ShaderProgram& lp = s.light_program;
   const bool blur = settings.blur_cone_rad > 0.0;
-  PassTimer timer(stats != nullptr);
+  GpuTimer timer(kPassCount, stats != nullptr);
 
-  // Frame-constant uniforms.
-  const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
-  eye.set("u_view_proj", view_proj);
-  eye.set("u_eye", to_float(camera.eye));
-  eye.set("u_forward", to_float(frame.forward));
-  eye.set("u_near_m", static_cast<float>(camera.near_m));
+  // Frame-constant uniforms: the camera block and the slicing geometry.
+  const CameraBlock camera_values = camera_block(camera);
+  s.camera_ubo.update(camera_values);
+  s.camera_ubo.bind(contract::BLOCK_CAMERA);
+  eye.set("u_view_proj", camera_values.view_proj);
   eye.set("u_slice_axis", to_float(axis.axis));
   eye.set("u_spacing_m", static_cast<float>(planes.spacing_m));
   eye.set("u_light_slab_m", static_cast<float>(light_slab_m));
@@ -297,9 +243,6 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
                                     static_cast<float>(ms.eccentricity)));
   eye.set("u_world_to_light", to_float(lf.world_to_uv));
   eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
-  eye.set("u_density", 0);
-  eye.set("u_light", 1);
-  eye.set("u_jitter", 2);
   // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the
   // golden ratio (Cranley-Patterson), so every pixel sees a new offset each frame.
   const double f = static_cast<double>(settings.frame);
@@ -308,12 +251,9 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   eye.set("u_jitter_shift", static_cast<float>(f * 0.6180339887498949 - std::floor(f * 0.6180339887498949)));
   eye.set("u_jitter_on", settings.jitter ? 1.0f : 0.0f);
   if (underlay) {
-    eye.set("u_scene_distance", 3);
     eye.set("u_fog_sigma_t", scene ? static_cast<float>(scene->medium.extinction_per_m) : 0.0f);
   }
   lp.set("u_view_proj", to_float(lf.world_to_clip));
-  lp.set("u_density", 0);
-  s.blur_program.set("u_previous", 1);
   if (blur) {
     // Kniss's cone: the light spreads by radius (slab along the light) tan(cone) per slice; a
     // disk of radius R has variance R^2 / 4 per axis, which the 5-tap kernel reproduces.
@@ -328,21 +268,26 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     s.blur_program.set("u_weight", weight);
   }
 
-  // Per-cloud uniforms, set when the cloud changes.
-  auto bind_cloud = [&](std::size_t j) {
+  // Every cloud's block for this frame (its optics, and what depends on the eye and the slabs);
+  // a draw binds its cloud's range and density texture when the cloud changes.
+  std::vector<CloudBlock> blocks(n_clouds);
+  for (std::size_t j = 0; j < n_clouds; ++j) {
     const CloudVolume& c = s.clouds[j];
     const VolumeTexture& t = s.textures[j];
-    const float sigma_t = static_cast<float>(c.optics.extinction_per_m);
-    eye.set("u_world_to_texture", to_float(t.world_to_texture));
-    eye.set("u_tc_eye", glm::vec3(t.world_to_texture * glm::dvec4(camera.eye, 1.0)));
-    eye.set("u_sigma_t", sigma_t);
-    eye.set("u_albedo", to_float(c.optics.albedo));
-    eye.set("u_ambient", settings.ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f));
-    eye.set("u_phase", glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
-                                 static_cast<float>(c.optics.phase.forward_weight)));
-    lp.set("u_world_to_texture", to_float(t.world_to_texture));
-    lp.set("u_tau_per_density", static_cast<float>(c.optics.extinction_per_m * light_slab_m));
-    glBindTextureUnit(0, t.texture.id());
+    CloudBlock& b = blocks[j];
+    b.world_to_texture = to_float(t.world_to_texture);
+    b.tc_eye = glm::vec3(t.world_to_texture * glm::dvec4(camera.eye, 1.0));
+    b.sigma_t = static_cast<float>(c.optics.extinction_per_m);
+    b.albedo = to_float(c.optics.albedo);
+    b.ambient = settings.ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f);
+    b.phase = glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
+                        static_cast<float>(c.optics.phase.forward_weight));
+    b.tau_per_density = static_cast<float>(c.optics.extinction_per_m * light_slab_m);
+  }
+  s.cloud_ubo.update(blocks);
+  auto bind_cloud = [&](std::size_t j) {
+    s.cloud_ubo.bind(contract::BLOCK_CLOUD, j);
+    glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, s.textures[j].texture.id());
   };
   std::size_t bound = n_clouds;  // none yet
   auto draw_slice = [&](int k) {
@@ -361,15 +306,15 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   glBlendEquation(GL_FUNC_ADD);
   const float zero[4] = {0, 0, 0, 0};
   int cur = 0;
-  timer.time(PassTimer::Light, [&] {
+  timer.time(kLight, [&] {
     glClearNamedFramebufferfv(s.light_fbo[0].id(), GL_COLOR, 0, zero);
   });
-  timer.time(PassTimer::Eye, [&] {
+  timer.time(kEye, [&] {
     glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 0, zero);
     if (underlay) glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 1, zero);
   });
-  glBindTextureUnit(2, s.jitter.id());
-  if (underlay) glBindTextureUnit(3, underlay->distance_texture);
+  glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
+  if (underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());
   int drawn = 0;
   for (int k = 0; k < planes.count; ++k) {
@@ -377,7 +322,7 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     for (std::size_t j = 0; j < n_clouds; ++j) any = any || mesh.count[static_cast<std::size_t>(k) * n_clouds + j] > 0;
     if (any) {
       ++drawn;
-      timer.time(PassTimer::Eye, [&] {
+      timer.time(kEye, [&] {
         glBindFramebuffer(GL_FRAMEBUFFER, s.eye_fbo.id());
         glViewport(0, 0, w, h);
         glEnable(GL_BLEND);
@@ -386,20 +331,20 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
         } else {
           glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over"
         }
-        glBindTextureUnit(1, s.light_tex[cur].id());
+        glBindTextureUnit(contract::UNIT_LIGHT_BUFFER, s.light_tex[cur].id());
         eye.use();
         draw_slice(k);
       });
     }
     if (k + 1 == planes.count) break;  // nothing reads the light buffer after the last slice
     if (!any && !blur) continue;
-    timer.time(PassTimer::Light, [&] {
+    timer.time(kLight, [&] {
       glViewport(0, 0, s.light_res, s.light_res);
       if (blur) {  // next = blur(previous) + this slice
         const int next = 1 - cur;
         glBindFramebuffer(GL_FRAMEBUFFER, s.light_fbo[next].id());
         glDisable(GL_BLEND);
-        glBindTextureUnit(1, s.light_tex[cur].id());
+        glBindTextureUnit(contract::UNIT_LIGHT_BUFFER, s.light_tex[cur].id());
         s.blur_program.use();
         draw_fullscreen_triangle(s.empty_vao);
         glBindVertexArray(s.mesh_vao.id());
@@ -419,41 +364,19 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   Image img;
   if (underlay) {
     const ShaderProgram& cp = *s.composite_program;
-    const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
-    cp.set("u_eye", to_float(camera.eye));
-    cp.set("u_forward", to_float(frame.forward));
-    cp.set("u_right_scaled", to_float(frame.right * tan_half));
-    cp.set("u_up_scaled", to_float(frame.up * (tan_half * h / w)));
-    cp.set("u_viewport", glm::vec2(static_cast<float>(w), static_cast<float>(h)));
-    cp.set("u_scene_color", 4);
-    cp.set("u_cloud_color", 5);
-    cp.set("u_cloud_distance", 6);
     const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
     cp.set("u_sigma_t", static_cast<float>(fog.extinction_per_m));
     cp.set("u_sigma_s", static_cast<float>(fog.scattering_per_m()));
-    cp.set("u_phase_kind", static_cast<int>(fog.phase.kind));
+    cp.set("u_phase_kind", phase_code(fog.phase.kind));
     cp.set("u_phase_g", static_cast<float>(fog.phase.g));
-    const int n_point = scene ? static_cast<int>(scene->point_lights.size()) : 0;
-    std::array<glm::vec3, kMaxPointLights> pos{}, inten{};
-    for (int i = 0; i < n_point; ++i) {
-      pos[static_cast<std::size_t>(i)] = to_float(scene->point_lights[static_cast<std::size_t>(i)].position_m);
-      inten[static_cast<std::size_t>(i)] = to_float(scene->point_lights[static_cast<std::size_t>(i)].intensity_w_sr);
-    }
-    cp.set("u_num_point_lights", n_point);
-    if (GLint loc = cp.uniform_location("u_point_pos[0]"); loc >= 0)
-      glProgramUniform3fv(cp.id(), loc, kMaxPointLights, &pos[0].x);
-    if (GLint loc = cp.uniform_location("u_point_intensity[0]"); loc >= 0)
-      glProgramUniform3fv(cp.id(), loc, kMaxPointLights, &inten[0].x);
-    const bool sun = scene && scene->sun;
-    cp.set("u_has_sun", sun ? 1 : 0);
-    cp.set("u_sun_to", sun ? to_float(glm::normalize(scene->sun->direction_to_sun)) : glm::vec3(0, 1, 0));
-    cp.set("u_sun_irradiance", sun ? to_float(scene->sun->irradiance_w_m2) : glm::vec3(0.0f));
-    timer.time(PassTimer::Composite, [&] {
+    s.lights_ubo.update(scene ? lights_block(*scene) : no_lights_block());
+    s.lights_ubo.bind(contract::BLOCK_LIGHTS);
+    timer.time(kComposite, [&] {
       glBindFramebuffer(GL_FRAMEBUFFER, s.out_fbo.id());
       glViewport(0, 0, w, h);
-      glBindTextureUnit(4, underlay->color_texture);
-      glBindTextureUnit(5, s.eye_color.id());
-      glBindTextureUnit(6, s.eye_distance.id());
+      glBindTextureUnit(contract::UNIT_SCENE_COLOR, underlay->color_texture);
+      glBindTextureUnit(contract::UNIT_CLOUD_COLOR, s.eye_color.id());
+      glBindTextureUnit(contract::UNIT_CLOUD_DISTANCE, s.eye_distance.id());
       cp.use();
       draw_fullscreen_triangle(s.empty_vao);
     });
@@ -484,7 +407,12 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   img.metadata["slice_axis"] = ax.str();
   if (stats) {
     CloudFrameStats st;
-    timer.finish(st);
+    timer.finish();
+    st.light_ms = timer.ms(kLight);
+    st.slices_ms = timer.ms(kEye);
+    st.composite_ms = timer.ms(kComposite);
+    st.total_ms = timer.total_ms();
+    st.timing = timer.method() + " per pass";
     st.slices_drawn = drawn;
     st.front_to_back = axis.front_to_back;
     st.half_angle_rad = axis.half_angle_rad;

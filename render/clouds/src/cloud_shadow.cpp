@@ -6,12 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
+#include "nimbus/render/gl/to_float.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
 
 namespace nimbus::render {
 namespace {
-
-glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
 
 // An orthonormal pair perpendicular to unit d.
 void basis(const glm::dvec3& d, glm::dvec3& u, glm::dvec3& v) {
@@ -94,9 +95,16 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
 
   const ShaderProgram& p = program_;
   p.use();
-  glBindImageTexture(0, map.optical_depth.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-  glBindImageTexture(1, map.depth_range.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
-  p.set("u_density", 0);
+  glBindImageTexture(contract::IMAGE_CLOUD_TAU, map.optical_depth.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+  glBindImageTexture(contract::IMAGE_CLOUD_RANGE, map.depth_range.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+  // Each cloud's block: its density texture's map and extinction (the rest is the slicer's).
+  std::vector<CloudBlock> blocks(clouds.size());
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    blocks[i].world_to_texture = glm::mat4(textures[i]->world_to_texture);
+    blocks[i].sigma_t = static_cast<float>(clouds[i].optics.extinction_per_m);
+  }
+  UniformArray<CloudBlock> cloud_ubo;
+  cloud_ubo.update(blocks);
   p.set("u_origin", to_float(origin));
   p.set("u_axis_x", to_float(axis_x));
   p.set("u_axis_y", to_float(axis_y));
@@ -116,12 +124,11 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
     }
     const double step = 0.5 * voxel_size_m(c);
     const int steps = std::max(1, static_cast<int>(std::ceil((d1 - d0) / step)));
-    p.set("u_world_to_texture", glm::mat4(textures[i]->world_to_texture));
+    cloud_ubo.bind(contract::BLOCK_CLOUD, i);
     p.set("u_depth0", static_cast<float>(d0));
     p.set("u_step", static_cast<float>((d1 - d0) / steps));
     p.set("u_steps", steps);
-    p.set("u_sigma_t", static_cast<float>(c.optics.extinction_per_m));
-    glBindTextureUnit(0, textures[i]->texture.id());
+    glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, textures[i]->texture.id());
     glDispatchCompute(groups, groups, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }

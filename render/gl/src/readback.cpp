@@ -1,8 +1,7 @@
-// Pixel readback (framebuffers and textures, flipped to row 0 at the top) and GPU timing.
+// Pixel readback (framebuffers and textures, flipped to row 0 at the top).
 #include "nimbus/render/gl/readback.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <stdexcept>
 
 namespace nimbus::render {
@@ -97,34 +96,5 @@ std::vector<float> read_red(const GlTexture& texture, int width, int height, int
 std::vector<float> read_depth_texture(GLuint texture, int width, int height) {
   return read_texture(texture, width, height, 0, GL_DEPTH_COMPONENT, 1);
 }
-
-GpuTiming gpu_time(const std::function<void()>& draw) {
-  GLint bits = 0;
-  glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
-  glFinish();  // earlier work is not ours to time
-  if (bits > 0) {
-    GlQuery query = make_query(GL_TIME_ELAPSED);
-    glBeginQuery(GL_TIME_ELAPSED, query.id());
-    try {
-      draw();
-    } catch (...) {
-      glEndQuery(GL_TIME_ELAPSED);  // a query left open would fail the next one
-      throw;
-    }
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);  // waits for the result
-    check_gl("gpu_time");
-    return {static_cast<double>(ns) * 1e-6, "GL_TIME_ELAPSED query"};
-  }
-  const auto t0 = std::chrono::steady_clock::now();
-  draw();
-  glFinish();
-  const auto t1 = std::chrono::steady_clock::now();
-  check_gl("gpu_time");
-  return {std::chrono::duration<double, std::milli>(t1 - t0).count(), "glFinish + steady_clock"};
-}
-
-double gpu_time_ms(const std::function<void()>& draw) { return gpu_time(draw).ms; }
 
 }  // namespace nimbus::render

@@ -59,6 +59,20 @@ std::string join_paths(const std::vector<std::string>& names) {
   return out;
 }
 
+// The names of the uniforms declared outside blocks in an expanded stage: "uniform TYPE NAME;"
+// and "uniform TYPE NAME[N];", layout qualifiers and precision allowed, comments ignored.
+void collect_uniform_names(const std::string& text, std::set<std::string>& names) {
+  static const std::regex decl_re(
+      R"(\buniform\s+(?:(?:lowp|mediump|highp)\s+)?[A-Za-z_]\w*\s+([A-Za-z_]\w*)\s*(?:\[[^\]]*\])?\s*;)");
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto comment = line.find("//");
+    if (comment != std::string::npos) line.resize(comment);
+    for (std::sregex_iterator it(line.begin(), line.end(), decl_re), end; it != end; ++it) names.insert((*it)[1].str());
+  }
+}
+
 }  // namespace
 
 GLenum shader_stage(const std::string& name) {
@@ -119,7 +133,10 @@ ShaderProgram::ShaderProgram(std::vector<std::string> stage_names, const std::st
     for (GLuint s : shaders) glDeleteShader(s);
   };
   try {
-    for (const auto& n : stage_names_) shaders.push_back(compile_shader_stage(n, defines, extra_files));
+    for (const auto& n : stage_names_) {
+      shaders.push_back(compile_shader_stage(n, defines, extra_files));
+      collect_uniform_names(expand_shader(n, defines, extra_files).text, declared_);
+    }
   } catch (...) {
     delete_shaders();
     throw;
@@ -140,13 +157,16 @@ ShaderProgram::ShaderProgram(std::vector<std::string> stage_names, const std::st
 }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept
-    : id_(std::exchange(other.id_, 0)), stage_names_(std::move(other.stage_names_)) {}
+    : id_(std::exchange(other.id_, 0)),
+      stage_names_(std::move(other.stage_names_)),
+      declared_(std::move(other.declared_)) {}
 
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
   if (this != &other) {
     if (id_ != 0) glDeleteProgram(id_);
     id_ = std::exchange(other.id_, 0);
     stage_names_ = std::move(other.stage_names_);
+    declared_ = std::move(other.declared_);
   }
   return *this;
 }
@@ -159,26 +179,42 @@ void ShaderProgram::use() const { glUseProgram(id_); }
 
 GLint ShaderProgram::uniform_location(const char* name) const { return glGetUniformLocation(id_, name); }
 
+bool ShaderProgram::declares(const std::string& name) const {
+  return declared_.count(name.substr(0, name.find('['))) > 0;
+}
+
+GLint ShaderProgram::checked_location(const char* name) const {
+  const GLint loc = uniform_location(name);
+  if (loc < 0 && !declares(name))
+    throw UniformError(join_paths(stage_names_) + ": no stage declares uniform '" + name +
+                       "' (misspelt, or set on the wrong program)");
+  return loc;
+}
+
 void ShaderProgram::set(const char* name, int value) const {
-  glProgramUniform1i(id_, uniform_location(name), value);
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform1i(id_, loc, value);
+}
+void ShaderProgram::set(const char* name, unsigned value) const {
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform1ui(id_, loc, value);
 }
 void ShaderProgram::set(const char* name, float value) const {
-  glProgramUniform1f(id_, uniform_location(name), value);
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform1f(id_, loc, value);
 }
 void ShaderProgram::set(const char* name, const glm::vec2& value) const {
-  glProgramUniform2fv(id_, uniform_location(name), 1, glm::value_ptr(value));
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform2fv(id_, loc, 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* name, const glm::vec3& value) const {
-  glProgramUniform3fv(id_, uniform_location(name), 1, glm::value_ptr(value));
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform3fv(id_, loc, 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* name, const glm::vec4& value) const {
-  glProgramUniform4fv(id_, uniform_location(name), 1, glm::value_ptr(value));
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform4fv(id_, loc, 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* name, const glm::ivec2& value) const {
-  glProgramUniform2iv(id_, uniform_location(name), 1, glm::value_ptr(value));
+  if (const GLint loc = checked_location(name); loc >= 0) glProgramUniform2iv(id_, loc, 1, glm::value_ptr(value));
 }
 void ShaderProgram::set(const char* name, const glm::mat4& value) const {
-  glProgramUniformMatrix4fv(id_, uniform_location(name), 1, GL_FALSE, glm::value_ptr(value));
+  if (const GLint loc = checked_location(name); loc >= 0)
+    glProgramUniformMatrix4fv(id_, loc, 1, GL_FALSE, glm::value_ptr(value));
 }
 
 }  // namespace nimbus::render

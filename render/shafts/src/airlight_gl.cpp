@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "nimbus/render/shafts/airlight_gl.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
@@ -21,21 +22,6 @@ struct GpuQuery {  // std430 layout of `Query` in airlight_eval.comp.glsl
   float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma, march_length, unused;
 };
 static_assert(sizeof(GpuQuery) == 32);
-
-// PHASE_* of shaders/lib/phase.glsl.
-int phase_kind_index(PhaseKind kind) {
-  switch (kind) {
-    case PhaseKind::Isotropic:
-      return 0;
-    case PhaseKind::HenyeyGreenstein:
-      return 1;
-    case PhaseKind::Schlick:
-      return 2;
-    case PhaseKind::Rayleigh:
-      return 3;
-  }
-  return 0;
-}
 
 constexpr int kGroupSize = 64;         // local_size_x
 constexpr int kMaxGroupsPerCall = 16384;
@@ -65,26 +51,22 @@ std::vector<double> evaluate_airlight_gl(const std::vector<AirlightQuery>& queri
   GlBuffer in = make_buffer(static_cast<GLsizeiptr>(input.size() * sizeof(GpuQuery)), input.data(), 0);
   GlBuffer out = make_buffer(static_cast<GLsizeiptr>(input.size() * sizeof(float)), nullptr, 0);
   GlTexture table_texture;
-  int method_index = 0;
   if (method.kind == AirlightMethod::Table) {
-    method_index = 1;
     const FTable table(method.n);
     TextureParams params;
     params.min_filter = params.mag_filter = GL_NEAREST;  // the shader interpolates itself
     table_texture = make_texture_2d(GL_R32F, method.n, method.n, params);
     glTextureSubImage2D(table_texture.id(), 0, 0, 0, method.n, method.n, GL_RED, GL_FLOAT, table.data());
-    glBindTextureUnit(0, table_texture.id());
-  } else if (method.kind == AirlightMethod::RayMarch) {
-    method_index = 2;
+    glBindTextureUnit(contract::UNIT_F_TABLE, table_texture.id());
   }
   program.use();
-  program.set("u_method", method_index);
+  program.set("u_method", airlight_eval_code(method.kind));
   program.set("u_n", method.n);
   program.set("u_count", count);
-  program.set("u_phase_kind", phase_kind_index(phase.kind));
+  program.set("u_phase_kind", phase_code(phase.kind));
   program.set("u_phase_g", float(phase.g));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_AIRLIGHT_QUERIES, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_AIRLIGHT_RESULTS, out.id());
   const int per_call = kGroupSize * kMaxGroupsPerCall;
   for (int offset = 0; offset < count; offset += per_call) {
     const int n = std::min(per_call, count - offset);

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <cmath>
 #include <map>
@@ -18,8 +17,12 @@
 
 #include "nimbus/render/core/airlight.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/to_float.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
 #include "nimbus/render/core/intersect.hpp"
 #include "nimbus/render/core/scene_mesh.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
@@ -28,7 +31,6 @@
 namespace nimbus::render {
 namespace {
 
-constexpr int kMaxPointLights = 4;
 constexpr float kFarDistanceM = 1.0e5f;  // what a shadow map stores where nothing occludes
 
 // A mesh uploaded for drawing with shaders/lib/scene_vertex.glsl.
@@ -64,9 +66,6 @@ void draw(const GpuMesh& m) {
   glDrawElements(GL_TRIANGLES, m.count, GL_UNSIGNED_INT, nullptr);
 }
 
-glm::mat4 to_float(const glm::dmat4& m) { return glm::mat4(m); }
-glm::vec3 to_float(const glm::dvec3& v) { return glm::vec3(v); }
-
 // GL 4.5 table 8.19 face order +X, -X, +Y, -Y, +Z, -Z, with the "up" that makes a face rendered
 // through a framebuffer match cube-map sampling.
 const std::array<glm::dvec3, 6> kFaceDir = {glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0),
@@ -74,16 +73,9 @@ const std::array<glm::dvec3, 6> kFaceDir = {glm::dvec3(1, 0, 0), glm::dvec3(-1, 
 const std::array<glm::dvec3, 6> kFaceUp = {glm::dvec3(0, -1, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1),
                                            glm::dvec3(0, 0, -1), glm::dvec3(0, -1, 0), glm::dvec3(0, -1, 0)};
 
-// Wall time of GL work, glFinish before and after: the same clock on llvmpipe and on a GPU
-// (llvmpipe's timer queries are unreliable across framebuffer changes).
-template <class F>
-double timed_ms(F&& f) {
-  glFinish();
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  glFinish();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+// The frame's passes as GpuTimer slots. Shafts are timed with the wall clock (glFinish around
+// steady_clock) on every device, so their times compare across devices as the benchmark reports.
+enum Pass { kShadowMaps = 0, kSurfaces, kShadowVolume, kShafts, kPassCount };
 
 }  // namespace
 
@@ -93,6 +85,8 @@ struct ShaftRenderer::Impl {
   GpuMesh occluders, ground;
   std::vector<GpuMesh> bulbs;
   GlVertexArray empty_vao;
+  UniformBuffer<CameraBlock> camera_block;
+  UniformBuffer<LightsBlock> lights_block;
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
   std::map<bool, ShaderProgram> surface_programs;  // by whether clouds cast shadows (CLOUD_SHADOW)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};
@@ -139,6 +133,7 @@ struct ShaftRenderer::Impl {
   double max_skirt_distance_m = 1.0e4;
   void build_skirts();
   void bind_lights(const ShaderProgram& p) const;
+  void bind_sky(const ShaderProgram& p) const;
   const ShaderProgram& shaft_program(const ShaftMethod& m);
 };
 
@@ -267,12 +262,9 @@ void ShaftRenderer::Impl::build_skirts() {
   b.use();
   b.set("u_rel_threshold", static_cast<float>(settings.silhouette_jump));
   b.set("u_max_distance", static_cast<float>(max_skirt_distance_m));
-  if (GLint loc = b.uniform_location("u_max_quads"); loc >= 0)
-    glProgramUniform1ui(b.id(), loc, static_cast<GLuint>(max_quads));
-  b.set("u_cube", 1);
-  b.set("u_map", 2);
-  if (point_maps) glBindTextureUnit(1, point_maps.id());
-  if (sun_map) glBindTextureUnit(2, sun_map.id());
+  b.set("u_max_quads", static_cast<unsigned>(max_quads));
+  if (point_maps) glBindTextureUnit(contract::UNIT_POINT_SHADOW, point_maps.id());
+  if (sun_map) glBindTextureUnit(contract::UNIT_SUN_SHADOW, sun_map.id());
   skirts.clear();
   for (int layer = 0; layer < layers; ++layer) {
     const bool is_sun = layer >= n_point;
@@ -292,8 +284,8 @@ void ShaftRenderer::Impl::build_skirts() {
       b.set("u_origin", to_float(scene.point_lights[static_cast<std::size_t>(layer)].position_m));
     }
     b.set("u_res", res);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, scratch.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_SKIRT_QUADS, scratch.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_SKIRT_COUNTER, counter.id());
     const GLuint groups = static_cast<GLuint>((res + 7) / 8);
     glDispatchCompute(groups, groups, is_sun ? 1u : 6u);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -318,22 +310,10 @@ void ShaftRenderer::Impl::build_skirts() {
   skirts_ready = true;
 }
 
-// Uniforms of shaders/lib/lights.glsl; texture units 1 (point maps) and 2 (sun map).
+// The lights (LightsBlock) and the uniforms of shaders/lib/lights.glsl: the shadow maps on
+// UNIT_POINT_SHADOW and UNIT_SUN_SHADOW, and the clouds' shadow.
 void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
-  p.set("u_num_point_lights", n_point);
-  std::array<glm::vec3, kMaxPointLights> pos{}, inten{};
-  for (int i = 0; i < n_point; ++i) {
-    pos[static_cast<std::size_t>(i)] = to_float(scene.point_lights[static_cast<std::size_t>(i)].position_m);
-    inten[static_cast<std::size_t>(i)] = to_float(scene.point_lights[static_cast<std::size_t>(i)].intensity_w_sr);
-  }
-  if (GLint loc = p.uniform_location("u_light_pos[0]"); loc >= 0) glProgramUniform3fv(p.id(), loc, kMaxPointLights, &pos[0].x);
-  if (GLint loc = p.uniform_location("u_light_intensity[0]"); loc >= 0)
-    glProgramUniform3fv(p.id(), loc, kMaxPointLights, &inten[0].x);
-  p.set("u_has_sun", scene.sun ? 1 : 0);
-  if (scene.sun) {
-    p.set("u_sun_to", to_float(glm::normalize(scene.sun->direction_to_sun)));
-    p.set("u_sun_irradiance", to_float(scene.sun->irradiance_w_m2));
-  }
+  lights_block.bind(contract::BLOCK_LIGHTS);
   p.set("u_sun_origin", to_float(sun_origin));
   p.set("u_sun_axis_x", to_float(sun_axis_x));
   p.set("u_sun_axis_y", to_float(sun_axis_y));
@@ -341,11 +321,14 @@ void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
   p.set("u_sun_shadow_bias", static_cast<float>(1.0e-4 * glm::length(sun_axis_x)));
   p.set("u_point_texel_angle", 2.0f / static_cast<float>(settings.point_shadow_res));
   p.set("u_sun_texel_m", static_cast<float>(sun_texel_m));
-  p.set("u_point_shadow", 1);
-  p.set("u_sun_shadow", 2);
-  if (point_maps) glBindTextureUnit(1, point_maps.id());
-  if (sun_map) glBindTextureUnit(2, sun_map.id());
-  bind_cloud_shadow(p.id(), cloud_shadow, 9);
+  if (point_maps) glBindTextureUnit(contract::UNIT_POINT_SHADOW, point_maps.id());
+  if (sun_map) glBindTextureUnit(contract::UNIT_SUN_SHADOW, sun_map.id());
+  bind_cloud_shadow(p, cloud_shadow);
+}
+
+// The shaft pass's view of the world's end: the sky (shaders/lib/sky.glsl) and the height above
+// which nothing shadows the sun.
+void ShaftRenderer::Impl::bind_sky(const ShaderProgram& p) const {
   p.set("u_has_sky", scene.sky ? 1 : 0);
   if (scene.sky) {
     p.set("u_sky_zenith", to_float(scene.sky->zenith_radiance_w_sr_m2));
@@ -360,7 +343,7 @@ void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
 }
 
 const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
-  const int method = m.kind == ShaftMethod::Kind::RayMarch ? 0 : m.kind == ShaftMethod::Kind::Analytic ? 1 : 2;
+  const int method = shaft_method_code(m.kind);
   const bool table = m.kind == ShaftMethod::Kind::Analytic && m.airlight.kind == AirlightMethod::Table;
   const std::string defines = "#define METHOD " + std::to_string(method) + "\n#define STEPS " +
                               std::to_string(std::max(m.steps, 1)) + "\n#define AIRLIGHT_TABLE " +
@@ -374,8 +357,9 @@ const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
 ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
     : impl_(std::make_unique<Impl>(scene, settings)) {
   validate(scene);
-  if (scene.point_lights.size() > static_cast<std::size_t>(kMaxPointLights))
-    throw std::invalid_argument("scene '" + scene.name + "': the GPU renderer takes at most 4 point lights, got " +
+  if (scene.point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+    throw std::invalid_argument("scene '" + scene.name + "': the GPU renderer takes at most " +
+                                std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
                                 std::to_string(scene.point_lights.size()));
   if (settings.point_shadow_res < 16 || settings.point_shadow_res > 8192)
     throw std::invalid_argument("point_shadow_res must be in [16, 8192]");
@@ -384,6 +368,7 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   const double sigma_t = scene.medium.extinction_per_m;
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
+  impl_->lights_block.update(lights_block(scene));
   const SceneTracer tracer(scene);
   for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
     glm::dvec3 lo, hi;
@@ -409,7 +394,8 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
                                 to_string(s.scene.medium.phase) + " (use analytic:stable)");
   ShaftFrameStats st;
   const int w = camera.width, h = camera.height;
-  if (!s.shadow_maps_ready) st.shadow_maps_ms = timed_ms([&] { s.build_shadow_maps(); });
+  GpuTimer timer(kPassCount, stats != nullptr, GpuTimer::Clock::Wall);
+  if (!s.shadow_maps_ready) timer.time(kShadowMaps, [&] { s.build_shadow_maps(); });
 
   // Surface pass.
   if (s.target_w != w || s.target_h != h) {
@@ -428,19 +414,13 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
   const GlTexture& radiance = s.radiance;
   const GlTexture& distance = s.distance;
   const GlFramebuffer& surface_fbo = s.surface_fbo;
-  const glm::mat4 view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
-  const CameraFrame frame = camera_frame(camera);
-  const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
-  auto bind_camera = [&](const ShaderProgram& p) {
-    p.set("u_eye", to_float(camera.eye));
-    p.set("u_forward", to_float(frame.forward));
-    p.set("u_right_scaled", to_float(frame.right * tan_half));
-    p.set("u_up_scaled", to_float(frame.up * (tan_half * h / w)));
-    p.set("u_viewport", glm::vec2(static_cast<float>(w), static_cast<float>(h)));
-  };
+  const CameraBlock camera_values = camera_block(camera);
+  const glm::mat4 view_proj = camera_values.view_proj;
+  s.camera_block.update(camera_values);
+  s.camera_block.bind(contract::BLOCK_CAMERA);
   const float sigma_t = static_cast<float>(s.scene.medium.extinction_per_m);
   const float sigma_s = static_cast<float>(s.scene.medium.scattering_per_m());
-  st.surfaces_ms = timed_ms([&] {
+  timer.time(kSurfaces, [&] {
     glBindFramebuffer(GL_FRAMEBUFFER, surface_fbo.id());
     glViewport(0, 0, w, h);
     const float zero[4] = {0, 0, 0, 0};
@@ -463,7 +443,6 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     p.use();
     p.set("u_view_proj", view_proj);
     p.set("u_sigma_t", sigma_t);
-    bind_camera(p);
     s.bind_lights(p);
     p.set("u_emissive", 0);
     p.set("u_normal_offset_texels", 0.0f);  // the ground is in no shadow map: no acne to avoid
@@ -492,8 +471,8 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
       glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
-    if (!s.skirts_ready) st.shadow_maps_ms += timed_ms([&] { s.build_skirts(); });
-    st.shadow_volume_ms = timed_ms([&] {
+    if (!s.skirts_ready) timer.time(kShadowMaps, [&] { s.build_skirts(); });
+    timer.time(kShadowVolume, [&] {
       for (int layer = 0; layer < layers; ++layer) {
         const Impl::Skirts& sk = s.skirts[static_cast<std::size_t>(layer)];
         const std::size_t n_quads = sk.count;
@@ -526,10 +505,7 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
         glBlendFunci(1, GL_ONE, GL_ONE);
         const ShaderProgram& iv = s.skirt_interval_program;
         iv.use();
-        iv.set("u_view_proj", view_proj);
-        iv.set("u_eye", to_float(camera.eye));
-        iv.set("u_surface_distance", 0);
-        glBindTextureUnit(0, distance.id());
+        glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, distance.id());
         glBindVertexArray(sk.vao.id());
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(n_quads * 6));
         glDisablei(GL_BLEND, 0);
@@ -549,32 +525,27 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
   }
   const GlFramebuffer& out_fbo = s.out_fbo;
   const ShaderProgram& p = s.shaft_program(method);
-  st.shafts_ms = timed_ms([&] {
+  timer.time(kShafts, [&] {
     glBindFramebuffer(GL_FRAMEBUFFER, out_fbo.id());
     glViewport(0, 0, w, h);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     p.use();
-    bind_camera(p);
     s.bind_lights(p);
+    s.bind_sky(p);
     p.set("u_sigma_t", sigma_t);
     p.set("u_sigma_s", sigma_s);
-    p.set("u_phase_kind", static_cast<int>(s.scene.medium.phase.kind));
+    p.set("u_phase_kind", phase_code(s.scene.medium.phase.kind));
     p.set("u_phase_g", static_cast<float>(s.scene.medium.phase.g));
     p.set("u_march_cutoff_m",
           static_cast<float>(sigma_t > 0 ? std::min(s.settings.march_cutoff_optical / sigma_t, camera.far_m) : camera.far_m));
-    p.set("u_jitter_mode", static_cast<int>(method.jitter));
-    p.set("u_surface_radiance", 3);
-    p.set("u_surface_distance", 4);
-    p.set("u_jitter", 5);
-    glBindTextureUnit(3, radiance.id());
-    glBindTextureUnit(4, distance.id());
-    glBindTextureUnit(5, s.jitter_tex.id());
+    p.set("u_jitter_mode", jitter_code(method.jitter));
+    glBindTextureUnit(contract::UNIT_SURFACE_RADIANCE, radiance.id());
+    glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, distance.id());
+    glBindTextureUnit(contract::UNIT_JITTER, s.jitter_tex.id());
     if (method.kind == ShaftMethod::Kind::ShadowVolume) {
-      p.set("u_sv_near", 6);
-      p.set("u_sv_far", 7);
-      glBindTextureUnit(6, sv_near.id());
-      glBindTextureUnit(7, sv_far.id());
+      glBindTextureUnit(contract::UNIT_SV_NEAR, sv_near.id());
+      glBindTextureUnit(contract::UNIT_SV_FAR, sv_far.id());
     }
     if (method.kind == ShaftMethod::Kind::Analytic && method.airlight.kind == AirlightMethod::Table) {
       auto it = s.f_tables.find(method.airlight.n);
@@ -585,16 +556,20 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
         glTextureSubImage2D(t.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, table.data());
         it = s.f_tables.emplace(n, std::move(t)).first;
       }
-      p.set("u_F_table", 8);
       p.set("u_F_size", method.airlight.n);
-      glBindTextureUnit(8, it->second.id());
+      glBindTextureUnit(contract::UNIT_F_TABLE, it->second.id());
     }
     draw_fullscreen_triangle(s.empty_vao);
     check_gl("shaft pass");
   });
   Image img = read_rgba(out_fbo, w, h);
-  st.total_ms = st.shadow_maps_ms + st.surfaces_ms + st.shadow_volume_ms + st.shafts_ms;
-  st.timing = "glFinish + steady_clock";
+  timer.finish();
+  st.shadow_maps_ms = timer.ms(kShadowMaps);
+  st.surfaces_ms = timer.ms(kSurfaces);
+  st.shadow_volume_ms = timer.ms(kShadowVolume);
+  st.shafts_ms = timer.ms(kShafts);
+  st.total_ms = timer.total_ms();
+  st.timing = timer.method();
   for (float& v : img.rgba)
     if (!std::isfinite(v)) throw std::runtime_error("GPU renderer produced a non-finite pixel value (method " + to_string(method) + ")");
   describe_frame(img, s.scene, camera, to_string(method));

@@ -22,8 +22,9 @@ struct CloudShadowMap {
   double top_y_m = -1e300;  // highest point of the clouds' support (world y): no cloud shadow above it
 };
 
-// Binds `map` for shaders that include lib/cloud_shadow.glsl, on texture units `unit` and
-// `unit + 1` of `program`; a null map binds "no clouds" (transmittance 1 everywhere).
-void bind_cloud_shadow(GLuint program, const CloudShadowMap* map, int unit);
+// Binds `map` for a program built with lib/cloud_shadow.glsl and CLOUD_SHADOW 1 (its matrix, and
+// its textures on UNIT_CLOUD_TAU and UNIT_CLOUD_RANGE). A null map binds nothing: programs built
+// with CLOUD_SHADOW 0 see no clouds (transmittance 1 everywhere).
+void bind_cloud_shadow(const ShaderProgram& program, const CloudShadowMap* map);
 
 }  // namespace nimbus::render

@@ -1,9 +1,7 @@
-// Reading results back from the GPU (pixels as an Image or a float array, row 0 at the top) and
-// timing GPU work for the benchmarks.
+// Reading results back from the GPU: pixels as an Image or a float array, row 0 at the top.
 #pragma once
 #include <epoxy/gl.h>
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,15 +27,5 @@ std::vector<float> read_red_texture(GLuint texture, int width, int height, int l
 std::vector<float> read_red(const GlTexture& texture, int width, int height, int level = 0);
 // A depth texture's values in [0, 1], same layout and flip.
 std::vector<float> read_depth_texture(GLuint texture, int width, int height);
-
-struct GpuTiming {
-  double ms = 0.0;
-  std::string method;  // "GL_TIME_ELAPSED query" or "glFinish + steady_clock"
-};
-
-// Runs `draw` once and measures it: GL_TIME_ELAPSED when the context has timer bits, else
-// glFinish before and after around std::chrono::steady_clock. Earlier work is finished first.
-GpuTiming gpu_time(const std::function<void()>& draw);
-double gpu_time_ms(const std::function<void()>& draw);
 
 }  // namespace nimbus::render

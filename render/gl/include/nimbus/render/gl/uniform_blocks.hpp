@@ -1,0 +1,141 @@
+// The shaders' uniform blocks as checked C++ structs (std140, shaders/lib/contract.glsl's
+// BLOCK_* bindings): the camera, the scene's lights and one cloud. Each struct's offsets are
+// static_asserted against the std140 rules here, and tests/gl/test_contract.cpp checks them
+// against the offsets the GL reports for every program that uses the block. Builders fill them
+// from the scene's double-precision values exactly as the shaders expect them.
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/resources.hpp"
+
+namespace nimbus::render {
+
+// lib/camera_ray.glsl: CameraBlock.
+struct CameraBlock {
+  glm::mat4 view_proj{1.0f};  // world -> clip
+  glm::vec3 eye{0.0f};        // metres
+  float near_m = 0.0f;        // the near plane, metres
+  glm::vec3 forward{0.0f};    // unit
+  float pad0 = 0.0f;
+  glm::vec3 right_scaled{0.0f};  // right * tan(fov/2)
+  float pad1 = 0.0f;
+  glm::vec3 up_scaled{0.0f};  // up * tan(fov/2) * height / width
+  float pad2 = 0.0f;
+  glm::vec2 viewport{0.0f};   // width, height in pixels
+  float pad3[2] = {0.0f, 0.0f};
+};
+static_assert(offsetof(CameraBlock, view_proj) == 0 && offsetof(CameraBlock, eye) == 64 &&
+              offsetof(CameraBlock, near_m) == 76 && offsetof(CameraBlock, forward) == 80 &&
+              offsetof(CameraBlock, right_scaled) == 96 && offsetof(CameraBlock, up_scaled) == 112 &&
+              offsetof(CameraBlock, viewport) == 128 && sizeof(CameraBlock) == 144,
+              "CameraBlock must follow std140 as lib/camera_ray.glsl declares it");
+
+// lib/light_list.glsl: LightsBlock.
+struct LightsBlock {
+  glm::vec4 point_position[contract::MAX_POINT_LIGHTS] = {};   // xyz metres
+  glm::vec4 point_intensity[contract::MAX_POINT_LIGHTS] = {};  // rgb W/sr
+  glm::vec3 sun_to{0.0f, 1.0f, 0.0f};                          // unit, towards the sun
+  int point_count = 0;
+  glm::vec3 sun_irradiance{0.0f};                              // W/m^2 per channel
+  int has_sun = 0;
+};
+static_assert(offsetof(LightsBlock, point_position) == 0 &&
+              offsetof(LightsBlock, point_intensity) == 16 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, sun_to) == 32 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, point_count) == 32 * contract::MAX_POINT_LIGHTS + 12 &&
+              offsetof(LightsBlock, sun_irradiance) == 32 * contract::MAX_POINT_LIGHTS + 16 &&
+              offsetof(LightsBlock, has_sun) == 32 * contract::MAX_POINT_LIGHTS + 28 &&
+              sizeof(LightsBlock) == 32 * contract::MAX_POINT_LIGHTS + 32,
+              "LightsBlock must follow std140 as lib/light_list.glsl declares it");
+
+// lib/cloud_block.glsl: CloudBlock, one per cloud.
+struct CloudBlock {
+  glm::mat4 world_to_texture{1.0f};  // world -> density-texture coordinates
+  glm::vec3 albedo{0.0f};            // sigma_s / sigma_t per channel
+  float sigma_t = 0.0f;              // extinction per unit density, per metre
+  glm::vec3 ambient{0.0f};           // sky radiance on the cloud (0 when off)
+  float tau_per_density = 0.0f;      // a slab's optical depth along the light per unit density
+  glm::vec3 phase{0.0f};             // g_forward, g_back, forward weight
+  float pad0 = 0.0f;
+  glm::vec3 tc_eye{0.0f};            // the eye's density-texture coordinates
+  float pad1 = 0.0f;
+};
+static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock, albedo) == 64 &&
+              offsetof(CloudBlock, sigma_t) == 76 && offsetof(CloudBlock, ambient) == 80 &&
+              offsetof(CloudBlock, tau_per_density) == 92 && offsetof(CloudBlock, phase) == 96 &&
+              offsetof(CloudBlock, tc_eye) == 112 && sizeof(CloudBlock) == 128,
+              "CloudBlock must follow std140 as lib/cloud_block.glsl declares it");
+
+// One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
+// test compares with glGetProgramResourceiv(GL_OFFSET).
+struct BlockMember {
+  const char* name;
+  std::size_t offset;
+};
+struct BlockLayout {
+  const char* block;   // the GLSL block name
+  int binding;         // its BLOCK_* binding
+  std::size_t size;    // sizeof the C++ struct
+  std::vector<BlockMember> members;
+};
+// Every block of the contract, for tests.
+std::vector<BlockLayout> uniform_block_layouts();
+
+// The camera as the shaders see it: the matrices and the per-pixel ray basis of camera.hpp.
+CameraBlock camera_block(const Camera& camera);
+// The scene's point lights (at most MAX_POINT_LIGHTS, else std::invalid_argument) and sun.
+LightsBlock lights_block(const Scene& scene);
+// No lights.
+LightsBlock no_lights_block();
+
+// size rounded up to GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT (needs a current GL context).
+std::size_t aligned_stride(std::size_t size);
+
+// A uniform buffer holding one T (needs a current GL context).
+template <class T>
+class UniformBuffer {
+ public:
+  UniformBuffer() : buffer_(make_buffer(sizeof(T), nullptr, GL_DYNAMIC_STORAGE_BIT)) {}
+  void update(const T& value) { glNamedBufferSubData(buffer_.id(), 0, sizeof(T), &value); }
+  void bind(int binding) const { glBindBufferBase(GL_UNIFORM_BUFFER, static_cast<GLuint>(binding), buffer_.id()); }
+
+ private:
+  GlBuffer buffer_;
+};
+
+// A uniform buffer holding several T at the GL's offset alignment, bound one at a time as a
+// range (a block per cloud). Needs a current GL context.
+template <class T>
+class UniformArray {
+ public:
+  void update(const std::vector<T>& values) {
+    stride_ = aligned_stride(sizeof(T));
+    const std::size_t bytes = stride_ * std::max<std::size_t>(values.size(), 1);
+    if (bytes > capacity_) {
+      buffer_ = make_buffer(static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      capacity_ = bytes;
+    }
+    std::vector<unsigned char> packed(bytes, 0);
+    for (std::size_t i = 0; i < values.size(); ++i) std::memcpy(packed.data() + i * stride_, &values[i], sizeof(T));
+    glNamedBufferSubData(buffer_.id(), 0, static_cast<GLsizeiptr>(bytes), packed.data());
+  }
+  void bind(int binding, std::size_t index) const {
+    glBindBufferRange(GL_UNIFORM_BUFFER, static_cast<GLuint>(binding), buffer_.id(),
+                      static_cast<GLintptr>(index * stride_), sizeof(T));
+  }
+
+ private:
+  GlBuffer buffer_;
+  std::size_t capacity_ = 0, stride_ = 0;
+};
+
+}  // namespace nimbus::render

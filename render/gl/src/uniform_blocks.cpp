@@ -1,0 +1,88 @@
+// Uniform blocks filled from the scene (uniform_blocks.hpp).
+#include "nimbus/render/gl/uniform_blocks.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "nimbus/render/gl/to_float.hpp"
+
+namespace nimbus::render {
+
+std::vector<BlockLayout> uniform_block_layouts() {
+  return {
+      {"CameraBlock",
+       contract::BLOCK_CAMERA,
+       sizeof(CameraBlock),
+       {{"CameraBlock.view_proj", offsetof(CameraBlock, view_proj)},
+        {"CameraBlock.eye", offsetof(CameraBlock, eye)},
+        {"CameraBlock.near_m", offsetof(CameraBlock, near_m)},
+        {"CameraBlock.forward", offsetof(CameraBlock, forward)},
+        {"CameraBlock.right_scaled", offsetof(CameraBlock, right_scaled)},
+        {"CameraBlock.up_scaled", offsetof(CameraBlock, up_scaled)},
+        {"CameraBlock.viewport", offsetof(CameraBlock, viewport)}}},
+      {"LightsBlock",
+       contract::BLOCK_LIGHTS,
+       sizeof(LightsBlock),
+       {{"LightsBlock.point_position[0]", offsetof(LightsBlock, point_position)},
+        {"LightsBlock.point_intensity[0]", offsetof(LightsBlock, point_intensity)},
+        {"LightsBlock.sun_to", offsetof(LightsBlock, sun_to)},
+        {"LightsBlock.point_count", offsetof(LightsBlock, point_count)},
+        {"LightsBlock.sun_irradiance", offsetof(LightsBlock, sun_irradiance)},
+        {"LightsBlock.has_sun", offsetof(LightsBlock, has_sun)}}},
+      {"CloudBlock",
+       contract::BLOCK_CLOUD,
+       sizeof(CloudBlock),
+       {{"CloudBlock.world_to_texture", offsetof(CloudBlock, world_to_texture)},
+        {"CloudBlock.albedo", offsetof(CloudBlock, albedo)},
+        {"CloudBlock.sigma_t", offsetof(CloudBlock, sigma_t)},
+        {"CloudBlock.ambient", offsetof(CloudBlock, ambient)},
+        {"CloudBlock.tau_per_density", offsetof(CloudBlock, tau_per_density)},
+        {"CloudBlock.phase", offsetof(CloudBlock, phase)},
+        {"CloudBlock.tc_eye", offsetof(CloudBlock, tc_eye)}}},
+  };
+}
+
+CameraBlock camera_block(const Camera& camera) {
+  CameraBlock b;
+  const CameraFrame frame = camera_frame(camera);
+  const double tan_half = std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
+  b.view_proj = to_float(projection_matrix(camera) * view_matrix(camera));
+  b.eye = to_float(camera.eye);
+  b.near_m = static_cast<float>(camera.near_m);
+  b.forward = to_float(frame.forward);
+  b.right_scaled = to_float(frame.right * tan_half);
+  b.up_scaled = to_float(frame.up * (tan_half * camera.height / camera.width));
+  b.viewport = glm::vec2(static_cast<float>(camera.width), static_cast<float>(camera.height));
+  return b;
+}
+
+LightsBlock no_lights_block() { return LightsBlock{}; }
+
+LightsBlock lights_block(const Scene& scene) {
+  if (scene.point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+    throw std::invalid_argument("scene '" + scene.name + "': the GPU takes at most " +
+                                std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
+                                std::to_string(scene.point_lights.size()));
+  LightsBlock b;
+  b.point_count = static_cast<int>(scene.point_lights.size());
+  for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+    b.point_position[i] = glm::vec4(to_float(scene.point_lights[i].position_m), 1.0f);
+    b.point_intensity[i] = glm::vec4(to_float(scene.point_lights[i].intensity_w_sr), 0.0f);
+  }
+  if (scene.sun) {
+    b.has_sun = 1;
+    b.sun_to = to_float(glm::normalize(scene.sun->direction_to_sun));
+    b.sun_irradiance = to_float(scene.sun->irradiance_w_m2);
+  }
+  return b;
+}
+
+std::size_t aligned_stride(std::size_t size) {
+  GLint align = 0;
+  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &align);
+  const std::size_t a = align > 0 ? static_cast<std::size_t>(align) : 256;
+  return (size + a - 1) / a * a;
+}
+
+}  // namespace nimbus::render

@@ -1,0 +1,68 @@
+// The one contract between the C++ renderer and its shaders: codes, limits, texture units and
+// buffer bindings. Written in the common subset of GLSL 4.50 and C++: the shaders include it,
+// and C++ includes it through nimbus/render/core/shader_contract.hpp (namespace
+// nimbus::render::contract). C++ maps its enums to these codes with explicit switches (never an
+// enum's order), and the uniform blocks' C++ structs (render/gl/uniform_blocks.hpp) are checked
+// against the layouts below by static_assert and by a GL test.
+#ifndef NIMBUS_CONTRACT_GLSL
+#define NIMBUS_CONTRACT_GLSL
+
+// --- Light limits -------------------------------------------------------------------------
+const int MAX_POINT_LIGHTS = 4;  // point lights one GPU frame lights (Lights block)
+
+// --- Phase function codes (lib/phase.glsl; render::phase_code) -----------------------------
+const int PHASE_ISOTROPIC = 0;
+const int PHASE_HENYEY_GREENSTEIN = 1;
+const int PHASE_SCHLICK = 2;
+const int PHASE_RAYLEIGH = 3;
+
+// --- Jitter of ray-marched samples (shafts.frag.glsl u_jitter_mode; render::jitter_code) ---
+const int JITTER_NONE = 0;         // the middle of each step
+const int JITTER_WHITE = 1;        // a hash per pixel
+const int JITTER_BLUE_NOISE = 2;   // the tiled blue-noise texture
+
+// --- Light-shaft methods: the METHOD define of shafts.frag.glsl, compared by the
+//     preprocessor, hence macros (render::shaft_method_code) -------------------------------
+#define SHAFT_METHOD_RAYMARCH 0
+#define SHAFT_METHOD_ANALYTIC 1
+#define SHAFT_METHOD_SHADOW_VOLUME 2
+
+// --- Airlight evaluations (airlight_eval.comp.glsl u_method; render::airlight_eval_code) ---
+const int AIRLIGHT_EVAL_STABLE = 0;
+const int AIRLIGHT_EVAL_TABLE = 1;
+const int AIRLIGHT_EVAL_RAYMARCH = 2;
+
+// --- Texture units (layout(binding = ...) of samplers; glBindTextureUnit) -----------------
+// One unit per role; a role shared by several programs keeps its unit in all of them.
+const int UNIT_CLOUD_DENSITY = 0;      // sampler3D: a cloud's density (slices, light pass, cloud shadow)
+const int UNIT_POINT_SHADOW = 1;       // samplerCubeArray: point lights' distance maps
+const int UNIT_SUN_SHADOW = 2;         // sampler2D: the sun's distance map
+const int UNIT_SURFACE_RADIANCE = 3;   // sampler2D: radiance leaving the visible surfaces
+const int UNIT_SCENE_DISTANCE = 4;     // sampler2D: metres to the visible surface, 0 = none
+const int UNIT_JITTER = 5;             // sampler2D: tiled jitter values
+const int UNIT_SV_NEAR = 6;            // sampler2DArray: nearest shadow-volume crossing per light
+const int UNIT_SV_FAR = 7;             // sampler2DArray: farthest crossing
+const int UNIT_F_TABLE = 8;            // sampler2D: Sun et al.'s F(u, v)
+const int UNIT_CLOUD_TAU = 9;          // sampler2D: the clouds' optical depth toward the sun
+const int UNIT_CLOUD_RANGE = 10;       // sampler2D: the depth range of the cloud matter
+const int UNIT_LIGHT_BUFFER = 11;      // sampler2D: the slicer's optical depth toward the light
+const int UNIT_SCENE_COLOR = 12;       // sampler2D: the scene under the clouds
+const int UNIT_CLOUD_COLOR = 13;       // sampler2D: the clouds' premultiplied radiance
+const int UNIT_CLOUD_DISTANCE = 14;    // sampler2D: the clouds' weighted distances
+
+// --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
+const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built
+const int IMAGE_CLOUD_RANGE = 1;       // image2D rg32f
+
+// --- Shader storage buffers (layout(std430, binding = ...); glBindBufferBase) -------------
+const int STORAGE_AIRLIGHT_QUERIES = 0;
+const int STORAGE_AIRLIGHT_RESULTS = 1;
+const int STORAGE_SKIRT_QUADS = 0;
+const int STORAGE_SKIRT_COUNTER = 1;
+
+// --- Uniform blocks (layout(std140, binding = ...); glBindBufferBase / Range) -------------
+const int BLOCK_CAMERA = 0;            // CameraBlock (lib/camera_ray.glsl)
+const int BLOCK_LIGHTS = 1;            // LightsBlock (lib/lights_block.glsl)
+const int BLOCK_CLOUD = 2;             // CloudBlock (lib/cloud_block.glsl), one range per cloud
+
+#endif

@@ -1,11 +1,12 @@
 // Airlight methods by name ("quadrature", "stable", "table:N", "raymarch:N") and the CPU
 // evaluation of a batch of queries with one of them.
-#include <charconv>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/airlight.hpp"
 
 namespace nimbus::render {
@@ -13,14 +14,11 @@ namespace nimbus::render {
 namespace {
 
 int parse_count(const std::string& text, const std::string& digits, int lo, int hi) {
-  int n = 0;
-  const char* first = digits.data();
-  const char* last = first + digits.size();
-  const auto r = std::from_chars(first, last, n);
-  if (digits.empty() || r.ec != std::errc() || r.ptr != last || n < lo || n > hi)
-    throw std::invalid_argument("airlight method '" + text + "': N must be an integer in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]");
-  return n;
+  const std::optional<int> n = parse_int_in(digits, lo, hi);
+  if (!n)
+    throw std::invalid_argument("airlight method '" + text + "': N must be an integer in [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
+  return *n;
 }
 
 }  // namespace

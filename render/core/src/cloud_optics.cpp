@@ -2,17 +2,15 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/phase.hpp"
 
 namespace nimbus::render {
 namespace {
-
-void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument(what);
-}
 
 bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -63,36 +61,27 @@ double cloud_phase_value(const DualLobePhase& p, double cos_theta) {
 
 DualLobePhase parse_cloud_phase(const std::string& text) {
   DualLobePhase p;
-  auto number = [&](const std::string& s) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != s.size())
-      throw std::invalid_argument("cloud phase '" + text + "': '" + s + "' is not a number");
-    return v;
-  };
-  if (text == "isotropic") return p;
-  if (text.rfind("hg:", 0) == 0) {
-    p.g_forward = number(text.substr(3));
-  } else if (text.rfind("dual:", 0) == 0) {
-    std::stringstream ss(text.substr(5));
-    std::string part[3];
-    int n = 0;
-    for (std::string item; std::getline(ss, item, ',');) {
-      if (n == 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
-      part[n++] = item;
-    }
-    if (n != 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
-    p.g_forward = number(part[0]);
-    p.g_back = number(part[1]);
-    p.forward_weight = number(part[2]);
-  } else {
-    throw std::invalid_argument("cloud phase '" + text + "': expected isotropic, hg:G or dual:GF,GB,W");
+  if (text.rfind("dual:", 0) != 0) {
+    // "isotropic" and "hg:G" are the medium's own phase names (phase.hpp): one parser for both,
+    // whose errors name the text.
+    if (text != "isotropic" && text.rfind("hg:", 0) != 0)
+      throw std::invalid_argument("cloud phase '" + text + "': expected isotropic, hg:G or dual:GF,GB,W");
+    p.g_forward = parse_phase(text).g;
+    return p;
   }
+  std::stringstream ss(text.substr(5));
+  double part[3] = {0.0, 0.0, 0.0};
+  int n = 0;
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (n == 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+    const std::optional<double> v = parse_double(item);
+    if (!v) throw std::invalid_argument("cloud phase '" + text + "': '" + item + "' is not a number");
+    part[n++] = *v;
+  }
+  if (n != 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+  p.g_forward = part[0];
+  p.g_back = part[1];
+  p.forward_weight = part[2];
   try {
     CloudOptics o;
     o.phase = p;

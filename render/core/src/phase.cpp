@@ -2,10 +2,13 @@
 // "isotropic", "hg:G", "schlick:G", "rayleigh" used on the command line.
 #include "nimbus/render/core/phase.hpp"
 
+#include "nimbus/base/validate.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 namespace nimbus::render {
@@ -64,14 +67,10 @@ Phase parse_phase(const std::string& text) {
       kind = PhaseKind::Schlick;
     else
       throw std::invalid_argument("phase '" + text + "': expected isotropic, hg:G, schlick:G or rayleigh");
-    double g = 0.0;
-    const char* first = value.data();
-    const char* last = first + value.size();
-    const auto r = std::from_chars(first, last, g);
-    if (value.empty() || r.ec != std::errc() || r.ptr != last)
-      throw std::invalid_argument("phase '" + text + "': G is not a number");
-    check_g(g, text);
-    return {kind, g};
+    const std::optional<double> g = parse_double(value);
+    if (!g) throw std::invalid_argument("phase '" + text + "': G is not a number");
+    check_g(*g, text);
+    return {kind, *g};
   }
   throw std::invalid_argument("phase '" + text + "': expected isotropic, hg:G, schlick:G or rayleigh");
 }

@@ -1,21 +1,20 @@
 // Parsing and printing of light-shaft method names (shaft_method.hpp).
 #include "nimbus/render/core/shaft_method.hpp"
 
-#include <charconv>
+#include "nimbus/base/validate.hpp"
+
+#include <optional>
 #include <stdexcept>
 
 namespace nimbus::render {
 namespace {
 
 int parse_count(const std::string& text, const std::string& digits, int lo, int hi) {
-  int n = 0;
-  const char* end = digits.data() + digits.size();
-  auto [ptr, ec] = std::from_chars(digits.data(), end, n);
-  if (digits.empty() || ec != std::errc() || ptr != end || n < lo || n > hi) {
-    throw std::invalid_argument("method '" + text + "': the count must be an integer in [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return n;
+  const std::optional<int> n = parse_int_in(digits, lo, hi);
+  if (!n)
+    throw std::invalid_argument("method '" + text + "': the count must be an integer in [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
+  return *n;
 }
 
 bool starts_with(const std::string& s, const std::string& prefix) {

@@ -1,0 +1,82 @@
+// The C++ side of the C++/GLSL contract (render/core/shader_contract.hpp, shaders/lib/contract.glsl):
+// every enum value maps to its own code, the codes with no shader are refused, and the float phase
+// functions the shaders run (compiled here as C++) pick the same function as the double reference
+// for every kind, so a code mapped to the wrong kind fails here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "nimbus/render/core/phase.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
+
+namespace nimbus::render {
+namespace {
+
+const PhaseKind kAllPhaseKinds[] = {PhaseKind::Isotropic, PhaseKind::HenyeyGreenstein, PhaseKind::Schlick,
+                                    PhaseKind::Rayleigh};
+
+TEST(ContractCodes, EveryPhaseKindHasItsOwnCode) {
+  std::set<int> codes;
+  for (PhaseKind k : kAllPhaseKinds) codes.insert(phase_code(k));
+  EXPECT_EQ(codes.size(), std::size(kAllPhaseKinds));
+  EXPECT_EQ(phase_code(PhaseKind::Isotropic), contract::PHASE_ISOTROPIC);
+  EXPECT_EQ(phase_code(PhaseKind::HenyeyGreenstein), contract::PHASE_HENYEY_GREENSTEIN);
+  EXPECT_EQ(phase_code(PhaseKind::Schlick), contract::PHASE_SCHLICK);
+  EXPECT_EQ(phase_code(PhaseKind::Rayleigh), contract::PHASE_RAYLEIGH);
+}
+
+// Each kind's float shader phase (through its code) equals the double reference of the same kind
+// to float precision, and differs from every other kind somewhere: a swapped code cannot pass.
+TEST(ContractCodes, EachPhaseCodeSelectsItsOwnFunction) {
+  const double g = 0.6;
+  for (PhaseKind k : kAllPhaseKinds) {
+    const Phase p{k, g};
+    for (double mu = -1.0; mu <= 1.0; mu += 0.125) {
+      const double ref = phase_value(p, mu);
+      EXPECT_NEAR(phase_value_float(p, mu), ref, 2e-6 * ref + 1e-9) << to_string(p) << " cos " << mu;
+    }
+    for (PhaseKind other : kAllPhaseKinds) {
+      if (other == k) continue;
+      double largest = 0.0;
+      for (double mu = -1.0; mu <= 1.0; mu += 0.125)
+        largest = std::max(largest, std::abs(phase_value_float(p, mu) - phase_value(Phase{other, g}, mu)) /
+                                        phase_value(Phase{other, g}, mu));
+      EXPECT_GT(largest, 0.05) << to_string(p) << " is indistinguishable from kind " << static_cast<int>(other);
+    }
+  }
+}
+
+TEST(ContractCodes, JitterAndMethodCodesAreDistinctAndTheCpuOnlyOnesAreRefused) {
+  EXPECT_EQ(std::set<int>({jitter_code(Jitter::None), jitter_code(Jitter::White), jitter_code(Jitter::BlueNoise)}).size(),
+            3u);
+  EXPECT_EQ(jitter_code(Jitter::BlueNoise), contract::JITTER_BLUE_NOISE);
+  EXPECT_EQ(std::set<int>({shaft_method_code(ShaftMethod::Kind::RayMarch), shaft_method_code(ShaftMethod::Kind::Analytic),
+                           shaft_method_code(ShaftMethod::Kind::ShadowVolume)})
+                .size(),
+            3u);
+  EXPECT_EQ(shaft_method_code(ShaftMethod::Kind::ShadowVolume), SHAFT_METHOD_SHADOW_VOLUME);
+  EXPECT_THROW(shaft_method_code(ShaftMethod::Kind::Reference), std::invalid_argument);
+  EXPECT_EQ(std::set<int>({airlight_eval_code(AirlightMethod::Stable), airlight_eval_code(AirlightMethod::Table),
+                           airlight_eval_code(AirlightMethod::RayMarch)})
+                .size(),
+            3u);
+  EXPECT_THROW(airlight_eval_code(AirlightMethod::Quadrature), std::invalid_argument);
+}
+
+TEST(ContractCodes, TextureUnitsAreDistinct) {
+  const int units[] = {contract::UNIT_CLOUD_DENSITY, contract::UNIT_POINT_SHADOW,   contract::UNIT_SUN_SHADOW,
+                       contract::UNIT_SURFACE_RADIANCE, contract::UNIT_SCENE_DISTANCE, contract::UNIT_JITTER,
+                       contract::UNIT_SV_NEAR,          contract::UNIT_SV_FAR,         contract::UNIT_F_TABLE,
+                       contract::UNIT_CLOUD_TAU,        contract::UNIT_CLOUD_RANGE,    contract::UNIT_LIGHT_BUFFER,
+                       contract::UNIT_SCENE_COLOR,      contract::UNIT_CLOUD_COLOR,    contract::UNIT_CLOUD_DISTANCE};
+  EXPECT_EQ(std::set<int>(std::begin(units), std::end(units)).size(), std::size(units));
+  for (int u : units) {
+    EXPECT_GE(u, 0);
+    EXPECT_LT(u, 16) << "GL 4.5 guarantees 16 texture units per stage";
+  }
+  EXPECT_EQ(std::set<int>({contract::BLOCK_CAMERA, contract::BLOCK_LIGHTS, contract::BLOCK_CLOUD}).size(), 3u);
+}
+
+}  // namespace
+}  // namespace nimbus::render

@@ -1,5 +1,5 @@
 #version 450 core
-// GL test pattern (tests/test_gl_*.cpp): each pixel's window coordinates, a uniform passed
+// GL test pattern (tests/gl/test_gl_*.cpp): each pixel's window coordinates, a uniform passed
 // through an included function, and the full-screen triangle's uv in a second target.
 #include "test_lib.glsl"
 

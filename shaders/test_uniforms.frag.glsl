@@ -1,5 +1,5 @@
 #version 450 core
-// GL test (tests/test_gl_readback.cpp): every ShaderProgram::set overload's value, written out.
+// GL test (tests/gl/test_gl_readback.cpp): every ShaderProgram::set overload's value, written out.
 uniform int i1;
 uniform float f1;
 uniform vec2 f2;

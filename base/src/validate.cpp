@@ -35,4 +35,11 @@ std::optional<int> parse_int_in(std::string_view text, int lo, int hi) {
   return n;
 }
 
+int parse_int_in(std::string_view text, int lo, int hi, const std::string& what) {
+  const std::optional<int> n = parse_int_in(text, lo, hi);
+  if (!n)
+    throw std::invalid_argument(what + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return *n;
+}
+
 }  // namespace nimbus

@@ -1,4 +1,4 @@
-// Shared helpers for the noise property tests (tests/test_noise_props_*.cpp): a fixed
+// Shared helpers for the noise property tests (tests/cpu/test_noise_props_*.cpp): a fixed
 // pseudo-random generator (the same numbers on every platform and standard library),
 // random point sets, and moment statistics over large batches evaluated with
 // evaluate_points / evaluate_grid.

@@ -8,20 +8,10 @@
 
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
 
 namespace nimbus::render {
 
-namespace {
-
-int parse_count(const std::string& text, const std::string& digits, int lo, int hi) {
-  const std::optional<int> n = parse_int_in(digits, lo, hi);
-  if (!n)
-    throw std::invalid_argument("airlight method '" + text + "': N must be an integer in [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "]");
-  return *n;
-}
-
-}  // namespace
 
 AirlightMethod parse_airlight_method(const std::string& text) {
   if (text == "quadrature") return {AirlightMethod::Quadrature, 0};
@@ -29,9 +19,9 @@ AirlightMethod parse_airlight_method(const std::string& text) {
   const auto colon = text.find(':');
   const std::string name = text.substr(0, colon);
   if (colon != std::string::npos && name == "table")
-    return {AirlightMethod::Table, parse_count(text, text.substr(colon + 1), 16, 1024)};
+    return {AirlightMethod::Table, parse_int_in(text.substr(colon + 1), 16, 1024, "airlight method '" + text + "': N")};
   if (colon != std::string::npos && name == "raymarch")
-    return {AirlightMethod::RayMarch, parse_count(text, text.substr(colon + 1), 1, 10000000)};
+    return {AirlightMethod::RayMarch, parse_int_in(text.substr(colon + 1), 1, 10000000, "airlight method '" + text + "': N")};
   throw std::invalid_argument("airlight method '" + text + "': expected quadrature, stable, table:N or raymarch:N");
 }
 
@@ -47,6 +37,16 @@ std::string to_string(const AirlightMethod& m) {
       return "raymarch:" + std::to_string(m.n);
   }
   return "stable";
+}
+
+int airlight_eval_code(AirlightMethod::Kind kind) {
+  switch (kind) {
+    case AirlightMethod::Stable: return contract::AIRLIGHT_EVAL_STABLE;
+    case AirlightMethod::Table: return contract::AIRLIGHT_EVAL_TABLE;
+    case AirlightMethod::RayMarch: return contract::AIRLIGHT_EVAL_RAYMARCH;
+    case AirlightMethod::Quadrature: break;
+  }
+  throw std::invalid_argument("airlight method 'quadrature' is CPU only (double precision); no shader runs it");
 }
 
 std::vector<double> evaluate_airlight(const std::vector<AirlightQuery>& queries, const AirlightMethod& method,

@@ -5,22 +5,18 @@
 #include <stdexcept>
 
 namespace nimbus::render {
-namespace {
-
-glm::dvec3 index_to_world(const openvdb::math::Transform& t, double i, double j, double k) {
-  const openvdb::Vec3d w = t.indexToWorld(openvdb::Vec3d(i, j, k));
+glm::dvec3 index_to_world(const openvdb::math::Transform& t, const glm::dvec3& index) {
+  const openvdb::Vec3d w = t.indexToWorld(openvdb::Vec3d(index.x, index.y, index.z));
   return {w.x(), w.y(), w.z()};
 }
-
-}  // namespace
 
 glm::dmat4 index_to_world_matrix(const openvdb::math::Transform& transform) {
   if (!transform.isLinear()) throw std::invalid_argument("volume transform is not affine (frustum grids are not supported)");
   // Columns are the images of the index axes, then the origin.
-  const glm::dvec3 o = index_to_world(transform, 0, 0, 0);
-  return glm::dmat4(glm::dvec4(index_to_world(transform, 1, 0, 0) - o, 0.0),
-                    glm::dvec4(index_to_world(transform, 0, 1, 0) - o, 0.0),
-                    glm::dvec4(index_to_world(transform, 0, 0, 1) - o, 0.0), glm::dvec4(o, 1.0));
+  const glm::dvec3 o = index_to_world(transform, glm::dvec3(0, 0, 0));
+  return glm::dmat4(glm::dvec4(index_to_world(transform, glm::dvec3(1, 0, 0)) - o, 0.0),
+                    glm::dvec4(index_to_world(transform, glm::dvec3(0, 1, 0)) - o, 0.0),
+                    glm::dvec4(index_to_world(transform, glm::dvec3(0, 0, 1)) - o, 0.0), glm::dvec4(o, 1.0));
 }
 
 CloudVolume make_cloud_volume(const openvdb::FloatGrid& grid, const CloudOptics& optics, const std::string& name) {

@@ -15,7 +15,7 @@ void validate(const Medium& medium) {
   if (!(albedo >= 0.0 && albedo <= 1.0))
     throw std::invalid_argument("medium albedo must be in [0, 1] (got " + std::to_string(albedo) + ")");
   const Phase& p = medium.phase;
-  if ((p.kind == PhaseKind::HenyeyGreenstein || p.kind == PhaseKind::Schlick) && !(p.g > -1.0 && p.g < 1.0))
+  if (phase_takes_g(p.kind) && !(p.g > -1.0 && p.g < 1.0))
     throw std::invalid_argument("medium phase g must be in (-1, 1) (got " + std::to_string(p.g) + ")");
 }
 

@@ -3,6 +3,7 @@
 #include "nimbus/render/core/phase.hpp"
 
 #include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -26,6 +27,26 @@ void check_g(double g, const std::string& text) {
 }  // namespace
 
 double schlick_k(double g) { return 1.55 * g - 0.55 * g * g * g; }  // thesis eq. 16
+
+bool phase_takes_g(PhaseKind kind) {
+  switch (kind) {
+    case PhaseKind::Isotropic: return false;
+    case PhaseKind::HenyeyGreenstein: return true;
+    case PhaseKind::Schlick: return true;
+    case PhaseKind::Rayleigh: return false;
+  }
+  return false;
+}
+
+int phase_code(PhaseKind kind) {
+  switch (kind) {
+    case PhaseKind::Isotropic: return contract::PHASE_ISOTROPIC;
+    case PhaseKind::HenyeyGreenstein: return contract::PHASE_HENYEY_GREENSTEIN;
+    case PhaseKind::Schlick: return contract::PHASE_SCHLICK;
+    case PhaseKind::Rayleigh: return contract::PHASE_RAYLEIGH;
+  }
+  throw std::invalid_argument("phase kind " + std::to_string(static_cast<int>(kind)) + " has no shader code");
+}
 
 double phase_value(const Phase& phase, double cos_theta) {
   const double c = std::clamp(cos_theta, -1.0, 1.0);

@@ -2,6 +2,7 @@
 #include "nimbus/render/core/shaft_method.hpp"
 
 #include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
 
 #include <optional>
 #include <stdexcept>
@@ -9,13 +10,6 @@
 namespace nimbus::render {
 namespace {
 
-int parse_count(const std::string& text, const std::string& digits, int lo, int hi) {
-  const std::optional<int> n = parse_int_in(digits, lo, hi);
-  if (!n)
-    throw std::invalid_argument("method '" + text + "': the count must be an integer in [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "]");
-  return *n;
-}
 
 bool starts_with(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
@@ -27,17 +21,17 @@ ShaftMethod parse_shaft_method(const std::string& text) {
   ShaftMethod m;
   if (starts_with(text, "raymarch:")) {
     m.kind = ShaftMethod::Kind::RayMarch;
-    m.steps = parse_count(text, text.substr(9), 1, 4096);
+    m.steps = parse_int_in(text.substr(9), 1, 4096, "method '" + text + "': the count");
   } else if (text == "analytic" || text == "analytic:stable") {
     m.kind = ShaftMethod::Kind::Analytic;
     m.airlight.kind = AirlightMethod::Stable;
   } else if (starts_with(text, "analytic:table:")) {
     m.kind = ShaftMethod::Kind::Analytic;
     m.airlight.kind = AirlightMethod::Table;
-    m.airlight.n = parse_count(text, text.substr(15), 16, 1024);
+    m.airlight.n = parse_int_in(text.substr(15), 16, 1024, "method '" + text + "': the count");
   } else if (starts_with(text, "shadowvolume:")) {
     m.kind = ShaftMethod::Kind::ShadowVolume;
-    m.steps = parse_count(text, text.substr(13), 1, 4096);
+    m.steps = parse_int_in(text.substr(13), 1, 4096, "method '" + text + "': the count");
   } else if (text == "reference") {
     m.kind = ShaftMethod::Kind::Reference;
   } else {
@@ -58,6 +52,25 @@ std::string to_string(const ShaftMethod& m) {
     case ShaftMethod::Kind::Reference: return "reference";
   }
   return "?";
+}
+
+int shaft_method_code(ShaftMethod::Kind kind) {
+  switch (kind) {
+    case ShaftMethod::Kind::RayMarch: return SHAFT_METHOD_RAYMARCH;
+    case ShaftMethod::Kind::Analytic: return SHAFT_METHOD_ANALYTIC;
+    case ShaftMethod::Kind::ShadowVolume: return SHAFT_METHOD_SHADOW_VOLUME;
+    case ShaftMethod::Kind::Reference: break;
+  }
+  throw std::invalid_argument("shaft method 'reference' is the CPU renderer; no shader runs it");
+}
+
+int jitter_code(Jitter jitter) {
+  switch (jitter) {
+    case Jitter::None: return contract::JITTER_NONE;
+    case Jitter::White: return contract::JITTER_WHITE;
+    case Jitter::BlueNoise: return contract::JITTER_BLUE_NOISE;
+  }
+  throw std::invalid_argument("jitter " + std::to_string(static_cast<int>(jitter)) + " has no shader code");
 }
 
 Jitter parse_jitter(const std::string& text) {

@@ -6,15 +6,6 @@
 #include <string>
 
 namespace nimbus::render {
-namespace {
-
-glm::dvec3 index_to_world(const openvdb::math::Transform& t, double i, double j, double k) {
-  const openvdb::Vec3d w = t.indexToWorld(openvdb::Vec3d(i, j, k));
-  return {w.x(), w.y(), w.z()};
-}
-
-}  // namespace
-
 VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Transform& transform,
                             GLenum internal_format) {
   if (internal_format != GL_R16F && internal_format != GL_R32F)
@@ -62,7 +53,7 @@ VolumeTexture upload_volume(const volume::DenseBox& box, const openvdb::math::Tr
     const double i = box.origin[0] - 1.0 + ((c & 1) ? v.size[0] + 1 : 0);
     const double j = box.origin[1] - 1.0 + ((c & 2) ? v.size[1] + 1 : 0);
     const double k = box.origin[2] - 1.0 + ((c & 4) ? v.size[2] + 1 : 0);
-    const glm::dvec3 w = index_to_world(transform, i, j, k);
+    const glm::dvec3 w = index_to_world(transform, glm::dvec3(i, j, k));
     v.world_min = glm::min(v.world_min, w);
     v.world_max = glm::max(v.world_max, w);
   }

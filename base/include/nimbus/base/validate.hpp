@@ -20,5 +20,7 @@ bool all_finite(std::initializer_list<double> values);
 std::optional<double> parse_double(std::string_view text);
 // The whole of `text` as a decimal integer in [lo, hi]; nullopt when it is not one or is outside.
 std::optional<int> parse_int_in(std::string_view text, int lo, int hi);
+// The same, or std::invalid_argument(what + " must be an integer in [lo, hi]").
+int parse_int_in(std::string_view text, int lo, int hi, const std::string& what);
 
 }  // namespace nimbus

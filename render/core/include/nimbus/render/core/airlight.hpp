@@ -86,6 +86,9 @@ struct AirlightMethod {
 };
 AirlightMethod parse_airlight_method(const std::string& text);
 std::string to_string(const AirlightMethod& method);
+// The method's AIRLIGHT_EVAL_* code in shaders/lib/contract.glsl (airlight_eval.comp.glsl);
+// std::invalid_argument for Quadrature, which is CPU only.
+int airlight_eval_code(AirlightMethod::Kind kind);
 
 // Evaluates every query with one method on the CPU (validating each; the table is built once).
 // A phase function other than isotropic replaces Sun's 1/(4 pi) (the segment form from the eye

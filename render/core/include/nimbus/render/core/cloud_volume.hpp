@@ -31,6 +31,9 @@ struct CloudVolume {
 // large to hold.
 CloudVolume make_cloud_volume(const openvdb::FloatGrid& grid, const CloudOptics& optics, const std::string& name);
 
+// Index coordinates (voxel centres at integers) to world metres through the grid's own transform.
+glm::dvec3 index_to_world(const openvdb::math::Transform& transform, const glm::dvec3& index);
+
 // The affine index-to-world map of a linear transform as a matrix: voxel (i, j, k) is centred
 // at M * (i, j, k, 1). std::invalid_argument for a non-affine (frustum) transform.
 glm::dmat4 index_to_world_matrix(const openvdb::math::Transform& transform);

@@ -13,6 +13,12 @@ struct Phase {
   double g = 0.0;  // asymmetry in (-1, 1) for Henyey-Greenstein and Schlick; unused otherwise
 };
 
+// Whether the kind has an asymmetry g (which must then be in (-1, 1)).
+bool phase_takes_g(PhaseKind kind);
+
+// The kind's PHASE_* code in shaders/lib/contract.glsl (what the shaders' phase_value takes).
+int phase_code(PhaseKind kind);
+
 // p(theta) given cos(theta), per steradian. Double precision reference.
 double phase_value(const Phase& phase, double cos_theta);
 

@@ -21,6 +21,12 @@ struct ShaftMethod {
 ShaftMethod parse_shaft_method(const std::string& text);
 std::string to_string(const ShaftMethod& method);
 
+// The method's SHAFT_METHOD_* code in shaders/lib/contract.glsl (shafts.frag.glsl's METHOD);
+// std::invalid_argument for Reference, which no shader runs.
+int shaft_method_code(ShaftMethod::Kind kind);
+// The jitter's JITTER_* code in shaders/lib/contract.glsl.
+int jitter_code(Jitter jitter);
+
 // "none", "white", "blue" -> Jitter; throws std::invalid_argument naming the text.
 Jitter parse_jitter(const std::string& text);
 std::string to_string(Jitter jitter);

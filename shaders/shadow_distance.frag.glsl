@@ -4,10 +4,11 @@
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_albedo;
-uniform int u_mode;      // 0: point light, 1: sun
+#include "lib/contract.glsl"
+uniform int u_mode;      // SHADOW_POINT_LIGHT or SHADOW_SUN
 uniform vec3 u_origin;   // light position, or a point on the sun's plane
 uniform vec3 u_dir;      // sun's propagation direction (unit)
 layout(location = 0) out float o_distance;
 void main() {
-  o_distance = (u_mode == 0) ? length(v_world - u_origin) : dot(v_world - u_origin, u_dir);
+  o_distance = (u_mode == SHADOW_POINT_LIGHT) ? length(v_world - u_origin) : dot(v_world - u_origin, u_dir);
 }

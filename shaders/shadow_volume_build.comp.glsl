@@ -7,7 +7,7 @@
 // Point lights: one invocation per texel of each cube face (z = face); the neighbour is found by
 // direction, so skirts also cross face seams. Sun: one invocation per texel of the 2D map.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-uniform int u_mode;          // 0: point light (cube map array layer u_layer), 1: sun
+uniform int u_mode;          // SHADOW_POINT_LIGHT (cube map array layer u_layer) or SHADOW_SUN
 uniform int u_layer;
 uniform int u_res;           // shadow-map resolution (texels per face side)
 #include "lib/contract.glsl"
@@ -81,7 +81,7 @@ void main() {
   ivec3 id = ivec3(gl_GlobalInvocationID);
   if (id.x >= u_res || id.y >= u_res) return;
   float i = float(id.x), j = float(id.y);
-  if (u_mode == 0) {
+  if (u_mode == SHADOW_POINT_LIGHT) {
     int f = id.z;
     float dA = cube_distance(grid_dir(f, i + 0.5, j + 0.5));
     // +s and +t neighbours (found by direction, so across seams too).

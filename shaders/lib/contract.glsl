@@ -16,6 +16,11 @@ const int PHASE_HENYEY_GREENSTEIN = 1;
 const int PHASE_SCHLICK = 2;
 const int PHASE_RAYLEIGH = 3;
 
+// --- Which light a shadow map belongs to (shadow_distance.frag.glsl and
+//     shadow_volume_build.comp.glsl u_mode) -------------------------------------------------
+const int SHADOW_POINT_LIGHT = 0;  // a cube map of distances from the light
+const int SHADOW_SUN = 1;          // an orthographic map of distances along the sun's direction
+
 // --- Jitter of ray-marched samples (shafts.frag.glsl u_jitter_mode; render::jitter_code) ---
 const int JITTER_NONE = 0;         // the middle of each step
 const int JITTER_WHITE = 1;        // a hash per pixel

@@ -177,7 +177,7 @@ void ShaftRenderer::Impl::build_shadow_maps() {
     point_depth = make_depth_texture(res, res);
     glViewport(0, 0, res, res);
     const glm::dmat4 proj = glm::perspective(M_PI / 2.0, 1.0, 0.01, static_cast<double>(kFarDistanceM));
-    shadow_program.set("u_mode", 0);
+    shadow_program.set("u_mode", contract::SHADOW_POINT_LIGHT);
     for (int i = 0; i < n_point; ++i) {
       const glm::dvec3 pos = scene.point_lights[static_cast<std::size_t>(i)].position_m;
       shadow_program.set("u_origin", to_float(pos));
@@ -241,7 +241,7 @@ void ShaftRenderer::Impl::build_shadow_maps() {
     glViewport(0, 0, sres, sres);
     glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_far);
     glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &clear_depth);
-    shadow_program.set("u_mode", 1);
+    shadow_program.set("u_mode", contract::SHADOW_SUN);
     shadow_program.set("u_origin", to_float(sun_origin));
     shadow_program.set("u_dir", to_float(sun_dir));
     shadow_program.set("u_view_proj", to_float(sun_view_proj));
@@ -270,7 +270,7 @@ void ShaftRenderer::Impl::build_skirts() {
     const bool is_sun = layer >= n_point;
     const GLuint zero2[2] = {0, 0};
     glNamedBufferSubData(counter.id(), 0, sizeof(zero2), zero2);
-    b.set("u_mode", is_sun ? 1 : 0);
+    b.set("u_mode", is_sun ? contract::SHADOW_SUN : contract::SHADOW_POINT_LIGHT);
     b.set("u_layer", layer);
     int res = 0;
     if (is_sun) {

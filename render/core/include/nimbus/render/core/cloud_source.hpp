@@ -19,7 +19,7 @@ UpAxis parse_up_axis(const std::string& text);
 
 // The float grid `grid` (empty: "density", else the first float grid) of the VDB file at `path`,
 // y-up, as a cloud named by the path. Missing or damaged files throw std::runtime_error, an
-// unknown grid std::invalid_argument (both naming the file), and a box too large to hold
+// unknown grid volume::GridNotFound (both naming the file), and a box too large to hold
 // OutOfMemoryRequest.
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics);
 

@@ -10,6 +10,7 @@
 
 #include "frame_range.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
@@ -117,11 +118,15 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
                       const std::string& output, const std::string& preview, std::optional<double> exposure) {
   // Flags first: every usage error before any work.
   const std::string method = method_given ? method_text : "slices";
-  if (method != "slices" && method != "reference")
+  render::CloudMethod cloud_method;
+  try {
+    cloud_method = render::parse_cloud_method(method);
+  } catch (const std::invalid_argument&) {
     throw UsageError("--method: '" + method + "' is not a cloud method (slices or reference)");
+  }
   const std::string scene_choice = scene_given ? scene_name : "sky";
   const bool no_scene = scene_choice == "none";
-  if (method == "reference" && !no_scene)
+  if (cloud_method == render::CloudMethod::Reference && !no_scene)
     throw UsageError("--method reference renders clouds alone, without a scene: add --scene none");
   render::Scene scene;
   if (!no_scene) {
@@ -218,7 +223,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   }
 
   render::FrameSettings fs;
-  fs.method = method == "reference" ? render::CloudMethod::Reference : render::CloudMethod::Slices;
+  fs.method = cloud_method;
   fs.slices = settings;
   fs.shafts = shafts;
   fs.cloud_shadow_res = a.shadow_map_res;

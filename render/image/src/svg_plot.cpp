@@ -155,15 +155,21 @@ std::string svg_plot(const Plot& plot) {
   }
   const AxisScale ax = make_axis(xmin, xmax, plot.x_axis);
   const AxisScale ay = make_axis(ymin, ymax, plot.y_axis);
-  const double w = plot.width, h = plot.height;
-  const double x0 = kLeft, x1 = w - kRight, y0 = h - kBottom, y1 = kTop;  // plot area
+  // The legend's column is as wide as its longest name (about 7 px a character at 12 px
+  // sans-serif), so no name is cut at the right edge; the picture widens rather than the plot
+  // area shrinking.
+  std::size_t longest = 0;
+  for (const PlotSeries& s : plot.series) longest = std::max(longest, s.name.size());
+  const double right = std::max(kRight, 16.0 + 36.0 + 7.0 * static_cast<double>(longest) + 12.0);
+  const double w = plot.width + (right - kRight), h = plot.height;
+  const double x0 = kLeft, x1 = w - right, y0 = h - kBottom, y1 = kTop;  // plot area
   auto px = [&](double v) { return x0 + ax.unit(v) * (x1 - x0); };
   auto py = [&](double v) { return y0 + ay.unit(v) * (y1 - y0); };
 
   std::ostringstream o;
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-    << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << plot.width << "\" height=\"" << plot.height
-    << "\" viewBox=\"0 0 " << plot.width << " " << plot.height
+    << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(w) << "\" height=\"" << plot.height
+    << "\" viewBox=\"0 0 " << num(w) << " " << plot.height
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << num((x0 + x1) / 2) << "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">"

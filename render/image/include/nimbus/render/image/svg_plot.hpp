@@ -21,7 +21,7 @@ struct Plot {
   std::vector<PlotSeries> series;
   Axis x_axis = Axis::Log;
   Axis y_axis = Axis::Log;
-  int width = 760;   // pixels, >= 320
+  int width = 760;   // pixels, >= 320; widened when the legend's longest name needs more room
   int height = 480;  // pixels, >= 240
 };
 

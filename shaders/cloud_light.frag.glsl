@@ -4,10 +4,10 @@
 // buffer (additive blending), so later slices see exp(-tau) of everything before them.
 #include "lib/cloud_block.glsl"
 in vec3 v_tc;
-layout(binding = UNIT_CLOUD_DENSITY) uniform sampler3D u_density;  // border 0 outside the active box
+#include "lib/cloud_density.glsl"
 layout(location = 0) out vec4 o_tau;
 
 void main() {
-  float rho = max(texture(u_density, v_tc).r, 0.0);
+  float rho = cloud_density(v_tc);
   o_tau = vec4(rho * cloud.tau_per_density, 0.0, 0.0, 0.0);
 }

@@ -13,7 +13,7 @@
 // multiple-scattering octaves (0 = single scattering).
 // The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
 #include "lib/camera_ray.glsl"
-#include "lib/cloud_block.glsl"
+#include "lib/cloud_density.glsl"
 #ifndef UNDERLAY
 #define UNDERLAY 0
 #endif
@@ -29,7 +29,6 @@ uniform float u_spacing_m;        // d, slice spacing along s
 uniform float u_light_slab_m;     // d / |dot(l, s)|: a slab's thickness along the light
 uniform vec3 u_light_dir;         // l, the light's propagation direction, unit
 uniform vec3 u_irradiance;        // E, W m^-2 per channel
-layout(binding = UNIT_CLOUD_DENSITY) uniform sampler3D u_density;  // border 0 outside the active box
 uniform vec3 u_octave_abc;        // occlusion a, contribution b, eccentricity c
 layout(binding = UNIT_LIGHT_BUFFER) uniform sampler2D u_light;  // R32F optical depth of the slices before this one
 layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // blue-noise tile (power-of-two side), values in (0, 1)
@@ -66,7 +65,7 @@ void main() {
   float slab = max(end - start, 0.0);
   float offset = start + mix(0.5, noise, u_jitter_on) * slab - t_plane;  // metres along the ray
   float k = offset * inv_len;
-  float rho = max(texture(u_density, v_tc + k * (v_tc - cloud.tc_eye)).r, 0.0);
+  float rho = cloud_density(v_tc + k * (v_tc - cloud.tc_eye));
   // Toward the light: the slices before this one, plus this slab up to the sample.
   float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
   float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * cloud.sigma_t * rho * u_light_slab_m;

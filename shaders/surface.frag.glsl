@@ -8,6 +8,7 @@ uniform float u_sigma_t;           // extinction, per metre
 uniform vec3 u_emissive_radiance;  // > 0 for light bulbs: their radiance, no shading
 uniform int u_emissive;
 uniform float u_normal_offset_texels;  // shadow lookups move this many texels along the normal
+uniform vec3 u_sky_irradiance_up;  // the sky's light on an upward surface, pi (zenith + horizon) / 2; 0 without a sky
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 layout(location = 0) out vec4 o_radiance;
@@ -34,6 +35,8 @@ void main() {
       if (cos_s > 0.0)
         L += v_albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
     }
+    // The sky, uniform at its mean, seen by the share (1 + n.y) / 2 (render::sky_irradiance).
+    L += v_albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));
   }
   o_radiance = vec4(L, 1.0);
   o_distance = length(to_eye);

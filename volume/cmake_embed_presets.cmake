@@ -1,12 +1,13 @@
-# Writes a C++ source holding every volume/presets/*.json as a string, so that an installed
-# nimbus needs no source tree. Included by volume/CMakeLists.txt at configure time.
-function(nimbus_embed_presets out_file)
-  file(GLOB preset_files ${CMAKE_CURRENT_SOURCE_DIR}/presets/*.json)
-  list(SORT preset_files)
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${preset_files} ${CMAKE_CURRENT_SOURCE_DIR}/presets)
-  set(body "// Generated from volume/presets/*.json by volume/cmake_embed_presets.cmake. Do not edit.\n#include <cstddef>\nnamespace nimbus::volume {\nstruct EmbeddedPreset { const char* name; const char* text; };\nextern const EmbeddedPreset kEmbeddedPresets[];\nextern const size_t kEmbeddedPresetCount;\nconst EmbeddedPreset kEmbeddedPresets[] = {\n")
+# Writes a C++ source holding every volume/<dir>/*.json as a string, so that an installed
+# nimbus needs no source tree: the presets (kEmbeddedPresets) and the skies (kEmbeddedSkys).
+# Included by volume/CMakeLists.txt at configure time.
+function(nimbus_embed_json out_file dir array)
+  file(GLOB json_files ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*.json)
+  list(SORT json_files)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${json_files} ${CMAKE_CURRENT_SOURCE_DIR}/${dir})
+  set(body "// Generated from volume/${dir}/*.json by volume/cmake_embed_presets.cmake. Do not edit.\n#include <cstddef>\n#include \"embedded_json.hpp\"\nnamespace nimbus::volume {\nextern const EmbeddedJson ${array}[];\nextern const size_t ${array}Count;\nconst EmbeddedJson ${array}[] = {\n")
   set(count 0)
-  foreach(f IN LISTS preset_files)
+  foreach(f IN LISTS json_files)
     get_filename_component(name ${f} NAME_WE)
     file(READ ${f} text)
     string(APPEND body "  {\"${name}\", R\"nimbus_json(${text})nimbus_json\"},\n")
@@ -15,6 +16,6 @@ function(nimbus_embed_presets out_file)
   if(count EQUAL 0)
     string(APPEND body "  {nullptr, nullptr},\n")
   endif()
-  string(APPEND body "};\nconst size_t kEmbeddedPresetCount = ${count};\n}  // namespace nimbus::volume\n")
+  string(APPEND body "};\nconst size_t ${array}Count = ${count};\n}  // namespace nimbus::volume\n")
   file(CONFIGURE OUTPUT ${out_file} CONTENT "${body}" @ONLY)
 endfunction()

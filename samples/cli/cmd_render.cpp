@@ -16,6 +16,7 @@
 #include "progress.hpp"
 #include "render_args.hpp"
 #include "render_clouds.hpp"
+#include "render_view_state.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -33,11 +34,17 @@ struct RenderArgs {
   std::string output;
   bool hide_bulbs = false;
   CloudRenderArgs clouds;
+  std::string view_state;
   bool scene_given = false, method_given = false;
 };
 
 int run_render(const RenderArgs& a) {
   if (a.output.empty()) throw UsageError("-o: an output file (.exr) is required");
+  if (!a.view_state.empty()) {
+    if (!a.clouds.files.empty() || !a.clouds.presets.empty() || a.scene_given || a.method_given)
+      throw UsageError("--view-state: the state holds the clouds, scene and method; give none of FILE, --preset, --scene, --method");
+    return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure);
+  }
   if (!a.clouds.files.empty() || !a.clouds.presets.empty())
     return run_render_clouds(a.clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
                              a.exposure);
@@ -137,6 +144,8 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
+  cmd->add_option("--view-state", a->view_state,
+                  "Render a viewer state (nimbus view's Ctrl+S) at full quality, through the viewer's pipeline; size: --res");
   cmd->add_option("-o,--output", a->output, "Output EXR file")->required();
   cmd->callback([&action, a, cmd] {
     a->scene_given = cmd->count("--scene") > 0;

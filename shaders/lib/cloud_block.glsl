@@ -10,6 +10,7 @@ layout(std140, binding = BLOCK_CLOUD) uniform CloudBlock {
   vec3 ambient;            // sky radiance on the cloud (0 when off), W sr^-1 m^-2
   float tau_per_density;   // sigma_t d / |dot(l, s)|: a slab's optical depth along the light per unit density
   vec3 phase;              // g_forward, g_back, forward weight
+  float blend;             // weight of the next keyframe's density (lib/cloud_density.glsl)
   vec3 tc_eye;             // the eye's density-texture coordinates
 } cloud;
 #endif

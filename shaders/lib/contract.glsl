@@ -51,9 +51,10 @@ const int UNIT_F_TABLE = 8;            // sampler2D: Sun et al.'s F(u, v)
 const int UNIT_CLOUD_TAU = 9;          // sampler2D: the clouds' optical depth toward the sun
 const int UNIT_CLOUD_RANGE = 10;       // sampler2D: the depth range of the cloud matter
 const int UNIT_LIGHT_BUFFER = 11;      // sampler2D: the slicer's optical depth toward the light
-const int UNIT_SCENE_COLOR = 12;       // sampler2D: the scene under the clouds
+const int UNIT_SCENE_COLOR = 12;       // sampler2D: the scene under the clouds (the viewer's display: the finished frame)
 const int UNIT_CLOUD_COLOR = 13;       // sampler2D: the clouds' premultiplied radiance
 const int UNIT_CLOUD_DISTANCE = 14;    // sampler2D: the clouds' weighted distances
+const int UNIT_CLOUD_DENSITY_NEXT = 15; // sampler3D: the cloud's next keyframe (CloudBlock.blend mixes it in)
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -90,7 +90,8 @@ TEST(ContractCodes, TextureUnitsAreDistinct) {
                        contract::UNIT_SURFACE_RADIANCE, contract::UNIT_SCENE_DISTANCE, contract::UNIT_JITTER,
                        contract::UNIT_SV_NEAR,          contract::UNIT_SV_FAR,         contract::UNIT_F_TABLE,
                        contract::UNIT_CLOUD_TAU,        contract::UNIT_CLOUD_RANGE,    contract::UNIT_LIGHT_BUFFER,
-                       contract::UNIT_SCENE_COLOR,      contract::UNIT_CLOUD_COLOR,    contract::UNIT_CLOUD_DISTANCE};
+                       contract::UNIT_SCENE_COLOR,      contract::UNIT_CLOUD_COLOR,    contract::UNIT_CLOUD_DISTANCE,
+                       contract::UNIT_CLOUD_DENSITY_NEXT};
   EXPECT_EQ(std::set<int>(std::begin(units), std::end(units)).size(), std::size(units));
   for (int u : units) {
     EXPECT_GE(u, 0);

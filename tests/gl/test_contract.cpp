@@ -132,7 +132,8 @@ const std::map<std::string, int>& expected_units() {
       {"u_light", contract::UNIT_LIGHT_BUFFER},          {"u_previous", contract::UNIT_LIGHT_BUFFER},
       {"u_scene_color", contract::UNIT_SCENE_COLOR},     {"u_cloud_color", contract::UNIT_CLOUD_COLOR},
       {"u_cloud_distance", contract::UNIT_CLOUD_DISTANCE}, {"u_tau", contract::IMAGE_CLOUD_TAU},
-      {"u_range", contract::IMAGE_CLOUD_RANGE},
+      {"u_range", contract::IMAGE_CLOUD_RANGE},         {"u_density_next", contract::UNIT_CLOUD_DENSITY_NEXT},
+      {"u_frame", contract::UNIT_SCENE_COLOR},
   };
   return units;
 }

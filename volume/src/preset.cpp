@@ -6,17 +6,11 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "embedded_json.hpp"
 #include "nimbus/noise/params.hpp"
 
 namespace nimbus::volume {
 
-// Generated at configure time from volume/presets/*.json (see volume/CMakeLists.txt).
-struct EmbeddedPreset {
-  const char* name;
-  const char* text;
-};
-extern const EmbeddedPreset kEmbeddedPresets[];
-extern const size_t kEmbeddedPresetCount;
 
 namespace {
 
@@ -93,7 +87,7 @@ json shape_to_json(const Shape& s) {
 
 std::vector<PresetInfo> list_presets() {
   std::vector<PresetInfo> out;
-  for (size_t i = 0; i < kEmbeddedPresetCount; ++i) {
+  for (size_t i = 0; i < kEmbeddedPresetsCount; ++i) {
     const json j = parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
     out.push_back({kEmbeddedPresets[i].name, j.value("genus", ""), j.value("description", "")});
   }
@@ -102,7 +96,7 @@ std::vector<PresetInfo> list_presets() {
 }
 
 json load_preset(std::string_view name) {
-  for (size_t i = 0; i < kEmbeddedPresetCount; ++i)
+  for (size_t i = 0; i < kEmbeddedPresetsCount; ++i)
     if (name == kEmbeddedPresets[i].name)
       return parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
   std::string known;

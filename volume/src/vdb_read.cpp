@@ -54,8 +54,11 @@ VolumeFile read_volume_vdb(const std::filesystem::path& path, const std::optiona
 }
 
 DenseBox dense_active_box(const openvdb::FloatGrid& grid) {
+  return dense_box(grid, grid.evalActiveVoxelBoundingBox());
+}
+
+DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox) {
   DenseBox box;
-  const openvdb::CoordBBox bbox = grid.evalActiveVoxelBoundingBox();
   if (bbox.empty()) return box;
   uint64_t count = 1;
   bool overflow = false;

@@ -39,9 +39,21 @@ enum Pass { kLight = 0, kEye, kComposite, kPassCount };
 
 }  // namespace
 
+// Where set_clouds put a cloud; set_motion moves it from here.
+struct Placement {
+  glm::dmat4 index_to_world{1.0};
+  openvdb::math::Transform::Ptr transform;
+  glm::dvec3 world_min{0.0}, world_max{0.0};
+  glm::dmat4 world_to_texture{1.0};
+  ConvexHull hull;
+  std::vector<glm::dvec3> hull_vertices;
+};
+
 struct CloudRenderer::Impl {
-  std::vector<CloudVolume> clouds;
+  std::vector<CloudVolume> clouds;         // as drawn (moved)
   std::vector<VolumeTexture> textures;
+  std::vector<std::optional<VolumeTexture>> next_textures;  // the next keyframe, if any
+  std::vector<Placement> placements;
   std::vector<ConvexHull> hulls;           // where each cloud's density can be non-zero
   std::vector<glm::dvec3> hull_points;     // all their vertices
   ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}};
@@ -142,6 +154,8 @@ CloudRenderer::CloudRenderer(std::vector<CloudVolume> clouds, GLenum format) : i
 void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
   if (clouds.empty()) throw std::invalid_argument("cloud renderer clouds: the list is empty");
   std::vector<VolumeTexture> textures;
+  std::vector<std::optional<VolumeTexture>> next_textures;
+  std::vector<Placement> placements;
   std::vector<ConvexHull> hulls;
   std::vector<glm::dvec3> hull_points;
   for (const CloudVolume& c : clouds) {
@@ -149,18 +163,68 @@ void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
       validate(c.optics);
       if (!c.transform) throw std::invalid_argument("it has no transform");
       textures.push_back(upload_volume(c.box, *c.transform, format));
+      next_textures.emplace_back();
+      if (!c.next_box.values.empty()) {
+        if (c.next_box.origin != c.box.origin || c.next_box.size != c.box.size)
+          throw std::invalid_argument("its next keyframe must lie on the same box");
+        next_textures.back() = upload_volume(c.next_box, *c.transform, format);
+      }
+      if (!(c.blend >= 0.0 && c.blend <= 1.0)) throw std::invalid_argument("keyframe blend must be in [0, 1]");
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
     }
     hulls.push_back(cloud_hull(c));
     const std::vector<glm::dvec3> v = hull_vertices(hulls.back());
     hull_points.insert(hull_points.end(), v.begin(), v.end());
+    placements.push_back(Placement{c.index_to_world, c.transform, c.world_min, c.world_max,
+                                   textures.back().world_to_texture, hulls.back(), v});
   }
   Impl& s = *impl_;
   s.textures = std::move(textures);
+  s.next_textures = std::move(next_textures);
+  s.placements = std::move(placements);
   s.hulls = std::move(hulls);
   s.hull_points = std::move(hull_points);
   s.clouds = std::move(clouds);
+}
+
+void CloudRenderer::set_optics(const CloudOptics& optics) {
+  validate(optics);
+  for (CloudVolume& c : impl_->clouds) c.optics = optics;
+}
+
+void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
+  Impl& s = *impl_;
+  if (motion.size() != s.clouds.size())
+    throw std::invalid_argument("cloud renderer motion: " + std::to_string(motion.size()) + " entries for " +
+                                std::to_string(s.clouds.size()) + " clouds");
+  for (std::size_t j = 0; j < motion.size(); ++j) {
+    const CloudMotion& m = motion[j];
+    if (!(m.blend >= 0.0 && m.blend <= 1.0) || (m.blend > 0.0 && !s.next_textures[j]))
+      throw std::invalid_argument("cloud '" + s.clouds[j].name + "': keyframe blend must be in [0, 1], and 0 without a next keyframe");
+    if (!std::isfinite(m.offset_m.x) || !std::isfinite(m.offset_m.y) || !std::isfinite(m.offset_m.z))
+      throw std::invalid_argument("cloud '" + s.clouds[j].name + "': translation must be finite");
+  }
+  s.hull_points.clear();
+  for (std::size_t j = 0; j < motion.size(); ++j) {
+    const Placement& p = s.placements[j];
+    const glm::dvec3 o = motion[j].offset_m;
+    // From the placement, never from the last frame: the same offset gives the same numbers.
+    CloudVolume& c = s.clouds[j];
+    c.index_to_world = p.index_to_world;
+    c.transform = p.transform;
+    c.world_min = p.world_min;
+    c.world_max = p.world_max;
+    apply_motion(c, motion[j]);
+    VolumeTexture& t = s.textures[j];
+    // world_to_texture * T(-o): only the translation column changes.
+    t.world_to_texture = p.world_to_texture;
+    t.world_to_texture[3] = p.world_to_texture * glm::dvec4(-o, 1.0);
+    t.world_min = c.world_min;
+    t.world_max = c.world_max;
+    s.hulls[j] = translated(p.hull, o);
+    for (const glm::dvec3& v : p.hull_vertices) s.hull_points.push_back(v + o);
+  }
 }
 
 CloudRenderer::~CloudRenderer() = default;
@@ -170,6 +234,12 @@ const std::vector<CloudVolume>& CloudRenderer::clouds() const { return impl_->cl
 std::vector<const VolumeTexture*> CloudRenderer::textures() const {
   std::vector<const VolumeTexture*> out;
   for (const VolumeTexture& t : impl_->textures) out.push_back(&t);
+  return out;
+}
+
+std::vector<const VolumeTexture*> CloudRenderer::next_textures() const {
+  std::vector<const VolumeTexture*> out;
+  for (const std::optional<VolumeTexture>& t : impl_->next_textures) out.push_back(t ? &*t : nullptr);
   return out;
 }
 
@@ -283,11 +353,14 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     b.phase = glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
                         static_cast<float>(c.optics.phase.forward_weight));
     b.tau_per_density = static_cast<float>(c.optics.extinction_per_m * light_slab_m);
+    b.blend = s.next_textures[j] ? static_cast<float>(c.blend) : 0.0f;
   }
   s.cloud_ubo.update(blocks);
   auto bind_cloud = [&](std::size_t j) {
     s.cloud_ubo.bind(contract::BLOCK_CLOUD, j);
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, s.textures[j].texture.id());
+    const VolumeTexture& next = s.next_textures[j] ? *s.next_textures[j] : s.textures[j];
+    glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, next.texture.id());
   };
   std::size_t bound = n_clouds;  // none yet
   auto draw_slice = [&](int k) {

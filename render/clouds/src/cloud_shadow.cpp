@@ -39,11 +39,14 @@ CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
 
 CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
                                          const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
-                                         int resolution) const {
+                                         int resolution, const std::vector<const VolumeTexture*>& next_textures) const {
   validate(light);
   if (clouds.empty()) throw std::invalid_argument("cloud shadow map: no clouds");
   if (textures.size() != clouds.size())
     throw std::invalid_argument("cloud shadow map: " + std::to_string(textures.size()) + " textures for " +
+                                std::to_string(clouds.size()) + " clouds");
+  if (!next_textures.empty() && next_textures.size() != clouds.size())
+    throw std::invalid_argument("cloud shadow map: " + std::to_string(next_textures.size()) + " next keyframes for " +
                                 std::to_string(clouds.size()) + " clouds");
   if (resolution < 16 || resolution > 8192)
     throw std::invalid_argument("cloud shadow map resolution must be in [16, 8192], got " + std::to_string(resolution));
@@ -102,6 +105,8 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
   for (std::size_t i = 0; i < clouds.size(); ++i) {
     blocks[i].world_to_texture = glm::mat4(textures[i]->world_to_texture);
     blocks[i].sigma_t = static_cast<float>(clouds[i].optics.extinction_per_m);
+    const bool next = !next_textures.empty() && next_textures[i];
+    blocks[i].blend = next ? static_cast<float>(clouds[i].blend) : 0.0f;
   }
   UniformArray<CloudBlock> cloud_ubo;
   cloud_ubo.update(blocks);
@@ -128,7 +133,11 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
     p.set("u_depth0", static_cast<float>(d0));
     p.set("u_step", static_cast<float>((d1 - d0) / steps));
     p.set("u_steps", steps);
+    p.set("u_box_min", to_float(c.world_min));
+    p.set("u_box_max", to_float(c.world_max));
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, textures[i]->texture.id());
+    const bool next = !next_textures.empty() && next_textures[i];
+    glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, (next ? next_textures[i] : textures[i])->texture.id());
     glDispatchCompute(groups, groups, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }

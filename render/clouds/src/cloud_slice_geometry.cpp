@@ -68,12 +68,14 @@ ConvexHull cloud_hull(const CloudVolume& cloud) {
     hi[i] = -lo[i];
   }
   const volume::DenseBox& b = cloud.box;
+  // With a next keyframe, the union of both supports: the hull holds the blend at any weight.
+  const bool next = !cloud.next_box.values.empty();
   bool any = false;
   std::size_t n = 0;
   for (int64_t k = 0; k < b.size[2]; ++k)
     for (int64_t j = 0; j < b.size[1]; ++j)
       for (int64_t i = 0; i < b.size[0]; ++i, ++n) {
-        if (!(b.values[n] > 0.0f)) continue;
+        if (!(b.values[n] > 0.0f) && !(next && cloud.next_box.values[n] > 0.0f)) continue;
         any = true;
         const double c[3] = {static_cast<double>(b.origin[0] + i), static_cast<double>(b.origin[1] + j),
                              static_cast<double>(b.origin[2] + k)};
@@ -115,6 +117,14 @@ ConvexHull cloud_hull(const CloudVolume& cloud) {
     h.radius_m = std::max(h.radius_m, glm::length(glm::dvec3(cloud.index_to_world * glm::dvec4(idx, 1.0)) - h.centre));
   }
   h.radius_m *= 1.0 + 1e-9;
+  return h;
+}
+
+ConvexHull translated(const ConvexHull& hull, const glm::dvec3& offset_m) {
+  ConvexHull h = hull;
+  // dot(n, x) <= d for x in the hull is dot(n, x + o) <= d + dot(n, o) for the moved points.
+  for (glm::dvec4& p : h.planes) p.w += glm::dot(glm::dvec3(p), offset_m);
+  h.centre += offset_m;
   return h;
 }
 

@@ -35,8 +35,12 @@ struct ConvexHull {
 
 // Where a cloud's trilinear density can be non-zero: its support box (index origin - 1 to
 // origin + size) cut by the 26-DOP (13 directions of the index lattice: axes, face and body
-// diagonals) of the supports (centre +- 1 voxel) of its voxels with density > 0.
+// diagonals) of the supports (centre +- 1 voxel) of its voxels with density > 0 (in either
+// keyframe when the cloud has a next one).
 ConvexHull cloud_hull(const CloudVolume& cloud);
+
+// The hull moved by offset_m.
+ConvexHull translated(const ConvexHull& hull, const glm::dvec3& offset_m);
 
 // Every face moved out by margin_m metres.
 ConvexHull grown(const ConvexHull& hull, double margin_m);

@@ -1,5 +1,6 @@
 // Validation of the light-shaft scene: every field checked, errors name the field
 // (e.g. "scene.boxes[2].max_m: ...") so a bad preset or command line is easy to trace.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -135,6 +136,11 @@ void validate(const Scene& s) {
       }
     }
   }
+}
+
+glm::dvec3 sky_irradiance(const Sky& sky, const glm::dvec3& n) {
+  const glm::dvec3 mean = 0.5 * (sky.zenith_radiance_w_sr_m2 + sky.horizon_radiance_w_sr_m2);
+  return M_PI * mean * (0.5 * (1.0 + std::clamp(n.y, -1.0, 1.0)));
 }
 
 glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir) {

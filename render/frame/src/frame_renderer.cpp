@@ -54,10 +54,23 @@ void FrameRenderer::set_light(const CloudLight& light) {
   if (moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
 }
 
+void FrameRenderer::set_sky(const Sky& sky) {
+  if (!scene_) throw std::invalid_argument("frame sky: there is no scene to put it in");
+  const bool changed = !scene_->sky || scene_->sky->zenith_radiance_w_sr_m2 != sky.zenith_radiance_w_sr_m2 ||
+                       scene_->sky->horizon_radiance_w_sr_m2 != sky.horizon_radiance_w_sr_m2 ||
+                       scene_->sky->distance_m != sky.distance_m;
+  Scene next = *scene_;
+  next.sky = sky;
+  validate(next);
+  scene_ = std::move(next);
+  if (changed) shaft_renderer_.reset();
+}
+
 void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
   if (settings_.method == CloudMethod::Reference) {
     if (clouds.empty()) throw std::invalid_argument("frame clouds: the list is empty");
     reference_clouds_ = std::move(clouds);
+    reference_moved_ = reference_clouds_;
   } else if (cloud_renderer_) {
     cloud_renderer_->set_clouds(std::move(clouds), settings_.volume_format);
   } else {
@@ -66,7 +79,43 @@ void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
 }
 
 const std::vector<CloudVolume>& FrameRenderer::clouds() const {
-  return cloud_renderer_ ? cloud_renderer_->clouds() : reference_clouds_;
+  return cloud_renderer_ ? cloud_renderer_->clouds() : reference_moved_;
+}
+
+void FrameRenderer::set_motion(const std::vector<CloudMotion>& motion) {
+  if (settings_.method != CloudMethod::Reference) {
+    if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
+    cloud_renderer_->set_motion(motion);
+    return;
+  }
+  if (motion.size() != reference_clouds_.size())
+    throw std::invalid_argument("frame motion: " + std::to_string(motion.size()) + " entries for " +
+                                std::to_string(reference_clouds_.size()) + " clouds");
+  std::vector<CloudVolume> moved = reference_clouds_;
+  for (std::size_t j = 0; j < moved.size(); ++j) apply_motion(moved[j], motion[j]);
+  reference_moved_ = std::move(moved);
+}
+
+void FrameRenderer::set_optics(const CloudOptics& optics) {
+  validate(optics);
+  if (cloud_renderer_) cloud_renderer_->set_optics(optics);
+  for (CloudVolume& c : reference_clouds_) c.optics = optics;
+  for (CloudVolume& c : reference_moved_) c.optics = optics;
+}
+
+void FrameRenderer::set_settings(const FrameSettings& settings) {
+  validate(settings);
+  if (settings.method != settings_.method) throw std::invalid_argument("frame settings method: cannot change");
+  if (settings.volume_format != settings_.volume_format)
+    throw std::invalid_argument("frame settings volume_format: cannot change");
+  const ShaftSettings& a = settings.shaft_settings;
+  const ShaftSettings& b = settings_.shaft_settings;
+  const bool same_shafts = a.point_shadow_res == b.point_shadow_res && a.sun_shadow_res == b.sun_shadow_res &&
+                           a.ground_extent_m == b.ground_extent_m && a.march_cutoff_optical == b.march_cutoff_optical &&
+                           a.silhouette_jump == b.silhouette_jump && a.max_skirt_quads == b.max_skirt_quads &&
+                           a.jitter_seed == b.jitter_seed;
+  settings_ = settings;
+  if (!same_shafts) shaft_renderer_.reset();
 }
 
 Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
@@ -75,7 +124,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
   Image image;
   if (settings_.method == CloudMethod::Reference) {
     if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
-    image = render_cloud_reference(reference_clouds_, camera, light_, settings_.reference);
+    image = render_cloud_reference(reference_moved_, camera, light_, settings_.reference);
     st.device = "CPU (double precision)";
   } else {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
@@ -84,7 +133,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
       if (!shaft_renderer_) shaft_renderer_ = std::make_unique<ShaftRenderer>(*scene_, settings_.shaft_settings);
       if (!shadow_builder_) shadow_builder_ = std::make_unique<CloudShadowBuilder>();
       const CloudShadowMap map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light_,
-                                                        settings_.cloud_shadow_res);
+                                                        settings_.cloud_shadow_res, cloud_renderer_->next_textures());
       shaft_renderer_->set_cloud_shadow(&map);
       try {
         shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);

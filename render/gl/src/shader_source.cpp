@@ -2,6 +2,9 @@
 #include "nimbus/render/gl/shader_source.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
 #include <cstddef>
 #include <regex>
 #include <sstream>
@@ -28,10 +31,28 @@ const char* find_embedded(const std::string& name) {
   return nullptr;
 }
 
+std::mutex& overrides_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::vector<ShaderFile>& overrides() {
+  static std::vector<ShaderFile> files;
+  return files;
+}
+
 const std::string* find_text(const std::string& name, const std::vector<ShaderFile>& extra,
                              std::string& storage) {
   for (const auto& f : extra) {
     if (f.name == name) return &f.text;
+  }
+  {
+    std::lock_guard<std::mutex> lock(overrides_mutex());
+    for (const auto& f : overrides()) {
+      if (f.name == name) {
+        storage = f.text;
+        return &storage;
+      }
+    }
   }
   if (const char* t = find_embedded(name)) {
     storage = t;
@@ -185,6 +206,31 @@ std::vector<std::string> shader_names() {
   std::vector<std::string> names;
   for (std::size_t i = 0; i < kEmbeddedShaderCount; ++i) names.emplace_back(kEmbeddedShaders[i].name);
   return names;
+}
+
+void set_shader_overrides(std::vector<ShaderFile> files) {
+  std::lock_guard<std::mutex> lock(overrides_mutex());
+  overrides() = std::move(files);
+}
+
+std::vector<ShaderFile> shader_overrides() {
+  std::lock_guard<std::mutex> lock(overrides_mutex());
+  return overrides();
+}
+
+std::vector<ShaderFile> read_shader_dir(const std::string& dir) {
+  std::vector<ShaderFile> files;
+  for (const std::string& name : shader_names()) {
+    const std::filesystem::path p = std::filesystem::path(dir) / name;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) continue;
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in && !in.eof()) throw std::runtime_error("shader file '" + p.string() + "': cannot be read");
+    files.push_back({name, text.str()});
+  }
+  return files;
 }
 
 std::string shader_text(const std::string& name) {

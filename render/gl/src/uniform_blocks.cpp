@@ -39,6 +39,7 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CloudBlock.ambient", offsetof(CloudBlock, ambient)},
         {"CloudBlock.tau_per_density", offsetof(CloudBlock, tau_per_density)},
         {"CloudBlock.phase", offsetof(CloudBlock, phase)},
+        {"CloudBlock.blend", offsetof(CloudBlock, blend)},
         {"CloudBlock.tc_eye", offsetof(CloudBlock, tc_eye)}}},
   };
 }

@@ -37,6 +37,11 @@ void validate_clouds(const std::vector<CloudVolume>& clouds) {
       throw std::invalid_argument("cloud '" + c.name + "': box size does not match its values");
     const double v = voxel_size_m(c);
     if (!std::isfinite(v) || !(v > 0.0)) throw std::invalid_argument("cloud '" + c.name + "': voxel size must be > 0");
+    if (!c.next_box.values.empty() && (c.next_box.origin != c.box.origin || c.next_box.size != c.box.size ||
+                                       c.next_box.values.size() != n))
+      throw std::invalid_argument("cloud '" + c.name + "': its next keyframe must lie on the same box");
+    if (!(c.blend >= 0.0 && c.blend <= 1.0) || (c.blend > 0.0 && c.next_box.values.empty()))
+      throw std::invalid_argument("cloud '" + c.name + "': keyframe blend must be in [0, 1], and 0 without a next keyframe");
     if (!finite3(c.world_min) || !finite3(c.world_max))
       throw std::invalid_argument("cloud '" + c.name + "': world bounds must be finite");
   }
@@ -75,31 +80,7 @@ struct IndexRay {
     extinction_per_m = c.optics.extinction_per_m;
   }
 
-  double density(double t) const {
-    const volume::DenseBox& b = cloud->box;
-    const glm::dvec3 p = origin + t * dir;
-    const int64_t n[3] = {b.size[0], b.size[1], b.size[2]};
-    double f[3];
-    int64_t i0[3];
-    for (int a = 0; a < 3; ++a) {
-      if (!(p[a] > -1.0 && p[a] < static_cast<double>(n[a]))) return 0.0;
-      const double fl = std::floor(p[a]);
-      i0[a] = static_cast<int64_t>(fl);
-      f[a] = p[a] - fl;
-    }
-    const float* v = b.values.data();
-    auto at = [&](int64_t i, int64_t j, int64_t k) -> double {
-      if (i < 0 || j < 0 || k < 0 || i >= n[0] || j >= n[1] || k >= n[2]) return 0.0;
-      return v[static_cast<std::size_t>(i + n[0] * (j + n[1] * k))];
-    };
-    const double c00 = at(i0[0], i0[1], i0[2]) * (1 - f[0]) + at(i0[0] + 1, i0[1], i0[2]) * f[0];
-    const double c10 = at(i0[0], i0[1] + 1, i0[2]) * (1 - f[0]) + at(i0[0] + 1, i0[1] + 1, i0[2]) * f[0];
-    const double c01 = at(i0[0], i0[1], i0[2] + 1) * (1 - f[0]) + at(i0[0] + 1, i0[1], i0[2] + 1) * f[0];
-    const double c11 = at(i0[0], i0[1] + 1, i0[2] + 1) * (1 - f[0]) + at(i0[0] + 1, i0[1] + 1, i0[2] + 1) * f[0];
-    const double c0 = c00 * (1 - f[1]) + c10 * f[1];
-    const double c1 = c01 * (1 - f[1]) + c11 * f[1];
-    return c0 * (1 - f[2]) + c1 * f[2];
-  }
+  double density(double t) const { return sample_density_local(*cloud, origin + t * dir); }
 };
 
 // What every ray needs: the clouds, their union box, the finest voxel and the light.

@@ -141,6 +141,7 @@ glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm:
     const double cos_i = glm::dot(n, u);
     if (cos_i > 0.0 && !tracer.occluded_toward(start, u)) irradiance += s.sun->irradiance_w_m2 * cos_i;
   }
+  if (s.sky) irradiance += sky_irradiance(*s.sky, n);
   return albedo / M_PI * irradiance;
 }
 

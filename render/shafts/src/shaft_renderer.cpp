@@ -445,6 +445,7 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     p.set("u_sigma_t", sigma_t);
     s.bind_lights(p);
     p.set("u_emissive", 0);
+    p.set("u_sky_irradiance_up", s.scene.sky ? to_float(sky_irradiance(*s.scene.sky, glm::dvec3(0, 1, 0))) : glm::vec3(0.0f));
     p.set("u_normal_offset_texels", 0.0f);  // the ground is in no shadow map: no acne to avoid
     draw(s.ground);
     p.set("u_normal_offset_texels", 1.5f);

@@ -58,4 +58,9 @@ struct DenseBox {
 // Throws nimbus::OutOfMemoryRequest (before allocating) when the box would not fit in memory.
 DenseBox dense_active_box(const openvdb::FloatGrid& grid);
 
+// The grid's values over a given index box (voxels outside the grid's active ones hold the
+// background), e.g. the same box for every keyframe of an evolving cloud. Empty box -> empty
+// result. Same memory errors.
+DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox);
+
 }  // namespace nimbus::volume

@@ -49,8 +49,19 @@ class CloudRenderer {
   // as the constructor; on an error the old clouds stay.
   void set_clouds(std::vector<CloudVolume> clouds, GLenum format = GL_R16F);
 
+  // Moves each cloud from where set_clouds put it (one entry per cloud, in order): the wind's
+  // drift and the keyframe blend, with no upload. Throws std::invalid_argument for a wrong
+  // count or a bad motion, keeping the old one.
+  void set_motion(const std::vector<CloudMotion>& motion);
+
+  // The same optics for every cloud from the next frame on (no upload). Throws
+  // std::invalid_argument for bad optics.
+  void set_optics(const CloudOptics& optics);
+
+  // The clouds as they are drawn (moved).
   const std::vector<CloudVolume>& clouds() const;
   std::vector<const VolumeTexture*> textures() const;  // in the clouds' order (cloud_shadow.hpp)
+  std::vector<const VolumeTexture*> next_textures() const;  // their next keyframes (nullptr: none)
 
   // One frame. Without an underlay: clouds over transparent black, RGB premultiplied radiance,
   // alpha = 1 - transmittance (comparable with render_cloud_reference). With one: slices behind

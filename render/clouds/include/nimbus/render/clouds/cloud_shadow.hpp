@@ -21,8 +21,11 @@ namespace nimbus::render {
 class CloudShadowBuilder {
  public:
   CloudShadowBuilder();  // compiles; needs a current GL 4.5 context
+  // `next_textures`: each cloud's next keyframe (nullptr: none; empty: none for all), blended
+  // by the cloud's `blend` as the slicer does.
   CloudShadowMap build(const std::vector<CloudVolume>& clouds, const std::vector<const VolumeTexture*>& textures,
-                       const CloudLight& light, int resolution = 512) const;
+                       const CloudLight& light, int resolution = 512,
+                       const std::vector<const VolumeTexture*>& next_textures = {}) const;
 
  private:
   ShaderProgram program_;

@@ -72,6 +72,13 @@ struct Sky {
 // shaders/lib/sky.glsl computes the same.
 glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir);
 
+// The sky's light on a surface with unit normal n (y up), so that the ground in a cloud's shadow
+// is lit by the sky, not black: the sky taken as uniform at its mean radiance
+// Lm = (zenith + horizon) / 2, and the surface seeing the share (1 + n.y) / 2 of it (a tilted
+// plane's view of the upper hemisphere), unoccluded: E = pi Lm (1 + n.y) / 2. Surfaces reflect
+// albedo / pi E (surface.frag.glsl and the reference alike).
+glm::dvec3 sky_irradiance(const Sky& sky, const glm::dvec3& n);
+
 struct Scene {
   std::string name;
   Medium medium;

@@ -64,10 +64,24 @@ class FrameRenderer {
   // The clouds of the next frames (uploaded for Slices; the programs stay compiled). Throws
   // std::invalid_argument for an empty list or a bad cloud, keeping the old clouds.
   void set_clouds(std::vector<CloudVolume> clouds);
+  // The clouds as drawn (moved).
   const std::vector<CloudVolume>& clouds() const;
+
+  // Moves the clouds from where set_clouds put them (wind drift, keyframe blend; one entry per
+  // cloud), with no upload. Throws std::invalid_argument for a wrong count or a bad motion.
+  void set_motion(const std::vector<CloudMotion>& motion);
+
+  // The same optics for every cloud, with no upload (std::invalid_argument for bad optics).
+  void set_optics(const CloudOptics& optics);
+
+  // New settings for the next frames (the viewer's adaptive quality). The method and the volume
+  // format cannot change (std::invalid_argument); new shaft settings rebuild the scene's renderer.
+  void set_settings(const FrameSettings& settings);
 
   // Moves the sun (the scene's too): its shadow maps are rebuilt at the next frame.
   void set_light(const CloudLight& light);
+  // A new sky behind the scene (its gradient follows the sun in the viewer).
+  void set_sky(const Sky& sky);
   const CloudLight& light() const { return light_; }
   const std::optional<Scene>& scene() const { return scene_; }
   const FrameSettings& settings() const { return settings_; }
@@ -83,7 +97,8 @@ class FrameRenderer {
   std::optional<Scene> scene_;
   CloudLight light_;
   FrameSettings settings_;
-  std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds (Slices keeps them in cloud_renderer_)
+  std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds as set (Slices keeps them in cloud_renderer_)
+  std::vector<CloudVolume> reference_moved_;   // Reference: the same, moved by set_motion
   std::unique_ptr<CloudRenderer> cloud_renderer_;
   std::unique_ptr<ShaftRenderer> shaft_renderer_;
   std::unique_ptr<CloudShadowBuilder> shadow_builder_;

@@ -18,6 +18,14 @@ struct ShaderFile {
   std::string text;
 };
 
+// Shader files that take precedence over the embedded ones for every program compiled from now
+// on (the viewer's F5 reload from a source tree); empty: the embedded files. Process-wide.
+void set_shader_overrides(std::vector<ShaderFile> files);
+std::vector<ShaderFile> shader_overrides();
+// Every embedded shader's name read from `dir` (dir/<name>); names missing there are left out.
+// std::runtime_error naming a file that exists but cannot be read.
+std::vector<ShaderFile> read_shader_dir(const std::string& dir);
+
 // Lines of files[K] are numbered K * kShaderLineBase + N in the expanded text ("#line
 // K*100000+N K"; the stage file, K = 0, keeps its own numbers): Mesa reports source string 0
 // for errors inside expressions, whatever #line said, so the line number alone must tell the file.

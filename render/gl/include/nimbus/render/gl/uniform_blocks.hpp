@@ -65,13 +65,13 @@ struct CloudBlock {
   glm::vec3 ambient{0.0f};           // sky radiance on the cloud (0 when off)
   float tau_per_density = 0.0f;      // a slab's optical depth along the light per unit density
   glm::vec3 phase{0.0f};             // g_forward, g_back, forward weight
-  float pad0 = 0.0f;
+  float blend = 0.0f;                // weight of the next keyframe's density, [0, 1]
   glm::vec3 tc_eye{0.0f};            // the eye's density-texture coordinates
   float pad1 = 0.0f;
 };
 static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock, albedo) == 64 &&
               offsetof(CloudBlock, sigma_t) == 76 && offsetof(CloudBlock, ambient) == 80 &&
-              offsetof(CloudBlock, tau_per_density) == 92 && offsetof(CloudBlock, phase) == 96 &&
+              offsetof(CloudBlock, tau_per_density) == 92 && offsetof(CloudBlock, phase) == 96 && offsetof(CloudBlock, blend) == 108 &&
               offsetof(CloudBlock, tc_eye) == 112 && sizeof(CloudBlock) == 128,
               "CloudBlock must follow std140 as lib/cloud_block.glsl declares it");
 

@@ -1,0 +1,89 @@
+// A sky's clouds as keyframes of their evolution, generated on a background thread so that a
+// render loop never waits on them. Keyframe k holds every cloud's density at evolution time
+// k * interval, on a box fixed per cloud (its model's bounds, which do not change without wind),
+// so any two keyframes blend voxel for voxel (CloudVolume::next_box). The wind is not in the
+// keyframes: it moves the density field as a whole (CloudModel: q = p - wind t), which is a
+// translation of the cloud by wind * t (motion()).
+#pragma once
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/volume/sky.hpp"
+
+namespace nimbus::render {
+
+class SkyKeyframes {
+ public:
+  // Validates the sky (std::invalid_argument naming the key) and the optics, sizes every
+  // cloud's box (OutOfMemoryRequest when the boxes of two keyframes could not be held) and starts
+  // the worker. Nothing is generated until request() or wait().
+  SkyKeyframes(volume::Sky sky, const CloudOptics& optics);
+  ~SkyKeyframes();  // stops the worker (after the keyframe it is making)
+  SkyKeyframes(const SkyKeyframes&) = delete;
+  SkyKeyframes& operator=(const SkyKeyframes&) = delete;
+
+  const volume::Sky& sky() const { return sky_; }
+  double interval_s() const { return sky_.keyframe_interval_s; }
+  // The keyframe at or before evolution time t, and the blend towards the next one, in [0, 1).
+  int64_t keyframe_at(double evolution_time_s) const;
+  double blend_at(double evolution_time_s) const;
+
+  // Asks for keyframes k and k + 1, then k + 2 and k + 3 ahead in `direction` (+1 forward in
+  // time, -1 backward); keyframes far from k are dropped. Never blocks.
+  void request(int64_t k, int direction = 1);
+  bool ready(int64_t k) const;
+  // Blocks until keyframe k is made (requesting it first). Rethrows the worker's error.
+  void wait(int64_t k);
+  // The worker's error, if one stopped it (a message); empty otherwise.
+  std::string error() const;
+
+  // Every cloud with keyframe k as its density and keyframe k + 1 as its next (both must be
+  // ready: std::logic_error otherwise), at its sky position, blend 0.
+  std::vector<CloudVolume> pair(int64_t k) const;
+  // Each cloud's drift at sky time t (wind * t; the wind z-up, as in the sky file) and the blend.
+  std::vector<CloudMotion> motion(double sky_time_s, const glm::dvec3& wind_m_s, double blend) const;
+
+  struct Stats {
+    int64_t keyframes_made = 0;
+    double seconds_total = 0;    // generating, all keyframes
+    double seconds_last = 0;     // the last keyframe (every cloud)
+    bool busy = false;           // making one now
+  };
+  Stats stats() const;
+
+ private:
+  struct CloudSlot {
+    std::string name;
+    volume::CloudParams params;
+    openvdb::CoordBBox box_y;               // the fixed box, y-up index space
+    openvdb::math::Transform::Ptr transform;  // y-up, moved to the sky position
+  };
+  void run();
+  std::vector<volume::DenseBox> make(int64_t k) const;
+
+  volume::Sky sky_;
+  CloudOptics optics_;
+  std::vector<CloudSlot> slots_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, made_;
+  std::map<int64_t, std::shared_ptr<const std::vector<volume::DenseBox>>> frames_;
+  std::vector<int64_t> wanted_;
+  std::string error_;
+  Stats stats_;
+  bool stop_ = false;
+  std::atomic<bool> stopping_{false};  // read between clouds: a destructor waits one cloud at most
+  std::thread worker_;
+};
+
+}  // namespace nimbus::render

@@ -1,0 +1,206 @@
+// The animated sky's view state and its JSON (view_state.hpp).
+#include "nimbus/render/core/view_state.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "nimbus/base/atomic_file.hpp"
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
+
+namespace nimbus::render {
+namespace {
+
+using json = nlohmann::json;
+
+[[noreturn]] void bad(const std::string& m) { throw std::invalid_argument(m); }
+
+double number(const json& v, const std::string& key) {
+  if (!v.is_number()) bad(key + " must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) bad(key + " must be finite");
+  return x;
+}
+
+int integer(const json& v, const std::string& key) {
+  if (!v.is_number_integer()) bad(key + " must be a whole number");
+  const long long x = v.get<long long>();
+  if (x < -1000000000LL || x > 1000000000LL) bad(key + " is out of range");
+  return static_cast<int>(x);
+}
+
+glm::dvec3 vec3(const json& v, const std::string& key) {
+  if (!v.is_array() || v.size() != 3) bad(key + " must be [x, y, z]");
+  return {number(v[0], key + "[0]"), number(v[1], key + "[1]"), number(v[2], key + "[2]")};
+}
+
+json to_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+// Calls f(key, value) for every member of the object `v` at `key`, which must be one.
+template <typename F>
+void members(const json& v, const std::string& key, F f) {
+  if (!v.is_object()) bad(key + " must be an object");
+  for (const auto& [k, x] : v.items()) f(k, x, key + "." + k);
+}
+
+}  // namespace
+
+void validate(const ViewState& s) {
+  volume::validate(s.sky);
+  Camera c;
+  c.eye = s.eye;
+  c.look_at = s.look_at;
+  c.fov_deg = s.fov_deg;
+  try {
+    validate(c);
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("view state camera: ") + e.what());
+  }
+  if (!std::isfinite(s.sky_time_s) || std::abs(s.sky_time_s) > 1e9) bad("view state time.sky: must be finite, |t| <= 1e9 s");
+  if (!std::isfinite(s.evolution_time_s) || std::abs(s.evolution_time_s) > 1e9)
+    bad("view state time.evolution: must be finite, |t| <= 1e9 s");
+  if (!(s.speed >= 0.0 && s.speed <= 1000.0)) bad("view state time.speed: must be in [0, 1000]");
+  CloudOptics o;
+  o.extinction_per_m = s.extinction_per_m;
+  o.albedo = s.albedo;
+  o.phase = s.phase;
+  try {
+    validate(o);
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("view state optics: ") + e.what());
+  }
+  if (s.multiple_octaves < 0 || s.multiple_octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
+  if (s.slices < 8 || s.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
+  if (s.light_res < 32 || s.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
+  if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192) bad("view state renderer.cloud_shadow_res: must be in [16, 8192]");
+  if (!(s.render_scale > 0.0 && s.render_scale <= 1.0)) bad("view state renderer.render_scale: must be in (0, 1]");
+  if (!(s.exposure_stops >= -20.0 && s.exposure_stops <= 20.0)) bad("view state renderer.exposure: must be in [-20, 20] stops");
+  try {
+    const ShaftMethod m = parse_shaft_method(s.shafts);
+    if (m.kind == ShaftMethod::Kind::Reference) bad("the scene under GPU clouds needs a GPU method, not reference");
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("view state renderer.shafts: ") + e.what());
+  }
+}
+
+ViewState view_state_from_json(const json& doc, const std::string& where) {
+  ViewState s;
+  bool has_sky = false;
+  members(doc, where, [&](const std::string& k, const json& v, const std::string& key) {
+    if (k == "sky") {
+      s.sky = volume::sky_from_json(v, key);
+      has_sky = true;
+    } else if (k == "camera") {
+      members(v, key, [&](const std::string& ck, const json& cv, const std::string& ckey) {
+        if (ck == "eye") s.eye = vec3(cv, ckey);
+        else if (ck == "look_at") s.look_at = vec3(cv, ckey);
+        else if (ck == "fov") s.fov_deg = number(cv, ckey);
+        else bad(ckey + ": unknown key (known: eye, look_at, fov)");
+      });
+    } else if (k == "time") {
+      members(v, key, [&](const std::string& tk, const json& tv, const std::string& tkey) {
+        if (tk == "sky") s.sky_time_s = number(tv, tkey);
+        else if (tk == "evolution") s.evolution_time_s = number(tv, tkey);
+        else if (tk == "speed") s.speed = number(tv, tkey);
+        else if (tk == "paused") {
+          if (!tv.is_boolean()) bad(tkey + " must be true or false");
+          s.paused = tv.get<bool>();
+        } else bad(tkey + ": unknown key (known: sky, evolution, speed, paused)");
+      });
+    } else if (k == "optics") {
+      members(v, key, [&](const std::string& ok, const json& ov, const std::string& okey) {
+        if (ok == "extinction") s.extinction_per_m = number(ov, okey);
+        else if (ok == "albedo") s.albedo = vec3(ov, okey);
+        else if (ok == "phase") {
+          if (!ov.is_string()) bad(okey + " must be isotropic, hg:G or dual:GF,GB,W");
+          try {
+            s.phase = parse_cloud_phase(ov.get<std::string>());
+          } catch (const std::invalid_argument& e) {
+            bad(okey + ": " + e.what());
+          }
+        } else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
+        else bad(okey + ": unknown key (known: extinction, albedo, phase, multiple)");
+      });
+    } else if (k == "renderer") {
+      members(v, key, [&](const std::string& rk, const json& rv, const std::string& rkey) {
+        if (rk == "slices") s.slices = integer(rv, rkey);
+        else if (rk == "light_res") s.light_res = integer(rv, rkey);
+        else if (rk == "cloud_shadow_res") s.cloud_shadow_res = integer(rv, rkey);
+        else if (rk == "render_scale") s.render_scale = number(rv, rkey);
+        else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
+        else if (rk == "jitter") {
+          if (!rv.is_boolean()) bad(rkey + " must be true or false");
+          s.jitter = rv.get<bool>();
+        }
+        else if (rk == "shafts") {
+          if (!rv.is_string()) bad(rkey + " must be a shaft method such as raymarch:24");
+          s.shafts = rv.get<std::string>();
+        } else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
+      });
+    } else if (k != "nimbus") {
+      bad(key + ": unknown key (known: sky, camera, time, optics, renderer)");
+    }
+  });
+  if (!has_sky) bad(where + ".sky is missing");
+  try {
+    validate(s);
+  } catch (const std::invalid_argument& e) {
+    bad(where + ": " + e.what());
+  }
+  return s;
+}
+
+json view_state_to_json(const ViewState& s) {
+  return {{"nimbus", "view state"},
+          {"sky", volume::sky_to_json(s.sky)},
+          {"camera", {{"eye", to_json(s.eye)}, {"look_at", to_json(s.look_at)}, {"fov", s.fov_deg}}},
+          {"time", {{"sky", s.sky_time_s}, {"evolution", s.evolution_time_s}, {"speed", s.speed}, {"paused", s.paused}}},
+          {"optics",
+           {{"extinction", s.extinction_per_m},
+            {"albedo", to_json(s.albedo)},
+            {"phase", to_string(s.phase)},
+            {"multiple", s.multiple_octaves}}},
+          {"renderer",
+           {{"slices", s.slices},
+            {"light_res", s.light_res},
+            {"cloud_shadow_res", s.cloud_shadow_res},
+            {"render_scale", s.render_scale},
+            {"exposure", s.exposure_stops},
+            {"jitter", s.jitter},
+            {"shafts", s.shafts}}}};
+}
+
+ViewState load_view_state(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("view state '" + path + "': cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error("view state '" + path + "': not JSON (" + e.what() + ")");
+  }
+  return view_state_from_json(doc, "view state '" + path + "'");
+}
+
+void save_view_state(const ViewState& state, const std::string& path) {
+  validate(state);
+  const std::string text = view_state_to_json(state).dump(2) + "\n";
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error("view state '" + path + "': cannot be written");
+  });
+}
+
+ViewState default_view_state() {
+  ViewState s;
+  s.sky = volume::default_sky();
+  return s;
+}
+
+}  // namespace nimbus::render

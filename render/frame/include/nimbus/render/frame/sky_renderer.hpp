@@ -1,0 +1,76 @@
+// The animated sky through the frame pipeline: a view state (render/core/view_state.hpp) in, a
+// frame out. It keeps the sky's keyframes (made on a background thread), uploads a keyframe pair
+// when the evolution clock crosses into it, and otherwise only moves the clouds (wind drift,
+// keyframe blend) and the sun. `nimbus view`, its scripted runs, `nimbus render --view-state` and
+// `nimbus bench view` all draw through it, so a screenshot and an offline render of the same
+// state are the same frame.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/sky_keyframes.hpp"
+#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/frame/frame_renderer.hpp"
+
+namespace nimbus::render {
+
+// What the adaptive quality may lower for one frame; the state's own values are full quality.
+struct FrameQuality {
+  double render_scale = 1.0;  // (0, 1], times the state's render_scale
+  int slices = 0;             // 0: the state's
+};
+
+struct SkyFrameInfo {
+  int64_t keyframe = 0;           // the pair (keyframe, keyframe + 1) drawn
+  double blend = 0.0;             // towards keyframe + 1
+  double evolution_time_s = 0.0;  // the evolution time drawn: the state's, or earlier while its keyframes are made
+  bool waited = false;            // the keyframes were not ready and the evolution was held
+  bool uploaded = false;          // a new pair was uploaded for this frame
+  int width = 0, height = 0;      // pixels rendered
+  int slices = 0;
+  double upload_ms = 0.0;         // CPU time making and uploading the pair
+};
+
+// The camera a state describes, at a size (near and far planes fitted to the clouds).
+Camera state_camera(const ViewState& state, int width, int height, const std::vector<CloudVolume>& clouds);
+
+class SkyRenderer {
+ public:
+  // Needs a current GL 4.5 context. Starts making the state's keyframes. Throws
+  // std::invalid_argument for a bad state.
+  explicit SkyRenderer(const ViewState& state);
+  // The same, taking over another renderer's keyframes when they hold the same sky (a shader
+  // reload builds a new renderer and keeps what was generated).
+  SkyRenderer(const ViewState& state, std::shared_ptr<SkyKeyframes> keyframes);
+  ~SkyRenderer();
+
+  // A frame of `state` at width x height (before the render scale). wait: block until the
+  // state's keyframes are made, so the frame is exactly the state (scripts, offline renders);
+  // otherwise draw the nearest made evolution time at or before the state's (never waiting).
+  // Applies a changed sky (new keyframes), sun, optics and settings first. Throws
+  // std::runtime_error when keyframe generation failed, std::invalid_argument for a bad state.
+  Image render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
+               FrameStats* stats = nullptr, SkyFrameInfo* info = nullptr);
+
+  // The clouds as last drawn (moved); empty before the first frame.
+  const std::vector<CloudVolume>& clouds() const;
+  SkyKeyframes& keyframes() { return *keyframes_; }
+  std::shared_ptr<SkyKeyframes> shared_keyframes() const { return keyframes_; }
+
+ private:
+  void apply(const ViewState& state, const FrameQuality& quality);
+  CloudOptics optics(const ViewState& state) const;
+
+  std::shared_ptr<SkyKeyframes> keyframes_;  // the state's sky
+  std::shared_ptr<SkyKeyframes> drawn_;      // whose pair is uploaded: an edited sky's old clouds
+                                             // stay on screen until the new ones are made
+  std::unique_ptr<FrameRenderer> frame_;
+  std::optional<ViewState> applied_;  // what the renderer was last set up for
+  std::optional<int64_t> pair_;       // the keyframe pair uploaded (of drawn_)
+  double drawn_blend_ = 0.0;
+};
+
+}  // namespace nimbus::render

@@ -1,0 +1,166 @@
+// The animated sky through the frame pipeline (sky_renderer.hpp).
+#include "nimbus/render/frame/sky_renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
+
+namespace nimbus::render {
+namespace {
+
+FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
+  FrameSettings fs;
+  fs.method = CloudMethod::Slices;
+  fs.slices.slices = q.slices > 0 ? q.slices : s.slices;
+  fs.slices.light_res = s.light_res;
+  fs.slices.jitter = s.jitter;  // a fixed blue-noise pattern (frame 0): no banding, and no flicker while paused
+  fs.slices.frame = 0;
+  fs.slices.ambient = true;
+  fs.slices.multiple.octaves = s.multiple_octaves;
+  fs.shafts = parse_shaft_method(s.shafts);
+  fs.cloud_shadow_res = s.cloud_shadow_res;
+  return fs;
+}
+
+Scene sky_scene(const Daylight& d) {
+  Scene scene = make_scene("sky");
+  scene.sun = d.sun;
+  scene.sky = d.sky;
+  return scene;
+}
+
+// What the keyframes hold: the sky without its wind and sun.
+nlohmann::json clouds_of(const volume::Sky& sky) {
+  nlohmann::json j = volume::sky_to_json(sky);
+  j.erase("wind");
+  j.erase("sun");
+  return j;
+}
+
+CloudLight light_of(const Daylight& d) { return CloudLight{d.sun.direction_to_sun, d.sun.irradiance_w_m2}; }
+
+}  // namespace
+
+Camera state_camera(const ViewState& state, int width, int height, const std::vector<CloudVolume>& clouds) {
+  Camera c;
+  c.eye = state.eye;
+  c.look_at = state.look_at;
+  c.fov_deg = state.fov_deg;
+  c.width = width;
+  c.height = height;
+  c.near_m = 1.0;
+  c.far_m = 40000.0;  // the sky scene's: its sky ends at 20 km
+  return fit_far_plane(c, clouds);
+}
+
+CloudOptics SkyRenderer::optics(const ViewState& s) const {
+  CloudOptics o;
+  o.extinction_per_m = s.extinction_per_m;
+  o.albedo = s.albedo;
+  o.phase = s.phase;
+  o.ambient_radiance = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg).ambient_w_sr_m2;
+  return o;
+}
+
+SkyRenderer::SkyRenderer(const ViewState& state) : SkyRenderer(state, nullptr) {}
+
+SkyRenderer::SkyRenderer(const ViewState& state, std::shared_ptr<SkyKeyframes> keyframes) {
+  validate(state);
+  if (keyframes && clouds_of(keyframes->sky()) == clouds_of(state.sky)) {
+    keyframes_ = std::move(keyframes);
+  } else {
+    keyframes_ = std::make_shared<SkyKeyframes>(state.sky, optics(state));
+  }
+  const Daylight d = daylight(state.sky.sun_elevation_deg, state.sky.sun_azimuth_deg);
+  frame_ = std::make_unique<FrameRenderer>(sky_scene(d), light_of(d), frame_settings(state, FrameQuality{}));
+  applied_ = state;
+}
+
+SkyRenderer::~SkyRenderer() = default;
+
+const std::vector<CloudVolume>& SkyRenderer::clouds() const {
+  static const std::vector<CloudVolume> none;
+  return pair_ ? frame_->clouds() : none;
+}
+
+void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
+  validate(s);
+  if (!(q.render_scale > 0.0 && q.render_scale <= 1.0)) throw std::invalid_argument("frame quality render_scale: must be in (0, 1]");
+  if (q.slices != 0 && (q.slices < 2 || q.slices > 4096)) throw std::invalid_argument("frame quality slices: must be 0 or in [2, 4096]");
+  const ViewState& a = *applied_;
+  // The keyframes hold the clouds only: a new wind or sun needs none.
+  if (clouds_of(a.sky) != clouds_of(s.sky)) keyframes_ = std::make_shared<SkyKeyframes>(s.sky, optics(s));
+  if (a.sky.sun_elevation_deg != s.sky.sun_elevation_deg || a.sky.sun_azimuth_deg != s.sky.sun_azimuth_deg) {
+    const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
+    frame_->set_light(light_of(d));
+    frame_->set_sky(d.sky);
+  }
+  frame_->set_optics(optics(s));
+  frame_->set_settings(frame_settings(s, q));
+  applied_ = s;
+}
+
+Image SkyRenderer::render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
+                          FrameStats* stats, SkyFrameInfo* info) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw std::invalid_argument("sky frame size must be in [1, 16384] pixels per side");
+  apply(state, quality);
+  SkyKeyframes& kf = *keyframes_;
+  if (const std::string e = kf.error(); !e.empty()) throw std::runtime_error(e);
+  SkyFrameInfo fi;
+  int64_t k = kf.keyframe_at(state.evolution_time_s);
+  double blend = kf.blend_at(state.evolution_time_s);
+  kf.request(k, state.speed >= 0.0 ? 1 : -1);
+  // Nothing drawn yet: the first pair must be waited for whatever the caller asked.
+  if (wait || !pair_) {
+    kf.wait(k);
+    kf.wait(k + 1);
+  }
+  if (kf.ready(k) && kf.ready(k + 1)) {
+    if (drawn_ != keyframes_ || !pair_ || *pair_ != k) {
+      const auto start = std::chrono::steady_clock::now();
+      frame_->set_clouds(kf.pair(k));
+      frame_->set_optics(optics(state));
+      drawn_ = keyframes_;
+      pair_ = k;
+      fi.uploaded = true;
+      fi.upload_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+  } else {
+    // Hold the evolution where the drawn pair can show it (never a jump back): at its nearer
+    // end, or, while an edited sky's keyframes are made, where the old sky was.
+    fi.waited = true;
+    if (drawn_ == keyframes_) blend = k > *pair_ ? 1.0 : 0.0;
+    else blend = drawn_blend_;
+    k = *pair_;
+  }
+  drawn_blend_ = blend;
+  frame_->set_motion(drawn_->motion(state.sky_time_s, state.sky.wind_m_s, blend));
+  const double scale = std::clamp(state.render_scale * quality.render_scale, 0.01, 1.0);
+  const int w = std::max(1, static_cast<int>(std::lround(width * scale)));
+  const int h = std::max(1, static_cast<int>(std::lround(height * scale)));
+  const Camera camera = state_camera(state, w, h, frame_->clouds());
+  Image image = frame_->render(camera, stats);
+  fi.keyframe = k;
+  fi.blend = blend;
+  fi.evolution_time_s = fi.waited ? (static_cast<double>(k) + blend) * drawn_->interval_s() : state.evolution_time_s;
+  fi.width = w;
+  fi.height = h;
+  fi.slices = frame_->settings().slices.slices;
+  ViewState drawn = state;
+  drawn.evolution_time_s = fi.evolution_time_s;
+  image.metadata["view_state"] = view_state_to_json(drawn).dump();
+  image.metadata["sky_time_s"] = std::to_string(state.sky_time_s);
+  image.metadata["evolution_time_s"] = std::to_string(fi.evolution_time_s);
+  image.metadata["keyframes"] = std::to_string(k) + ", " + std::to_string(k + 1) + " blend " + std::to_string(blend);
+  if (info) *info = fi;
+  return image;
+}
+
+}  // namespace nimbus::render

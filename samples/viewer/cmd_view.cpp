@@ -1,0 +1,119 @@
+// `nimbus view`: the interactive animated sky (a GLFW window with a Dear ImGui panel), or a
+// scripted run of the same loop in a window or headless (--script, --headless).
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/cli.hpp"
+#include "cli/render_args.hpp"
+#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/volume/preset.hpp"
+#include "view_script.hpp"
+#include "view_window.hpp"
+#include "viewer.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+struct ViewArgs {
+  std::vector<std::string> presets;
+  std::string sky, state, script, screenshot_dir = ".", shader_dir, size = "960x540", state_out;
+  bool headless = false, no_adaptive = false;
+  double budget_ms = 100.0;
+};
+
+// The shaders of the source tree this binary was built from, when it is still there (F5).
+std::string source_shader_dir() {
+#ifdef NIMBUS_SOURCE_SHADER_DIR
+  std::error_code ec;
+  if (std::filesystem::is_directory(NIMBUS_SOURCE_SHADER_DIR, ec)) return NIMBUS_SOURCE_SHADER_DIR;
+#endif
+  return {};
+}
+
+int run_view(const ViewArgs& a) {
+  // Every flag before any work.
+  const auto [width, height] = parse_resolution("--size", a.size);
+  if (a.headless && a.script.empty()) throw UsageError("--headless: needs --script (a window is what the interactive viewer is)");
+  if (!(a.budget_ms > 0.0 && a.budget_ms <= 100000.0)) throw UsageError("--budget-ms: must be in (0, 100000]");
+  if (!a.sky.empty() && !a.presets.empty()) throw UsageError("--sky and --preset: give one of them");
+  if (!a.shader_dir.empty() && !std::filesystem::is_directory(a.shader_dir))
+    throw UsageError("--shader-dir: '" + a.shader_dir + "' is not a folder");
+  for (const std::string& p : a.presets) {
+    try {
+      volume::load_preset(p);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--preset: ") + e.what());
+    }
+  }
+  render::ViewState state = a.state.empty() ? render::default_view_state() : render::load_view_state(a.state);
+  if (!a.sky.empty()) state.sky = volume::load_sky_file(a.sky);
+  if (!a.presets.empty()) {
+    // The presets side by side, 2.5 km apart west to east, under the default sky's wind and sun.
+    state.sky.clouds.clear();
+    for (std::size_t i = 0; i < a.presets.size(); ++i) {
+      volume::SkyCloud c;
+      c.preset = a.presets[i];
+      c.seed = static_cast<uint32_t>(i + 1);
+      c.position_m = glm::dvec3(2500.0 * (static_cast<double>(i) - 0.5 * (a.presets.size() - 1)), 0.0, 0.0);
+      state.sky.clouds.push_back(c);
+    }
+    volume::validate(state.sky);
+  }
+  viewer::Script script;
+  if (!a.script.empty()) script = viewer::load_script(a.script);
+  viewer::ViewerOptions options;
+  options.screenshot_dir = a.screenshot_dir;
+  options.shader_dir = a.shader_dir.empty() ? source_shader_dir() : a.shader_dir;
+  options.state_path = a.state_out.empty() ? (a.state.empty() ? "nimbus-view.json" : a.state) : a.state_out;
+  options.wait_for_keyframes = !a.script.empty();
+
+  std::unique_ptr<render::GlContext> headless;
+  std::unique_ptr<viewer::Window> window;
+  if (a.headless) {
+    headless = render::GlContext::create_headless();  // GlUnavailable: one line, exit 1
+  } else {
+    window = std::make_unique<viewer::Window>(a.script.empty() ? 1280 : script.width,
+                                              a.script.empty() ? 720 : script.height, "nimbus view");
+  }
+  viewer::Viewer v(state, options);
+  v.adaptive().enabled = !a.no_adaptive;
+  v.adaptive().budget_ms = a.budget_ms;
+  if (!a.script.empty()) {
+    const int rc = viewer::run_script(script, v, [&] {
+      if (window) viewer::present_in_window(*window, v);
+    });
+    if (!a.state_out.empty()) v.save_state();
+    return rc;
+  }
+  (void)width;
+  (void)height;
+  return viewer::run_interactive(*window, v);
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app, Action& action) {
+  auto a = std::make_shared<ViewArgs>();
+  CLI::App* cmd = app.add_subcommand("view", "The interactive animated sky: a window with a panel (docs/viewer.md)");
+  cmd->add_option("--preset", a->presets, "Clouds from these presets, side by side (instead of the default sky)");
+  cmd->add_option("--sky", a->sky, "A sky file (JSON: presets, positions, seeds, wind, sun)");
+  cmd->add_option("--state", a->state, "Start from this view state (JSON, as Ctrl+S saves it); Ctrl+S/O use it too");
+  cmd->add_option("--state-out", a->state_out, "Ctrl+S saves here (and a script saves its last state here)");
+  cmd->add_option("--script", a->script, "Run this script (JSON: steps, camera keys, events, screenshots) and exit");
+  cmd->add_flag("--headless", a->headless, "With --script: no window (EGL), the same frames");
+  cmd->add_option("--size", a->size, "Window size WxH (scripts: the script's size)")->capture_default_str();
+  cmd->add_option("--screenshot-dir", a->screenshot_dir, "Where F12 and scripts write nimbus-NNNN.exr/.png")
+      ->capture_default_str();
+  cmd->add_option("--shader-dir", a->shader_dir, "F5 reloads shaders from here (default: the source tree's, if present)");
+  cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality: frame budget while moving, ms")->capture_default_str();
+  cmd->add_flag("--no-adaptive", a->no_adaptive, "Always draw at full quality");
+  cmd->callback([&action, a] { action = [a] { return run_view(*a); }; });
+}
+
+}  // namespace nimbus::cli

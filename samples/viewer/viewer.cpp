@@ -1,0 +1,213 @@
+// The sky viewer's model (viewer.hpp).
+#include "viewer.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/gl/shader_program.hpp"
+#include "nimbus/render/gl/shader_source.hpp"
+#include "nimbus/render/image/image_io.hpp"
+
+namespace nimbus::viewer {
+
+Viewer::Viewer(render::ViewState state, ViewerOptions options)
+    : state_(std::move(state)), options_(std::move(options)), home_(state_) {
+  render::validate(state_);
+  renderer_ = std::make_unique<render::SkyRenderer>(state_);
+  display_ = std::make_unique<Display>();
+}
+
+void Viewer::set_pose(const CameraPose& p) {
+  if (p.eye == state_.eye && p.look_at == state_.look_at) return;
+  state_.eye = p.eye;
+  state_.look_at = p.look_at;
+  moved_ = true;
+}
+
+void Viewer::key(Key k) {
+  switch (k) {
+    case Key::Space:
+      state_.paused = !state_.paused;
+      message_ = state_.paused ? "paused" : "running";
+      break;
+    case Key::Left:
+    case Key::Right:
+      if (state_.paused) {
+        // Half a second of sky time at speed 1, scaled with the speed (at least half a second).
+        const double step = (k == Key::Right ? 0.5 : -0.5) * std::max(1.0, state_.speed);
+        state_.sky_time_s += step;
+        state_.evolution_time_s += step;
+      }
+      break;
+    case Key::G: {
+      const auto& clouds = renderer_->clouds();
+      if (clouds.empty()) break;
+      render::Camera c = render::state_camera(state_, std::max(last_width_, 16), std::max(last_height_, 16), clouds);
+      c = render::frame_clouds(c, clouds, false);
+      set_pose({c.eye, c.look_at});
+      break;
+    }
+    case Key::H:
+      set_pose({home_.eye, home_.look_at});
+      break;
+    case Key::Tab:
+      fly_ = !fly_;
+      message_ = fly_ ? "fly: WASD, Q/E down/up, Shift fast, left drag looks" : "orbit";
+      break;
+    case Key::F5:
+      reload_shaders();
+      break;
+    case Key::F12:
+      try {
+        message_ = "saved " + screenshot(std::max(last_width_, 16), std::max(last_height_, 16));
+      } catch (const std::exception& e) {
+        message_ = std::string("screenshot failed: ") + e.what();
+      }
+      break;
+    case Key::CtrlS:
+      save_state();
+      break;
+    case Key::CtrlO:
+      load_state();
+      break;
+    case Key::Escape:
+      quit_ = true;
+      break;
+  }
+}
+
+void Viewer::drag(int button, double dx, double dy) {
+  if (button == 0) {
+    set_pose(fly_ ? fly_look(pose(), dx, dy) : tumble(pose(), dx, dy));
+  } else if (button == 1) {
+    set_pose(pan(pose(), dx, dy, state_.fov_deg, std::max(last_width_, 1)));
+  }
+}
+
+void Viewer::scroll(double notches) {
+  if (notches != 0.0) set_pose(zoom(pose(), notches));
+}
+
+void Viewer::fly_move(const glm::dvec3& move, double dt_s, bool fast) {
+  if (move == glm::dvec3(0.0) || dt_s <= 0.0) return;
+  // 150 m/s (750 with Shift): a cloud a kilometre across passes in seconds.
+  set_pose(viewer::fly_move(pose(), move, fast ? 750.0 : 150.0, dt_s));
+}
+
+void Viewer::advance(double real_dt_s) {
+  if (state_.paused || !(real_dt_s > 0.0)) return;
+  const double dt = state_.speed * real_dt_s;
+  state_.sky_time_s += dt;
+  state_.evolution_time_s += dt;
+}
+
+void Viewer::set_sun(double elevation_deg, double azimuth_deg) {
+  if (elevation_deg == state_.sky.sun_elevation_deg && azimuth_deg == state_.sky.sun_azimuth_deg) return;
+  state_.sky.sun_elevation_deg = elevation_deg;
+  state_.sky.sun_azimuth_deg = azimuth_deg;
+  moved_ = true;
+}
+
+const render::Image& Viewer::draw(int width, int height, double now_s) {
+  last_width_ = width;
+  last_height_ = height;
+  const auto start = std::chrono::steady_clock::now();
+  FrameReport r;
+  r.quality_level = adaptive_.level();
+  r.moving = moved_;
+  frame_ = renderer_->render(state_, width, height, adaptive_.quality(state_.slices), options_.wait_for_keyframes,
+                             &r.stats, &r.info);
+  // The evolution waits while its keyframes are made: carry on from what was drawn.
+  if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
+  r.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  adaptive_.update(moved_, r.cpu_ms, now_s);
+  moved_ = false;
+  report_ = r;
+  return frame_;
+}
+
+void Viewer::display(int width, int height) {
+  if (frame_.width > 0) display_->draw(frame_, width, height, state_.exposure_stops);
+}
+
+std::string Viewer::screenshot(int width, int height) {
+  // Full quality and exactly the state, whatever the adaptive quality drew last.
+  return write_shot(renderer_->render(state_, width, height, render::FrameQuality{}, true));
+}
+
+std::string Viewer::save_frame() {
+  if (frame_.width == 0) throw std::logic_error("no frame drawn yet");
+  return write_shot(frame_);
+}
+
+std::string Viewer::write_shot(render::Image shot) {
+  namespace fs = std::filesystem;
+  const fs::path dir(options_.screenshot_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw std::runtime_error("screenshot folder '" + dir.string() + "' cannot be made");
+  int n = 1;
+  char name[32];
+  for (;; ++n) {
+    if (n > 9999) throw std::runtime_error("screenshot folder '" + dir.string() + "' already holds nimbus-0001 to 9999");
+    std::snprintf(name, sizeof name, "nimbus-%04d", n);
+    if (!fs::exists(dir / (std::string(name) + ".exr")) && !fs::exists(dir / (std::string(name) + ".png"))) break;
+  }
+  shot.metadata["screenshot"] = name;
+  const fs::path exr = dir / (std::string(name) + ".exr");
+  render::write_exr(exr, shot);
+  render::PreviewOptions po;
+  po.exposure_stops = state_.exposure_stops;
+  render::write_png_preview(dir / (std::string(name) + ".png"), shot, po);
+  return exr.string();
+}
+
+void Viewer::reload_shaders() {
+  if (options_.shader_dir.empty()) {
+    shader_error_.clear();
+    message_ = "F5: no shader folder (run from a source tree, or give --shader-dir)";
+    return;
+  }
+  const std::vector<render::ShaderFile> previous = render::shader_overrides();
+  try {
+    render::set_shader_overrides(render::read_shader_dir(options_.shader_dir));
+    // Build everything anew and draw one small frame, which compiles every program this state
+    // uses; only then replace the running ones.
+    auto renderer = std::make_unique<render::SkyRenderer>(state_, renderer_->shared_keyframes());
+    auto display = std::make_unique<Display>();
+    renderer->render(state_, 64, 36, render::FrameQuality{}, false);
+    renderer_ = std::move(renderer);
+    display_ = std::move(display);
+    shader_error_.clear();
+    message_ = "shaders reloaded from " + options_.shader_dir;
+  } catch (const std::exception& e) {
+    render::set_shader_overrides(previous);
+    shader_error_ = e.what();
+    message_ = "shader reload failed; the last good programs keep running";
+  }
+}
+
+void Viewer::save_state() {
+  try {
+    render::save_view_state(state_, options_.state_path);
+    message_ = "saved " + options_.state_path;
+  } catch (const std::exception& e) {
+    message_ = std::string("save failed: ") + e.what();
+  }
+}
+
+void Viewer::load_state() {
+  try {
+    state_ = render::load_view_state(options_.state_path);
+    moved_ = true;
+    message_ = "loaded " + options_.state_path;
+  } catch (const std::exception& e) {
+    message_ = std::string("load failed: ") + e.what();
+  }
+}
+
+}  // namespace nimbus::viewer

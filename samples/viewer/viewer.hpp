@@ -1,0 +1,99 @@
+// The interactive sky viewer's model: a view state, its clocks, the camera moves, the keys, the
+// adaptive quality and the frames, drawn through render::SkyRenderer. No window and no UI here:
+// the GLFW window (view_window.cpp) and the scripted runs (view_script.cpp) feed it the same
+// events, so a script exercises exactly what a user does.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adaptive_quality.hpp"
+#include "camera_control.hpp"
+#include "display.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/frame/sky_renderer.hpp"
+
+namespace nimbus::viewer {
+
+enum class Key { Space, Left, Right, G, H, Tab, F5, F12, CtrlS, CtrlO, Escape };
+
+struct ViewerOptions {
+  std::string screenshot_dir = ".";         // F12
+  std::string state_path = "nimbus-view.json";  // Ctrl+S / Ctrl+O
+  std::string shader_dir;                   // F5 reads shaders from here; empty: F5 reports it cannot
+  bool wait_for_keyframes = false;          // scripts: every frame is exactly its state
+};
+
+// What the last frame cost and showed.
+struct FrameReport {
+  render::FrameStats stats;     // GPU passes
+  render::SkyFrameInfo info;
+  double cpu_ms = 0.0;          // the whole frame on the CPU (render, readback, display)
+  bool moving = false;          // the camera or the sun moved for it
+  int quality_level = 0;
+};
+
+class Viewer {
+ public:
+  // Needs a current GL 4.5 context. Throws std::invalid_argument for a bad state.
+  Viewer(render::ViewState state, ViewerOptions options);
+
+  render::ViewState& state() { return state_; }
+  const render::ViewState& state() const { return state_; }
+  AdaptiveQuality& adaptive() { return adaptive_; }
+  bool fly_mode() const { return fly_; }
+  bool quit_requested() const { return quit_; }
+  // The last message for the user (a saved file, an error); shader_error(): the last failed reload.
+  const std::string& message() const { return message_; }
+  const std::string& shader_error() const { return shader_error_; }
+
+  // Input.
+  void key(Key k);
+  void drag(int button, double dx_px, double dy_px);  // button 0 left, 1 right
+  void scroll(double notches);
+  void fly_move(const glm::dvec3& move, double dt_s, bool fast);
+  // The clocks, by a real time step (nothing while paused). Also called with 0 each frame.
+  void advance(double real_dt_s);
+  // The sun by hand (panel), the camera by a script: both mark the frame as moving.
+  void set_sun(double elevation_deg, double azimuth_deg);
+  void set_camera(const glm::dvec3& eye, const glm::dvec3& look_at) { set_pose({eye, look_at}); }
+
+  // A frame at width x height window pixels (the adaptive quality may draw fewer); the image is
+  // kept for display() and screenshots. now_s: real time, for the adaptive quality.
+  const render::Image& draw(int width, int height, double now_s);
+  // The last frame into the bound framebuffer's viewport.
+  void display(int width, int height);
+  const FrameReport& report() const { return report_; }
+  const render::Image& frame() const { return frame_; }
+
+  // F12: a full-quality frame of the current state at width x height into the screenshot folder
+  // as nimbus-NNNN.exr (linear, the state in its metadata) and nimbus-NNNN.png; returns the EXR path.
+  std::string screenshot(int width, int height);
+  // The same for the last frame as drawn (scripts without adaptive quality: it is full quality).
+  std::string save_frame();
+  // F5: shaders from options.shader_dir; a broken one keeps the running programs (shader_error()).
+  void reload_shaders();
+  void save_state();
+  void load_state();
+
+ private:
+  CameraPose pose() const { return {state_.eye, state_.look_at}; }
+  void set_pose(const CameraPose& p);
+  std::string write_shot(render::Image shot);
+
+  render::ViewState state_;
+  ViewerOptions options_;
+  std::unique_ptr<render::SkyRenderer> renderer_;
+  std::unique_ptr<Display> display_;
+  AdaptiveQuality adaptive_;
+  render::ViewState home_;
+  render::Image frame_;
+  FrameReport report_;
+  bool fly_ = false, quit_ = false, moved_ = false;
+  int last_width_ = 0, last_height_ = 0;
+  std::string message_, shader_error_;
+};
+
+}  // namespace nimbus::viewer

@@ -11,6 +11,7 @@ packages=(
   libnoise-dev
   libopenvdb-tools python3-openvdb
   libpng-dev openexr
+  libimgui-dev xvfb xauth xdotool
 )
 
 missing=()

@@ -78,8 +78,8 @@ int run_view(const ViewArgs& a) {
   if (a.headless) {
     headless = render::GlContext::create_headless();  // GlUnavailable: one line, exit 1
   } else {
-    window = std::make_unique<viewer::Window>(a.script.empty() ? 1280 : script.width,
-                                              a.script.empty() ? 720 : script.height, "nimbus view");
+    window = std::make_unique<viewer::Window>(a.script.empty() ? width : script.width,
+                                              a.script.empty() ? height : script.height, "nimbus view");
   }
   viewer::Viewer v(state, options);
   v.adaptive().enabled = !a.no_adaptive;
@@ -91,8 +91,6 @@ int run_view(const ViewArgs& a) {
     if (!a.state_out.empty()) v.save_state();
     return rc;
   }
-  (void)width;
-  (void)height;
   return viewer::run_interactive(*window, v);
 }
 

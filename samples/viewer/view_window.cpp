@@ -53,13 +53,14 @@ void on_key(GLFWwindow*, int key, int, int action, int mods) {
   }
 }
 
-void on_button(GLFWwindow* w, int button, int action, int) {
+void on_button(GLFWwindow*, int button, int action, int) {
   Input& in = input();
   if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_RIGHT) return;
   const int b = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : 1;
   if (action == GLFW_PRESS && !gui_has_mouse()) {
+    // The drag starts where the last motion event put the cursor: querying the pointer now
+    // would see where it is after every queued event, and lose the drag.
     in.dragging[b] = true;
-    glfwGetCursorPos(w, &in.x, &in.y);
   } else if (action == GLFW_RELEASE) {
     in.dragging[b] = false;
   }

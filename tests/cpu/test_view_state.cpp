@@ -1,0 +1,92 @@
+// View states (render/core/view_state.hpp): the default is valid, JSON and files round-trip, and
+// bad contents name their key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "nimbus/render/core/view_state.hpp"
+
+namespace nimbus::render {
+namespace {
+
+using json = nlohmann::json;
+
+std::string error_of(const json& doc) {
+  try {
+    view_state_from_json(doc, "state");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(ViewState, DefaultIsValidAndRoundTrips) {
+  ViewState s = default_view_state();
+  EXPECT_NO_THROW(validate(s));
+  s.eye = glm::dvec3(1, 2, 3);
+  s.sky_time_s = 12.5;
+  s.evolution_time_s = 11.0;
+  s.paused = true;
+  s.phase = DualLobePhase{0.6, -0.3, 0.7};
+  s.multiple_octaves = 3;
+  s.shafts = "analytic";
+  s.render_scale = 0.5;
+  s.exposure_stops = -1.5;
+  s.jitter = false;
+  const json j = view_state_to_json(s);
+  const ViewState t = view_state_from_json(j, "state");
+  EXPECT_EQ(view_state_to_json(t), j);
+  EXPECT_EQ(t.eye, s.eye);
+  EXPECT_EQ(t.paused, true);
+  EXPECT_EQ(t.jitter, false);
+  EXPECT_EQ(t.phase.g_back, -0.3);
+}
+
+TEST(ViewState, FileRoundTripAndErrors) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "nimbus_test_view_state";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const ViewState s = default_view_state();
+  save_view_state(s, (dir / "s.json").string());
+  EXPECT_EQ(view_state_to_json(load_view_state((dir / "s.json").string())), view_state_to_json(s));
+  EXPECT_THROW(load_view_state((dir / "none.json").string()), std::runtime_error);
+  std::ofstream(dir / "bad.json") << "[1,";
+  EXPECT_THROW(load_view_state((dir / "bad.json").string()), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ViewState, BadContentsNameTheKey) {
+  const json good = view_state_to_json(default_view_state());
+  json j = good;
+  j["camera"]["eye"] = j["camera"]["look_at"];
+  EXPECT_NE(error_of(j).find("camera"), std::string::npos) << error_of(j);
+  j = good;
+  j["renderer"]["slices"] = 3;
+  EXPECT_NE(error_of(j).find("renderer.slices"), std::string::npos) << error_of(j);
+  j = good;
+  j["renderer"]["shafts"] = "reference";
+  EXPECT_NE(error_of(j).find("renderer.shafts"), std::string::npos) << error_of(j);
+  j = good;
+  j["renderer"]["render_scale"] = 0.0;
+  EXPECT_NE(error_of(j).find("render_scale"), std::string::npos);
+  j = good;
+  j["optics"]["phase"] = "dual:2,0,1";
+  EXPECT_NE(error_of(j).find("optics.phase"), std::string::npos) << error_of(j);
+  j = good;
+  j["time"]["speed"] = -1;
+  EXPECT_NE(error_of(j).find("time.speed"), std::string::npos);
+  j = good;
+  j["time"]["sky"] = "soon";
+  EXPECT_NE(error_of(j).find("time.sky"), std::string::npos);
+  j = good;
+  j["camera"]["roll"] = 3;
+  EXPECT_NE(error_of(j).find("camera.roll: unknown key"), std::string::npos);
+  j = good;
+  j.erase("sky");
+  EXPECT_NE(error_of(j).find("sky is missing"), std::string::npos);
+  EXPECT_NE(error_of(json::array()).find("must be an object"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace nimbus::render

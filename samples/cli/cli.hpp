@@ -31,5 +31,6 @@ void add_bench_volume(CLI::App& bench, Action& action);
 void add_bench_shafts(CLI::App& bench, Action& action);
 void add_bench_airlight(CLI::App& bench, Action& action);
 void add_bench_clouds(CLI::App& bench, Action& action);
+void add_bench_view(CLI::App& bench, Action& action);
 
 }  // namespace nimbus::cli

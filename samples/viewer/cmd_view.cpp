@@ -2,6 +2,7 @@
 // scripted run of the same loop in a window or headless (--script, --headless).
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -21,7 +22,8 @@ namespace nimbus::cli {
 namespace {
 
 struct ViewArgs {
-  std::vector<std::string> presets;
+  std::vector<std::string> files, presets;
+  std::string scene, grid, up = "auto";
   std::string sky, state, script, screenshot_dir = ".", shader_dir, size = "960x540", state_out;
   bool headless = false, no_adaptive = false;
   double budget_ms = 100.0;
@@ -41,7 +43,14 @@ int run_view(const ViewArgs& a) {
   const auto [width, height] = parse_resolution("--size", a.size);
   if (a.headless && a.script.empty()) throw UsageError("--headless: needs --script (a window is what the interactive viewer is)");
   if (!(a.budget_ms > 0.0 && a.budget_ms <= 100000.0)) throw UsageError("--budget-ms: must be in (0, 100000]");
-  if (!a.sky.empty() && !a.presets.empty()) throw UsageError("--sky and --preset: give one of them");
+  if ((!a.sky.empty()) + (!a.presets.empty()) + (!a.files.empty()) > 1)
+    throw UsageError("FILE.vdb, --preset and --sky: give one of them");
+  if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
+  for (const std::string& f : a.files) {
+    const std::size_t n = std::count(f.begin(), f.end(), '%');
+    if (n > 1 || (n == 1 && f.find("%0") == std::string::npos && f.find("%d") == std::string::npos))
+      throw UsageError("FILE: '" + f + "' may hold one frame-number field such as %04d, and no other %");
+  }
   if (!a.shader_dir.empty() && !std::filesystem::is_directory(a.shader_dir))
     throw UsageError("--shader-dir: '" + a.shader_dir + "' is not a folder");
   for (const std::string& p : a.presets) {
@@ -53,6 +62,28 @@ int run_view(const ViewArgs& a) {
   }
   render::ViewState state = a.state.empty() ? render::default_view_state() : render::load_view_state(a.state);
   if (!a.sky.empty()) state.sky = volume::load_sky_file(a.sky);
+  if (!a.files.empty()) {
+    // Fog volumes from any tool, where their files put them; no wind (a simulation moves itself).
+    state.sky.clouds.clear();
+    for (const std::string& f : a.files) {
+      volume::SkyCloud c;
+      c.file = f;
+      c.grid = a.grid;
+      c.up = a.up;
+      state.sky.clouds.push_back(c);
+    }
+    state.sky.wind_m_s = glm::dvec3(0.0);
+    state.speed = 1.0;  // a sequence plays at its own fps
+    volume::validate(state.sky);
+  }
+  if (!a.scene.empty()) {
+    state.scene = a.scene;
+    try {
+      render::validate(state);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scene: ") + e.what());
+    }
+  }
   if (!a.presets.empty()) {
     // The presets side by side, 2.5 km apart west to east, under the default sky's wind and sun.
     state.sky.clouds.clear();
@@ -72,6 +103,7 @@ int run_view(const ViewArgs& a) {
   options.shader_dir = a.shader_dir.empty() ? source_shader_dir() : a.shader_dir;
   options.state_path = a.state_out.empty() ? (a.state.empty() ? "nimbus-view.json" : a.state) : a.state_out;
   options.wait_for_keyframes = !a.script.empty();
+  options.frame_on_start = !a.files.empty() || !a.presets.empty();
 
   std::unique_ptr<render::GlContext> headless;
   std::unique_ptr<viewer::Window> window;
@@ -99,6 +131,10 @@ int run_view(const ViewArgs& a) {
 void add_view_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<ViewArgs>();
   CLI::App* cmd = app.add_subcommand("view", "The interactive animated sky: a window with a panel (docs/viewer.md)");
+  cmd->add_option("files", a->files, "Fog volumes (VDB) to show, or sequences name.%04d.vdb played at their fps");
+  cmd->add_option("--grid", a->grid, "The files' float grid (default: density, else the first)");
+  cmd->add_option("--up-axis", a->up, "The files' up axis: auto (their metadata, else y), y or z")->capture_default_str();
+  cmd->add_option("--scene", a->scene, "Under the clouds: sky (default), another scene preset, or none");
   cmd->add_option("--preset", a->presets, "Clouds from these presets, side by side (instead of the default sky)");
   cmd->add_option("--sky", a->sky, "A sky file (JSON: presets, positions, seeds, wind, sun)");
   cmd->add_option("--state", a->state, "Start from this view state (JSON, as Ctrl+S saves it); Ctrl+S/O use it too");

@@ -47,7 +47,8 @@ void Viewer::key(Key k) {
       const auto& clouds = renderer_->clouds();
       if (clouds.empty()) break;
       render::Camera c = render::state_camera(state_, std::max(last_width_, 16), std::max(last_height_, 16), clouds);
-      c = render::frame_clouds(c, clouds, false);
+      // Over the sky scene's ground the eye stays on it (2 m up), looking up at the clouds.
+      c = render::frame_clouds(c, clouds, state_.scene == "sky");
       set_pose({c.eye, c.look_at});
       break;
     }
@@ -127,6 +128,13 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   adaptive_.update(moved_, r.cpu_ms, now_s);
   moved_ = false;
   report_ = r;
+  if (options_.frame_on_start && !framed_) {
+    // Clouds nobody placed a camera for (files, presets): look at them from here on.
+    framed_ = true;
+    key(Key::G);
+    home_.eye = state_.eye;
+    home_.look_at = state_.look_at;
+  }
   return frame_;
 }
 

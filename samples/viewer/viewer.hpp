@@ -24,6 +24,7 @@ struct ViewerOptions {
   std::string state_path = "nimbus-view.json";  // Ctrl+S / Ctrl+O
   std::string shader_dir;                   // F5 reads shaders from here; empty: F5 reports it cannot
   bool wait_for_keyframes = false;          // scripts: every frame is exactly its state
+  bool frame_on_start = false;              // after the first frame, frame the clouds (G) and make that home
 };
 
 // What the last frame cost and showed.
@@ -73,6 +74,11 @@ class Viewer {
   std::string screenshot(int width, int height);
   // The same for the last frame as drawn (scripts without adaptive quality: it is full quality).
   std::string save_frame();
+  // A full-quality frame of the current state (waits for its keyframes); nothing is kept.
+  render::Image full_quality_frame(int width, int height) {
+    return renderer_->render(state_, width, height, render::FrameQuality{}, true);
+  }
+  render::SkyKeyframes& keyframes() { return renderer_->keyframes(); }
   // F5: shaders from options.shader_dir; a broken one keeps the running programs (shader_error()).
   void reload_shaders();
   void save_state();
@@ -91,7 +97,7 @@ class Viewer {
   render::ViewState home_;
   render::Image frame_;
   FrameReport report_;
-  bool fly_ = false, quit_ = false, moved_ = false;
+  bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
   int last_width_ = 0, last_height_ = 0;
   std::string message_, shader_error_;
 };

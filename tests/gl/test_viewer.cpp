@@ -230,6 +230,34 @@ TEST(Viewer, ShaderReloadTakesEffectAndABrokenShaderKeepsRunning) {
   EXPECT_GT(relative_change(shot(d, "shots", 3), shot(d, "shots", 1)), 0.01) << "the reloaded shader draws";
 }
 
+// A VDB sequence from another tool's point of view (nimbus generate writes fps metadata): one
+// keyframe per file at its fps, looping, blended between files.
+TEST(Viewer, VdbSequencePlaysAtItsFps) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("sequence");
+  const test::RunResult g = run_nimbus("generate --preset cumulus-humilis --voxel-size 40 --frames 0-2 --fps 4 --set evolution=0.5 -o " +
+                                       d / "c.vdb");
+  ASSERT_EQ(g.code, 0) << g.output;
+  const json script = {{"size", {160, 90}}, {"frames", 5}, {"dt", 0.125}, {"screenshot_every", 1},
+                       {"record", d / "record.json"}};
+  write(d / "script.json", script);
+  const test::RunResult r = run_nimbus("view " + d / "c.%04d.vdb" + " --headless --script " + d / "script.json" +
+                                       " --screenshot-dir " + d / "shots");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(d / "record.json");
+  const json rec = json::parse(in);
+  ASSERT_EQ(rec.size(), 5u);
+  // 4 fps: a keyframe every 0.25 s; frames 0.125 s apart alternate between a file and a blend.
+  for (int f = 0; f < 5; ++f) {
+    EXPECT_EQ(rec[f]["keyframe"].get<int>(), f / 2) << f;
+    EXPECT_NEAR(rec[f]["blend"].get<double>(), 0.5 * (f % 2), 1e-9) << f;
+  }
+  EXPECT_GT(relative_change(shot(d, "shots", 3), shot(d, "shots", 2)), 1e-3) << "the files differ";
+  const test::RunResult missing = run_nimbus("view " + d / "none.%04d.vdb" + " --headless --script " + d / "script.json");
+  EXPECT_EQ(missing.code, 1) << missing.output;
+  EXPECT_NE(missing.output.find("none.%04d.vdb"), std::string::npos) << missing.output;
+}
+
 TEST(Viewer, BadInputGetsOneLineAndItsExitCode) {
   Dir d("errors");
   test::RunResult r = run_nimbus("view --headless");

@@ -45,6 +45,15 @@ SkyCloud cloud_from(const json& c, const std::string& where) {
       out.preset = v.get<std::string>();
       load_preset(out.preset);  // unknown -> invalid_argument listing the known ones
       has_preset = true;
+    } else if (k == "file") {
+      if (!v.is_string() || v.get<std::string>().empty()) bad(key + " must be a VDB file or a name.%04d.vdb pattern");
+      out.file = v.get<std::string>();
+    } else if (k == "grid") {
+      if (!v.is_string()) bad(key + " must be a grid name");
+      out.grid = v.get<std::string>();
+    } else if (k == "up") {
+      if (!v.is_string() || (v != "auto" && v != "y" && v != "z")) bad(key + " must be auto, y or z");
+      out.up = v.get<std::string>();
     } else if (k == "position") {
       out.position_m = vec3(v, key, kMaxPosition);
     } else if (k == "seed") {
@@ -54,10 +63,11 @@ SkyCloud cloud_from(const json& c, const std::string& where) {
       if (!v.is_object()) bad(key + " must be an object of preset cloud keys");
       out.overrides = v;
     } else {
-      bad(key + ": unknown key (known: preset, position, seed, overrides)");
+      bad(key + ": unknown key (known: preset, file, grid, up, position, seed, overrides)");
     }
   }
-  if (!has_preset) bad(where + ".preset is missing");
+  if (has_preset == !out.file.empty()) bad(where + " needs exactly one of preset and file");
+  if (!out.file.empty() && !out.overrides.empty()) bad(where + ".overrides: only a preset cloud has them");
   return out;
 }
 
@@ -65,7 +75,8 @@ SkyCloud cloud_from(const json& c, const std::string& where) {
 
 void validate(const Sky& s) {
   if (s.clouds.empty()) bad("sky clouds: at least one cloud is needed");
-  for (std::size_t i = 0; i < s.clouds.size(); ++i) sky_cloud_params(s, i);  // names the bad one
+  for (std::size_t i = 0; i < s.clouds.size(); ++i)
+    if (s.clouds[i].file.empty()) sky_cloud_params(s, i);  // names the bad one
   const glm::dvec3 w = s.wind_m_s;
   if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) || std::abs(w.x) > kMaxWind ||
       std::abs(w.y) > kMaxWind || std::abs(w.z) > kMaxWind)
@@ -127,9 +138,14 @@ Sky sky_from_json(const json& doc, const std::string& where) {
 json sky_to_json(const Sky& s) {
   json clouds = json::array();
   for (const SkyCloud& c : s.clouds) {
-    json o = {{"preset", c.preset},
-              {"position", {c.position_m.x, c.position_m.y, c.position_m.z}},
-              {"seed", c.seed}};
+    json o = {{"position", {c.position_m.x, c.position_m.y, c.position_m.z}}, {"seed", c.seed}};
+    if (c.file.empty()) {
+      o["preset"] = c.preset;
+    } else {
+      o["file"] = c.file;
+      if (!c.grid.empty()) o["grid"] = c.grid;
+      o["up"] = c.up;
+    }
     if (!c.overrides.empty()) o["overrides"] = c.overrides;
     clouds.push_back(o);
   }
@@ -177,6 +193,7 @@ Sky default_sky() {
 CloudParams sky_cloud_params(const Sky& sky, std::size_t index) {
   if (index >= sky.clouds.size()) throw std::out_of_range("sky cloud index");
   const SkyCloud& c = sky.clouds[index];
+  if (!c.file.empty()) throw std::logic_error("sky cloud " + std::to_string(index) + " is a file, not a preset");
   const std::string where = "sky clouds[" + std::to_string(index) + "]";
   json cloud = load_preset(c.preset).at("cloud");
   for (const auto& [k, v] : c.overrides.items()) {

@@ -18,17 +18,22 @@ UpAxis parse_up_axis(const std::string& text) {
   throw std::invalid_argument("up axis '" + text + "' must be auto, y or z");
 }
 
-CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics) {
+openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps) {
   volume::VolumeFile f = volume::read_volume_vdb(path, grid.empty() ? std::nullopt : std::optional(grid));
   bool z_up = up == UpAxis::Z;
-  if (up == UpAxis::Auto) {
-    for (const auto& [key, value] : f.metadata) {
-      const std::string* text = std::get_if<std::string>(&value);
-      if (key == "up_axis" && text && *text == "z") z_up = true;
+  for (const auto& [key, value] : f.metadata) {
+    const std::string* text = std::get_if<std::string>(&value);
+    if (up == UpAxis::Auto && key == "up_axis" && text && *text == "z") z_up = true;
+    if (fps && key == "fps") {
+      if (const double* d = std::get_if<double>(&value)) *fps = *d;
+      if (const int64_t* n = std::get_if<int64_t>(&value)) *fps = static_cast<double>(*n);
     }
   }
-  if (z_up) return make_cloud_volume(*volume::rotate_z_up_to_y_up(*f.grid), optics, path);
-  return make_cloud_volume(*f.grid, optics, path);
+  return z_up ? volume::rotate_z_up_to_y_up(*f.grid) : f.grid;
+}
+
+CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics) {
+  return make_cloud_volume(*load_cloud_grid(path, grid, up), optics, path);
 }
 
 PresetCloud load_preset_cloud(const std::string& name) {

@@ -2,11 +2,14 @@
 #include "nimbus/render/core/sky_keyframes.hpp"
 
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "nimbus/base/memory.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/up_axis.hpp"
 #include "nimbus/volume/vdb_read.hpp"
@@ -24,32 +27,52 @@ constexpr int kKeep = 6;  // keyframes held at most (two for the frame, the rest
 SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(std::move(sky)), optics_(optics) {
   volume::validate(sky_);
   validate(optics_);
+  interval_s_ = sky_.keyframe_interval_s;
+  bool sequence_timed = false;
   uint64_t voxels = 0;
   for (std::size_t i = 0; i < sky_.clouds.size(); ++i) {
+    const volume::SkyCloud& sc = sky_.clouds[i];
     CloudSlot s;
-    s.name = sky_.clouds[i].preset + " #" + std::to_string(i);
-    s.params = volume::sky_cloud_params(sky_, i);
-    const double v = sky_.voxel_size_m;
-    // The model's bounds (time-independent without wind) in z-up voxel indices, one voxel of
-    // margin; voxel (i, j, k) is centred at (i, j, k) * v (volume/generate.hpp).
-    const volume::Aabb b = volume::CloudModel(s.params, v, 0.0).bounds();
-    if (b.empty()) throw std::invalid_argument("sky clouds[" + std::to_string(i) + "]: the cloud has no extent");
-    const openvdb::Coord lo(static_cast<int>(std::floor(b.lo.x / v)) - 1, static_cast<int>(std::floor(b.lo.y / v)) - 1,
-                            static_cast<int>(std::floor(b.lo.z / v)) - 1);
-    const openvdb::Coord hi(static_cast<int>(std::ceil(b.hi.x / v)) + 1, static_cast<int>(std::ceil(b.hi.y / v)) + 1,
-                            static_cast<int>(std::ceil(b.hi.z / v)) + 1);
-    // (i, j, k) -> (i, k, -j), as rotate_z_up_to_y_up moves voxels.
-    s.box_y = openvdb::CoordBBox(openvdb::Coord(lo.x(), lo.z(), -hi.y()), openvdb::Coord(hi.x(), hi.z(), -lo.y()));
-    voxels += s.box_y.volume();
-    // The y-up transform of a grid generated at this voxel size, moved to the sky position.
-    openvdb::FloatGrid::Ptr empty = openvdb::FloatGrid::create(0.0f);
-    empty->setTransform(openvdb::math::Transform::createLinearTransform(v));
-    s.transform = volume::rotate_z_up_to_y_up(*empty)->transform().copy();
-    const glm::dvec3 p = z_up_to_y_up(sky_.clouds[i].position_m);
-    s.transform->postTranslate(openvdb::Vec3d(p.x, p.y, p.z));
+    s.position_y = z_up_to_y_up(sc.position_m);
+    if (!sc.file.empty()) {
+      s.name = sc.file;
+      s.path = sc.file;
+      s.grid = sc.grid;
+      s.up = static_cast<int>(parse_up_axis(sc.up));
+      if (sc.file.find('%') != std::string::npos) {
+        // A sequence: every frame number whose file exists, 0 to 99999.
+        char buf[4096];
+        for (int n = 0; n <= 99999; ++n) {
+          std::snprintf(buf, sizeof buf, sc.file.c_str(), n);
+          std::error_code ec;
+          if (std::filesystem::is_regular_file(buf, ec)) s.frames.push_back(n);
+        }
+        if (s.frames.empty()) throw std::runtime_error("sky cloud file '" + sc.file + "': no frame of the sequence exists");
+        if (!sequence_timed) {
+          // The sequence's own clock: a keyframe per frame, at the fps of its first file.
+          std::snprintf(buf, sizeof buf, sc.file.c_str(), s.frames.front());
+          double fps = 24.0;
+          load_cloud_grid(buf, sc.grid, static_cast<UpAxis>(s.up), &fps);
+          if (!(fps > 0.0 && fps <= 1000.0)) fps = 24.0;
+          interval_s_ = 1.0 / fps;
+          sequence_timed = true;
+        }
+      } else {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(sc.file, ec))
+          throw std::runtime_error("sky cloud file '" + sc.file + "': no such file");
+      }
+    } else {
+      s.name = sc.preset + " #" + std::to_string(i);
+      s.params = volume::sky_cloud_params(sky_, i);
+      const volume::Aabb b = volume::CloudModel(s.params, sky_.voxel_size_m, 0.0).bounds();
+      if (b.empty()) throw std::invalid_argument("sky clouds[" + std::to_string(i) + "]: the cloud has no extent");
+      const glm::dvec3 n = (b.hi - b.lo) / sky_.voxel_size_m + 3.0;
+      voxels += static_cast<uint64_t>(n.x) * static_cast<uint64_t>(n.y) * static_cast<uint64_t>(n.z);
+    }
     slots_.push_back(std::move(s));
   }
-  // Held at once: kKeep keyframes of every box, plus the two copies a pair hands out.
+  // Held at once, at worst: kKeep keyframes of every preset's bounds, plus a pair's two copies.
   ensure_fits_in_memory(voxels * (kKeep + 2), sizeof(float), "the sky's keyframes");
   worker_ = std::thread([this] { run(); });
 }
@@ -65,11 +88,11 @@ SkyKeyframes::~SkyKeyframes() {
 }
 
 int64_t SkyKeyframes::keyframe_at(double t) const {
-  return static_cast<int64_t>(std::floor(t / sky_.keyframe_interval_s));
+  return static_cast<int64_t>(std::floor(t / interval_s_));
 }
 
 double SkyKeyframes::blend_at(double t) const {
-  const double x = t / sky_.keyframe_interval_s;
+  const double x = t / interval_s_;
   const double w = x - std::floor(x);
   return w < 1.0 ? w : 0.0;  // rounding can give exactly 1 for tiny negative x
 }
@@ -122,17 +145,28 @@ SkyKeyframes::Stats SkyKeyframes::stats() const {
   return stats_;
 }
 
-std::vector<volume::DenseBox> SkyKeyframes::make(int64_t k) const {
-  std::vector<volume::DenseBox> boxes;
+SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
+  Keyframe grids;
   volume::GenerateOptions opt;
   opt.voxel_size = sky_.voxel_size_m;
-  opt.time = static_cast<double>(k) * sky_.keyframe_interval_s;
+  opt.time = static_cast<double>(k) * interval_s_;
   for (const CloudSlot& s : slots_) {
     if (stopping_) throw std::runtime_error("stopped");
-    const openvdb::FloatGrid::Ptr grid = volume::generate_density(s.params, opt);
-    boxes.push_back(volume::dense_box(*volume::rotate_z_up_to_y_up(*grid), s.box_y));
+    if (s.path.empty()) {
+      grids.push_back(volume::rotate_z_up_to_y_up(*volume::generate_density(s.params, opt)));
+    } else if (s.frames.empty()) {
+      if (!s.file_grid) s.file_grid = load_cloud_grid(s.path, s.grid, static_cast<UpAxis>(s.up));
+      grids.push_back(s.file_grid);
+    } else {
+      // Frame k of the sequence, looping.
+      const int64_t count = static_cast<int64_t>(s.frames.size());
+      const int frame = s.frames[static_cast<std::size_t>(((k % count) + count) % count)];
+      char buf[4096];
+      std::snprintf(buf, sizeof buf, s.path.c_str(), frame);
+      grids.push_back(load_cloud_grid(buf, s.grid, static_cast<UpAxis>(s.up)));
+    }
   }
-  return boxes;
+  return grids;
 }
 
 void SkyKeyframes::run() {
@@ -156,10 +190,10 @@ void SkyKeyframes::run() {
     stats_.busy = true;
     lock.unlock();
     const auto start = std::chrono::steady_clock::now();
-    std::shared_ptr<const std::vector<volume::DenseBox>> made;
+    std::shared_ptr<const Keyframe> made;
     std::string failure;
     try {
-      made = std::make_shared<const std::vector<volume::DenseBox>>(make(next));
+      made = std::make_shared<const Keyframe>(make(next));
     } catch (const std::exception& e) {
       failure = "sky keyframe " + std::to_string(next) + ": " + e.what();
     }
@@ -179,7 +213,7 @@ void SkyKeyframes::run() {
 }
 
 std::vector<CloudVolume> SkyKeyframes::pair(int64_t k) const {
-  std::shared_ptr<const std::vector<volume::DenseBox>> a, b;
+  std::shared_ptr<const Keyframe> a, b;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto ia = frames_.find(k), ib = frames_.find(k + 1);
@@ -190,11 +224,20 @@ std::vector<CloudVolume> SkyKeyframes::pair(int64_t k) const {
   }
   std::vector<CloudVolume> clouds;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
-    volume::DenseBox box = (*a)[i], next = (*b)[i];
-    // A keyframe where a cloud has dissolved entirely still needs one value for the slicer's
-    // hull; an all-zero box draws nothing either way.
-    CloudVolume c = make_cloud_volume(std::move(box), *slots_[i].transform, optics_, slots_[i].name);
-    set_next_keyframe(c, std::move(next), 0.0);
+    const openvdb::FloatGrid& ga = *(*a)[i];
+    const openvdb::FloatGrid& gb = *(*b)[i];
+    if (ga.transform() != gb.transform())
+      throw std::runtime_error("sky cloud '" + slots_[i].name + "': keyframes " + std::to_string(k) + " and " +
+                               std::to_string(k + 1) + " have different transforms (voxel size or placement)");
+    // Both keyframes on the union of their active boxes; a cloud that has dissolved in both
+    // keeps one empty voxel, which draws nothing.
+    openvdb::CoordBBox box = ga.evalActiveVoxelBoundingBox();
+    box.expand(gb.evalActiveVoxelBoundingBox());
+    if (box.empty()) box = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(0));
+    openvdb::math::Transform::Ptr t = ga.transform().copy();
+    t->postTranslate(openvdb::Vec3d(slots_[i].position_y.x, slots_[i].position_y.y, slots_[i].position_y.z));
+    CloudVolume c = make_cloud_volume(volume::dense_box(ga, box), *t, optics_, slots_[i].name);
+    set_next_keyframe(c, volume::dense_box(gb, box), 0.0);
     clouds.push_back(std::move(c));
   }
   return clouds;

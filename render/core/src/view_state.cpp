@@ -8,6 +8,7 @@
 
 #include "nimbus/base/atomic_file.hpp"
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 
 namespace nimbus::render {
@@ -49,6 +50,13 @@ void members(const json& v, const std::string& key, F f) {
 
 void validate(const ViewState& s) {
   volume::validate(s.sky);
+  if (s.scene != "none") {
+    try {
+      make_scene(s.scene);
+    } catch (const std::invalid_argument& e) {
+      bad(std::string("view state scene: ") + e.what() + " (or none)");
+    }
+  }
   Camera c;
   c.eye = s.eye;
   c.look_at = s.look_at;
@@ -92,6 +100,9 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
     if (k == "sky") {
       s.sky = volume::sky_from_json(v, key);
       has_sky = true;
+    } else if (k == "scene") {
+      if (!v.is_string()) bad(key + " must be a scene name or none");
+      s.scene = v.get<std::string>();
     } else if (k == "camera") {
       members(v, key, [&](const std::string& ck, const json& cv, const std::string& ckey) {
         if (ck == "eye") s.eye = vec3(cv, ckey);
@@ -140,7 +151,7 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         } else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
       });
     } else if (k != "nimbus") {
-      bad(key + ": unknown key (known: sky, camera, time, optics, renderer)");
+      bad(key + ": unknown key (known: sky, scene, camera, time, optics, renderer)");
     }
   });
   if (!has_sky) bad(where + ".sky is missing");
@@ -155,6 +166,7 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
 json view_state_to_json(const ViewState& s) {
   return {{"nimbus", "view state"},
           {"sky", volume::sky_to_json(s.sky)},
+          {"scene", s.scene},
           {"camera", {{"eye", to_json(s.eye)}, {"look_at", to_json(s.look_at)}, {"fov", s.fov_deg}}},
           {"time", {{"sky", s.sky_time_s}, {"evolution", s.evolution_time_s}, {"speed", s.speed}, {"paused", s.paused}}},
           {"optics",

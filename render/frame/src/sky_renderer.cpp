@@ -28,10 +28,15 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   return fs;
 }
 
-Scene sky_scene(const Daylight& d) {
-  Scene scene = make_scene("sky");
-  scene.sun = d.sun;
-  scene.sky = d.sky;
+// The state's scene: the sky scene lit by the daylight; another preset keeps its own lights
+// (its sun, if any, follows the daylight's); none: the clouds alone.
+std::optional<Scene> state_scene(const std::string& name, const Daylight& d) {
+  if (name == "none") return std::nullopt;
+  Scene scene = make_scene(name);
+  if (name == "sky") {
+    scene.sun = d.sun;
+    scene.sky = d.sky;
+  }
   return scene;
 }
 
@@ -78,7 +83,7 @@ SkyRenderer::SkyRenderer(const ViewState& state, std::shared_ptr<SkyKeyframes> k
     keyframes_ = std::make_shared<SkyKeyframes>(state.sky, optics(state));
   }
   const Daylight d = daylight(state.sky.sun_elevation_deg, state.sky.sun_azimuth_deg);
-  frame_ = std::make_unique<FrameRenderer>(sky_scene(d), light_of(d), frame_settings(state, FrameQuality{}));
+  frame_ = std::make_unique<FrameRenderer>(state_scene(state.scene, d), light_of(d), frame_settings(state, FrameQuality{}));
   applied_ = state;
 }
 
@@ -96,10 +101,16 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
   const ViewState& a = *applied_;
   // The keyframes hold the clouds only: a new wind or sun needs none.
   if (clouds_of(a.sky) != clouds_of(s.sky)) keyframes_ = std::make_shared<SkyKeyframes>(s.sky, optics(s));
-  if (a.sky.sun_elevation_deg != s.sky.sun_elevation_deg || a.sky.sun_azimuth_deg != s.sky.sun_azimuth_deg) {
+  if (a.scene != s.scene) {
+    // A new scene: a new pipeline (its programs compile again); the clouds are uploaded anew.
+    const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
+    frame_ = std::make_unique<FrameRenderer>(state_scene(s.scene, d), light_of(d), frame_settings(s, q));
+    pair_.reset();
+    drawn_.reset();
+  } else if (a.sky.sun_elevation_deg != s.sky.sun_elevation_deg || a.sky.sun_azimuth_deg != s.sky.sun_azimuth_deg) {
     const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
     frame_->set_light(light_of(d));
-    frame_->set_sky(d.sky);
+    if (s.scene == "sky") frame_->set_sky(d.sky);
   }
   frame_->set_optics(optics(s));
   frame_->set_settings(frame_settings(s, q));

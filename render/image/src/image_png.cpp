@@ -57,17 +57,22 @@ std::uint8_t srgb8(double linear) {
 
 }  // namespace
 
+std::array<std::uint8_t, 3> preview_pixel(const float rgb[3], const PreviewOptions& options) {
+  const double scale = std::exp2(options.exposure_stops);
+  const Rgb mapped = tonemap({rgb[0] * scale, rgb[1] * scale, rgb[2] * scale}, options.tonemap);
+  return {srgb8(mapped[0]), srgb8(mapped[1]), srgb8(mapped[2])};
+}
+
 void write_png_preview(const std::filesystem::path& path, const Image& image, const PreviewOptions& options) {
   check_image(image, "PNG " + path.string());
   if (!std::isfinite(options.exposure_stops)) {
     throw std::invalid_argument("PNG preview: exposure_stops is not finite");
   }
-  const double scale = std::exp2(options.exposure_stops);
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * image.height * 3);
   for (std::size_t p = 0; p < rgb.size() / 3; ++p) {
     const float* px = image.rgba.data() + 4 * p;  // premultiplied: over black is the RGB itself
-    const Rgb mapped = tonemap({px[0] * scale, px[1] * scale, px[2] * scale}, options.tonemap);
-    for (int c = 0; c < 3; ++c) rgb[3 * p + c] = srgb8(mapped[c]);
+    const std::array<std::uint8_t, 3> code = preview_pixel(px, options);
+    for (int c = 0; c < 3; ++c) rgb[3 * p + c] = code[c];
   }
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     png_image png{};

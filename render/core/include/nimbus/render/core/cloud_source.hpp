@@ -22,6 +22,10 @@ UpAxis parse_up_axis(const std::string& text);
 // unknown grid volume::GridNotFound (both naming the file), and a box too large to hold
 // OutOfMemoryRequest.
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics);
+// The same grid, y-up, before it becomes a cloud (the viewer keeps keyframes as grids). `fps`:
+// the file's "fps" metadata when it has one.
+openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up,
+                                        double* fps = nullptr);
 
 // A preset's cloud parameters and its own voxel size (metres); std::invalid_argument naming an
 // unknown preset or a bad parameter.

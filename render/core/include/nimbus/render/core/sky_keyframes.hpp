@@ -1,9 +1,10 @@
-// A sky's clouds as keyframes of their evolution, generated on a background thread so that a
-// render loop never waits on them. Keyframe k holds every cloud's density at evolution time
-// k * interval, on a box fixed per cloud (its model's bounds, which do not change without wind),
-// so any two keyframes blend voxel for voxel (CloudVolume::next_box). The wind is not in the
-// keyframes: it moves the density field as a whole (CloudModel: q = p - wind t), which is a
-// translation of the cloud by wind * t (motion()).
+// A sky's clouds as keyframes of their evolution, made on a background thread so that a render
+// loop never waits on them. Keyframe k holds every cloud's density grid (y-up) at evolution time
+// k * interval: a preset generated at that time, a VDB file as it is, or frame k of a VDB
+// sequence (then the interval is the sequence's 1 / fps, and it loops). A pair of keyframes is
+// copied onto the union of their active boxes, so the two blend voxel for voxel
+// (CloudVolume::next_box). The wind is not in the keyframes: it moves the density field as a
+// whole (CloudModel: q = p - wind t), which is a translation of the cloud by wind * t (motion()).
 #pragma once
 #include <atomic>
 #include <condition_variable>
@@ -26,15 +27,16 @@ namespace nimbus::render {
 class SkyKeyframes {
  public:
   // Validates the sky (std::invalid_argument naming the key) and the optics, sizes every
-  // cloud's box (OutOfMemoryRequest when the boxes of two keyframes could not be held) and starts
-  // the worker. Nothing is generated until request() or wait().
+  // preset's bounds (OutOfMemoryRequest when its keyframes could not be held), finds a
+  // sequence's frames (std::runtime_error naming a file cloud with none) and starts the worker.
+  // Nothing is generated or read until request() or wait().
   SkyKeyframes(volume::Sky sky, const CloudOptics& optics);
   ~SkyKeyframes();  // stops the worker (after the keyframe it is making)
   SkyKeyframes(const SkyKeyframes&) = delete;
   SkyKeyframes& operator=(const SkyKeyframes&) = delete;
 
   const volume::Sky& sky() const { return sky_; }
-  double interval_s() const { return sky_.keyframe_interval_s; }
+  double interval_s() const { return interval_s_; }
   // The keyframe at or before evolution time t, and the blend towards the next one, in [0, 1).
   int64_t keyframe_at(double evolution_time_s) const;
   double blend_at(double evolution_time_s) const;
@@ -65,19 +67,25 @@ class SkyKeyframes {
  private:
   struct CloudSlot {
     std::string name;
-    volume::CloudParams params;
-    openvdb::CoordBBox box_y;               // the fixed box, y-up index space
-    openvdb::math::Transform::Ptr transform;  // y-up, moved to the sky position
+    glm::dvec3 position_y{0.0};          // the sky position, y-up
+    volume::CloudParams params;          // a preset
+    std::string path;                    // a file, or a sequence's pattern
+    std::string grid;
+    int up = 0;                          // UpAxis
+    std::vector<int> frames;             // a sequence's frame numbers, ascending; empty: one file
+    mutable openvdb::FloatGrid::ConstPtr file_grid;  // one file, read once (worker thread)
   };
+  using Keyframe = std::vector<openvdb::FloatGrid::ConstPtr>;
   void run();
-  std::vector<volume::DenseBox> make(int64_t k) const;
+  Keyframe make(int64_t k) const;
 
   volume::Sky sky_;
   CloudOptics optics_;
   std::vector<CloudSlot> slots_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, made_;
-  std::map<int64_t, std::shared_ptr<const std::vector<volume::DenseBox>>> frames_;
+  double interval_s_ = 1.0;
+  std::map<int64_t, std::shared_ptr<const Keyframe>> frames_;
   std::vector<int64_t> wanted_;
   std::string error_;
   Stats stats_;

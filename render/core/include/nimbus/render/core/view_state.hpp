@@ -16,6 +16,9 @@ namespace nimbus::render {
 
 struct ViewState {
   volume::Sky sky;
+  // What lies under and behind the clouds: "sky" (ground, haze and sky lit by the sky's sun),
+  // another scene preset (its own lights; its sun, if it has one, follows the sky's), or "none".
+  std::string scene = "sky";
   // Camera (y-up metres, as render::Camera).
   glm::dvec3 eye{-600.0, 250.0, 5200.0};
   glm::dvec3 look_at{400.0, 1500.0, -1500.0};

@@ -1,6 +1,8 @@
 // Image files: the linear half-float OpenEXR that every renderer writes (with its metadata) and
 // a tone-mapped 8-bit sRGB PNG preview. Both are written atomically and refuse bad pixels.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string_view>
 
@@ -37,6 +39,10 @@ struct PreviewOptions {
 // what check_image refuses and a non-finite exposure (std::invalid_argument); written atomically.
 void write_png_preview(const std::filesystem::path& path, const Image& image,
                        const PreviewOptions& options = {});
+
+// One pixel as write_png_preview encodes it (premultiplied RGB over black): the 8-bit sRGB codes.
+// The viewer's display shader (shaders/lib/tonemap.glsl) computes the same.
+std::array<std::uint8_t, 3> preview_pixel(const float rgb[3], const PreviewOptions& options = {});
 
 // Exposure (in stops) that maps the log-average luminance of the covered pixels to middle grey
 // 0.18 (Reinhard et al. 2002, eq. 1 with key a = 0.18): stops = log2(0.18 / L_avg) with

@@ -1,0 +1,209 @@
+// `nimbus bench view`: the viewer's frame times along a scripted orbit and a time-lapse of the
+// default sky, with the adaptive quality's choices and what they cost in error against the
+// full-quality frame of the same state, the keyframes' generation time and the longest frame
+// while one was made. Headless (EGL); the same Viewer code as `nimbus view`.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.hpp"
+#include "cli/render_args.hpp"
+#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/image/image_io.hpp"
+#include "nimbus/render/image/image_metrics.hpp"
+#include "viewer/viewer.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+struct BenchViewArgs {
+  std::string sizes = "640x360,1280x720";
+  int frames = 60;
+  double budget_ms = 100.0;
+  int error_every = 3;   // compare every Nth adaptive frame with the full-quality frame
+  std::string strip;     // a PNG strip of the time-lapse
+};
+
+using Clock = std::chrono::steady_clock;
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double x = q * (v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(x);
+  return i + 1 < v.size() ? v[i] + (x - i) * (v[i + 1] - v[i]) : v.back();
+}
+
+// Bilinear upscaling with pixel centres at +0.5, as the display's linear filtering does.
+render::Image upscale(const render::Image& src, int w, int h) {
+  if (src.width == w && src.height == h) return src;
+  render::Image out(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double sx = std::clamp((x + 0.5) * src.width / w - 0.5, 0.0, src.width - 1.0);
+      const double sy = std::clamp((y + 0.5) * src.height / h - 0.5, 0.0, src.height - 1.0);
+      const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
+      const int x1 = std::min(x0 + 1, src.width - 1), y1 = std::min(y0 + 1, src.height - 1);
+      const double fx = sx - x0, fy = sy - y0;
+      for (int c = 0; c < 4; ++c) {
+        const double v = (1 - fy) * ((1 - fx) * src.pixel(x0, y0)[c] + fx * src.pixel(x1, y0)[c]) +
+                         fy * ((1 - fx) * src.pixel(x0, y1)[c] + fx * src.pixel(x1, y1)[c]);
+        out.pixel(x, y)[c] = static_cast<float>(v);
+      }
+    }
+  return out;
+}
+
+struct PathResult {
+  std::vector<double> ms, errors;
+  std::map<int, int> levels;
+  int held = 0;                   // frames whose evolution waited for its keyframes
+  int64_t keyframes = 0;          // made during the path
+  double keyframe_s = 0.0;        // generation time of those
+  double longest_generating = 0;  // the longest frame while a keyframe was being made
+};
+
+enum class Path { Orbit, TimeLapse };
+
+PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool adaptive, int error_every) {
+  PathResult r;
+  v.adaptive().enabled = adaptive;
+  v.state().paused = false;
+  v.state().speed = path == Path::Orbit ? 10.0 : 30.0;
+  const auto k0 = v.keyframes().stats();
+  double clock = 0.0;          // real seconds the viewer has seen
+  auto last = Clock::now();
+  for (int f = 0; f < frames; ++f) {
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    clock += dt;
+    if (path == Path::Orbit) v.drag(0, 6.0, 0.0);  // 1.8 degrees a frame around the target
+    v.advance(dt);
+    const bool busy = v.keyframes().stats().busy;
+    const int64_t made = v.keyframes().stats().keyframes_made;
+    v.draw(w, h, clock);
+    const viewer::FrameReport& rep = v.report();
+    r.ms.push_back(rep.cpu_ms);
+    r.levels[rep.quality_level]++;
+    r.held += rep.info.waited;
+    if (busy || v.keyframes().stats().keyframes_made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
+    if (adaptive && error_every > 0 && f % error_every == 0) {
+      // Outside the clock: the viewer does not see the time this takes.
+      const render::Image full = v.full_quality_frame(w, h);
+      r.errors.push_back(render::compare_images(upscale(v.frame(), w, h), full).rel_rmse);
+      last = Clock::now();
+    }
+  }
+  const auto k1 = v.keyframes().stats();
+  r.keyframes = k1.keyframes_made - k0.keyframes_made;
+  r.keyframe_s = k1.seconds_total - k0.seconds_total;
+  return r;
+}
+
+std::string levels_text(const std::map<int, int>& levels, int frames) {
+  std::ostringstream o;
+  for (const auto& [l, n] : levels) {
+    const viewer::QualityLevel& q = viewer::kQualityLevels[l];
+    if (o.tellp() > 0) o << ", ";
+    o << "x" << q.render_scale << "/" << q.slice_share << ": " << (100 * n + frames / 2) / frames << " %";
+  }
+  return o.str();
+}
+
+int run_bench_view(const BenchViewArgs& a) {
+  std::vector<std::pair<int, int>> sizes;
+  {
+    std::stringstream ss(a.sizes);
+    std::string item;
+    while (std::getline(ss, item, ',')) sizes.push_back(parse_resolution("--sizes", item));
+  }
+  if (sizes.empty()) throw UsageError("--sizes: give at least one WxH");
+  if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
+  if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
+  const auto gl = render::GlContext::create_headless();
+  const render::ViewState start = render::default_view_state();
+  viewer::ViewerOptions options;
+  std::printf("# nimbus bench view: the default sky (%zu clouds, %.0f m voxels, keyframes every %.0f s of sky time), %s\n",
+              start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, gl->renderer().c_str());
+  std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %d octaves; adaptive budget %.0f ms\n",
+              start.slices, start.light_res, start.shafts.c_str(), start.cloud_shadow_res, start.multiple_octaves, a.budget_ms);
+  std::printf("# orbit: 1.8 deg of tumble per frame, sky time x10; time-lapse: still camera, sky time x30; real time steps\n");
+  std::printf("# frame = the viewer's whole frame on the CPU (render, readback); error = rel. RMSE of the adaptive frame,\n");
+  std::printf("#   upscaled as the display does, against the full-quality frame of the same state (every %dth frame)\n\n",
+              a.error_every);
+  std::printf("| size | path | quality | frames | median ms | p95 ms | max ms | fps (median) | levels used (scale/slices) | "
+              "error median / max | keyframes made (s each) | frames held | longest frame while generating |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|\n");
+  for (const auto& [w, h] : sizes) {
+    struct Row {
+      Path path;
+      bool adaptive;
+      const char* name;
+    };
+    for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, true, "orbit"},
+                           Row{Path::TimeLapse, true, "time-lapse"}}) {
+      viewer::Viewer v(start, options);
+      v.adaptive().budget_ms = a.budget_ms;
+      v.draw(w, h, 0.0);  // the first pair and every program, before timing
+      const PathResult r = run_path(v, row.path, w, h, a.frames, row.adaptive, a.error_every);
+      const double med = percentile(r.ms, 0.5);
+      char err[64] = "-";
+      if (!r.errors.empty())
+        std::snprintf(err, sizeof err, "%.4f / %.4f", percentile(r.errors, 0.5), *std::max_element(r.errors.begin(), r.errors.end()));
+      char kf[64] = "0";
+      if (r.keyframes > 0) std::snprintf(kf, sizeof kf, "%lld (%.2f s)", static_cast<long long>(r.keyframes), r.keyframe_s / r.keyframes);
+      char gen[32] = "-";
+      if (r.longest_generating > 0) std::snprintf(gen, sizeof gen, "%.0f ms", r.longest_generating);
+      std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s |\n", w, h, row.name,
+                  row.adaptive ? "adaptive" : "full (anchor)", a.frames, med, percentile(r.ms, 0.95),
+                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels, a.frames).c_str(), err,
+                  kf, r.held, gen);
+      std::fflush(stdout);
+    }
+  }
+  if (!a.strip.empty()) {
+    // Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).
+    options.wait_for_keyframes = true;
+    viewer::Viewer v(start, options);
+    v.adaptive().enabled = false;
+    v.state().speed = 30.0;
+    const int fw = 320, fh = 180, n = 6;
+    render::Image strip(fw * n, fh);
+    for (int i = 0; i < n; ++i) {
+      if (i > 0) v.advance(1.0);
+      const render::Image& f = v.draw(fw, fh, 0.0);
+      for (int y = 0; y < fh; ++y)
+        for (int x = 0; x < fw; ++x)
+          for (int c = 0; c < 4; ++c) strip.pixel(i * fw + x, y)[c] = f.pixel(x, y)[c];
+    }
+    render::PreviewOptions po;
+    po.exposure_stops = start.exposure_stops;
+    render::write_png_preview(a.strip, strip, po);
+    std::printf("\nstrip: %s (6 frames, 30 s of sky time apart)\n", a.strip.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_view(CLI::App& bench, Action& action) {
+  auto a = std::make_shared<BenchViewArgs>();
+  CLI::App* cmd = bench.add_subcommand("view", "The viewer: frame times along an orbit and a time-lapse, adaptive quality against its error");
+  cmd->add_option("--sizes", a->sizes, "Comma-separated frame sizes WxH")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Frames per path")->capture_default_str();
+  cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality's frame budget while moving")->capture_default_str();
+  cmd->add_option("--error-every", a->error_every, "Measure the error of every Nth adaptive frame (0: never)")
+      ->capture_default_str();
+  cmd->add_option("--strip", a->strip, "Also write a PNG strip of six time-lapse frames here");
+  cmd->callback([&action, a] { action = [a] { return run_bench_view(*a); }; });
+}
+
+}  // namespace nimbus::cli

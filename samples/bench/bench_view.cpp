@@ -113,7 +113,7 @@ std::string levels_text(const std::map<int, int>& levels, int frames) {
   for (const auto& [l, n] : levels) {
     const viewer::QualityLevel& q = viewer::kQualityLevels[l];
     if (o.tellp() > 0) o << ", ";
-    o << "x" << q.render_scale << "/" << q.slice_share << ": " << (100 * n + frames / 2) / frames << " %";
+    o << "x" << q.render_scale << "/" << q.slice_share << ": " << n;
   }
   return o.str();
 }
@@ -137,9 +137,9 @@ int run_bench_view(const BenchViewArgs& a) {
               start.slices, start.light_res, start.shafts.c_str(), start.cloud_shadow_res, start.multiple_octaves, a.budget_ms);
   std::printf("# orbit: 1.8 deg of tumble per frame, sky time x10; time-lapse: still camera, sky time x30; real time steps\n");
   std::printf("# frame = the viewer's whole frame on the CPU (render, readback); error = rel. RMSE of the adaptive frame,\n");
-  std::printf("#   upscaled as the display does, against the full-quality frame of the same state (every %dth frame)\n\n",
+  std::printf("#   upscaled as the display does, against the full-quality frame of the same state (one frame in %d)\n\n",
               a.error_every);
-  std::printf("| size | path | quality | frames | median ms | p95 ms | max ms | fps (median) | levels used (scale/slices) | "
+  std::printf("| size | path | quality | frames | median ms | p95 ms | max ms | fps (median) | frames per level (scale/slices) | "
               "error median / max | keyframes made (s each) | frames held | longest frame while generating |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|\n");
   for (const auto& [w, h] : sizes) {

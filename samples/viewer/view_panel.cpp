@@ -38,8 +38,9 @@ void draw_panel(Viewer& viewer) {
   render::ViewState& s = viewer.state();
   const FrameReport& r = viewer.report();
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("nimbus");
+  ImGui::PushItemWidth(-190.0f);  // room for the labels on the right
   ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0, r.cpu_ms,
               r.info.width, r.info.height, r.info.slices, r.quality_level);
   if (!viewer.message().empty()) ImGui::TextWrapped("%s", viewer.message().c_str());
@@ -164,6 +165,7 @@ void draw_panel(Viewer& viewer) {
   ImGui::SameLine();
   if (ImGui::Button("Home (H)")) viewer.key(Key::H);
   ImGui::TextWrapped("Left drag tumbles, right drag pans, wheel zooms; Tab: fly (WASD, Q/E, Shift).");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 

@@ -149,7 +149,6 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
   viewer.adaptive().enabled = s.adaptive;
   json record = json::array();
   int failures = 0;
-  const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < s.frames && !viewer.quit_requested(); ++f) {
     if (f > 0) viewer.advance(s.dt_s);
     // Camera keyframes: linear between the two around this frame, held beyond them.
@@ -177,8 +176,9 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
       if (!viewer.shader_error().empty()) std::fprintf(stderr, "frame %d: shader error: %s\n", f, viewer.shader_error().c_str());
     }
     if (viewer.quit_requested()) break;
-    const double now = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    viewer.draw(s.width, s.height, now);
+    // The adaptive quality's clock is the script's (f * dt): when it refines does not depend on
+    // how fast the machine is; what it picks still depends on the measured frame times.
+    viewer.draw(s.width, s.height, f * s.dt_s);
     present();
     std::string shot;
     if (s.screenshot_every > 0 && f % s.screenshot_every == 0) {

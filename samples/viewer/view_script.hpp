@@ -31,7 +31,7 @@ struct Script {
   int frames = 10;                // [1, 100000]
   double dt_s = 0.1;              // real seconds per frame, [0, 60]
   int screenshot_every = 0;       // 0: none; else frames 0, K, 2K, ...
-  bool adaptive = false;          // on: the adaptive quality runs on measured frame times (then not deterministic)
+  bool adaptive = false;          // on: the adaptive quality runs (on measured frame times, against the script's clock)
   std::string record;             // a JSON file of every frame's clocks, keyframes and costs; empty: none
   std::vector<ScriptCameraKey> camera;
   std::vector<ScriptEvent> events;

@@ -258,6 +258,35 @@ TEST(Viewer, VdbSequencePlaysAtItsFps) {
   EXPECT_NE(missing.output.find("none.%04d.vdb"), std::string::npos) << missing.output;
 }
 
+// With a budget no frame can meet, moving frames drop to the cheapest level (smaller frames,
+// fewer slices); 0.3 s of the script's clock after the last move, full quality returns.
+TEST(Viewer, AdaptiveQualityDropsInMotionAndRefinesWhenStill) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("adaptive");
+  const json state = small_state();
+  const json script = {{"size", {160, 96}}, {"frames", 10}, {"dt", 0.1}, {"adaptive", true},
+                       {"record", d / "record.json"},
+                       {"events", {{{"frame", 0}, {"drag", {10, 0}}}, {{"frame", 1}, {"drag", {10, 0}}},
+                                   {{"frame", 2}, {"drag", {10, 0}}}, {{"frame", 3}, {"drag", {10, 0}}},
+                                   {{"frame", 4}, {"drag", {10, 0}}}}}};
+  const test::RunResult r = view(d, script, &state, "--budget-ms 0.001");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(d / "record.json");
+  const json rec = json::parse(in);
+  ASSERT_EQ(rec.size(), 10u);
+  EXPECT_EQ(rec[0]["quality_level"], 0) << "the first frame is full quality";
+  for (int f = 1; f <= 5; ++f) {
+    EXPECT_EQ(rec[f]["quality_level"], 5) << f;
+    EXPECT_EQ(rec[f]["width"], 40) << f;   // 0.25 x 160
+    EXPECT_EQ(rec[f]["slices"], 13) << f;  // 0.2 x 64, rounded
+  }
+  for (int f = 8; f <= 9; ++f) {
+    EXPECT_EQ(rec[f]["quality_level"], 0) << f;
+    EXPECT_EQ(rec[f]["width"], 160) << f;
+    EXPECT_EQ(rec[f]["slices"], 64) << f;
+  }
+}
+
 TEST(Viewer, BadInputGetsOneLineAndItsExitCode) {
   Dir d("errors");
   test::RunResult r = run_nimbus("view --headless");

@@ -169,6 +169,31 @@ int run_bench_view(const BenchViewArgs& a) {
       std::fflush(stdout);
     }
   }
+  // Every level on one still state: what it costs and what it gives up.
+  std::printf("\n## The adaptive quality's levels on the default view (time paused; best of 3 frames)\n\n");
+  std::printf("| size | level | render scale | slices | frame ms | speed-up | rel. RMSE vs full quality |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& [w, h] : sizes) {
+    viewer::Viewer v(start, options);
+    v.state().paused = true;
+    v.draw(w, h, 0.0);
+    const render::Image full = v.full_quality_frame(w, h);
+    double full_ms = 0.0;
+    for (int l = 0; l < viewer::kQualityLevelCount; ++l) {
+      const render::FrameQuality q{viewer::kQualityLevels[l].render_scale,
+                                   std::max(8, static_cast<int>(std::lround(start.slices * viewer::kQualityLevels[l].slice_share)))};
+      double best = 1e300;
+      render::Image img;
+      for (int rep = 0; rep < 3; ++rep) {
+        const auto t0 = Clock::now();
+        img = v.render_at(w, h, q);
+        best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      }
+      if (l == 0) full_ms = best;
+      std::printf("| %dx%d | %d | %.2f | %d | %.0f | %.1fx | %.4f |\n", w, h, l, q.render_scale, q.slices, best,
+                  full_ms / best, render::compare_images(upscale(img, w, h), full).rel_rmse);
+    }
+  }
   if (!a.strip.empty()) {
     // Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).
     options.wait_for_keyframes = true;

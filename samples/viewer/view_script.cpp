@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "nimbus/base/atomic_file.hpp"
+#include "nimbus/volume/json_io.hpp"
 
 namespace nimbus::viewer {
 namespace {
@@ -21,24 +21,9 @@ using json = nlohmann::json;
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument(m); }
 
-double number(const json& v, const std::string& key, double lo, double hi) {
-  if (!v.is_number()) bad(key + " must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x) || x < lo || x > hi) bad(key + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return x;
-}
-
-int integer(const json& v, const std::string& key, int lo, int hi) {
-  if (!v.is_number_integer()) bad(key + " must be a whole number");
-  const long long x = v.get<long long>();
-  if (x < lo || x > hi) bad(key + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return static_cast<int>(x);
-}
-
-glm::dvec3 vec3(const json& v, const std::string& key) {
-  if (!v.is_array() || v.size() != 3) bad(key + " must be [x, y, z]");
-  return {number(v[0], key + "[0]", -1e7, 1e7), number(v[1], key + "[1]", -1e7, 1e7), number(v[2], key + "[2]", -1e7, 1e7)};
-}
+double number(const json& v, const std::string& key, double lo, double hi) { return volume::json_number(v, key, lo, hi); }
+int integer(const json& v, const std::string& key, int lo, int hi) { return volume::json_integer(v, key, lo, hi); }
+glm::dvec3 vec3(const json& v, const std::string& key) { return volume::json_vec3(v, key, 1e7); }
 
 const std::map<std::string, Key>& key_names() {
   static const std::map<std::string, Key> k = {
@@ -51,16 +36,7 @@ const std::map<std::string, Key>& key_names() {
 }  // namespace
 
 Script load_script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("script '" + path + "': cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error("script '" + path + "': not JSON (" + e.what() + ")");
-  }
+  const json doc = volume::read_json_file(path, "script");
   const std::string where = "script '" + path + "'";
   if (!doc.is_object()) bad(where + " must be a JSON object");
   Script s;
@@ -77,8 +53,7 @@ Script load_script(const std::string& path) {
     } else if (k == "screenshot_every") {
       s.screenshot_every = integer(v, key, 0, 100000);
     } else if (k == "adaptive") {
-      if (!v.is_boolean()) bad(key + " must be true or false");
-      s.adaptive = v.get<bool>();
+      s.adaptive = volume::json_bool(v, key);
     } else if (k == "record") {
       if (!v.is_string() || v.get<std::string>().empty()) bad(key + " must be a file name");
       s.record = v.get<std::string>();
@@ -208,13 +183,7 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
   }
   if (!s.record.empty()) {
     try {
-      const std::string text = record.dump(1) + "\n";
-      write_atomically(s.record, [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) throw std::runtime_error("cannot be written");
-      });
+      volume::write_json_file(s.record, record, "record");
     } catch (const std::exception& e) {
       std::fprintf(stderr, "nimbus view: record '%s': %s\n", s.record.c_str(), e.what());
       ++failures;

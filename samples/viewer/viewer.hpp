@@ -78,6 +78,10 @@ class Viewer {
   render::Image full_quality_frame(int width, int height) {
     return renderer_->render(state_, width, height, render::FrameQuality{}, true);
   }
+  // A frame of the current state at a given quality (the bench's levels); nothing is kept.
+  render::Image render_at(int width, int height, const render::FrameQuality& quality) {
+    return renderer_->render(state_, width, height, quality, true);
+  }
   render::SkyKeyframes& keyframes() { return renderer_->keyframes(); }
   // F5: shaders from options.shader_dir; a broken one keeps the running programs (shader_error()).
   void reload_shaders();

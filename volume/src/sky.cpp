@@ -2,12 +2,10 @@
 #include "nimbus/volume/sky.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "embedded_json.hpp"
-#include "nimbus/base/atomic_file.hpp"
+#include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
 
 namespace nimbus::volume {
@@ -17,19 +15,8 @@ using json = nlohmann::json;
 
 [[noreturn]] void bad(const std::string& message) { throw std::invalid_argument(message); }
 
-double number(const json& v, const std::string& key, double lo, double hi) {
-  if (!v.is_number()) bad(key + " must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x) || x < lo || x > hi)
-    bad(key + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump());
-  return x;
-}
-
-glm::dvec3 vec3(const json& v, const std::string& key, double limit) {
-  if (!v.is_array() || v.size() != 3) bad(key + " must be [x, y, z]");
-  return {number(v[0], key + "[0]", -limit, limit), number(v[1], key + "[1]", -limit, limit),
-          number(v[2], key + "[2]", -limit, limit)};
-}
+double number(const json& v, const std::string& key, double lo, double hi) { return json_number(v, key, lo, hi); }
+glm::dvec3 vec3(const json& v, const std::string& key, double limit) { return json_vec3(v, key, limit); }
 
 constexpr double kMaxPosition = 1.0e6;  // metres from the origin
 constexpr double kMaxWind = 200.0;      // metres per second
@@ -158,28 +145,12 @@ json sky_to_json(const Sky& s) {
 }
 
 Sky load_sky_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("sky file '" + path + "': cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error("sky file '" + path + "': not JSON (" + e.what() + ")");
-  }
-  return sky_from_json(doc, "sky file '" + path + "'");
+  return sky_from_json(read_json_file(path, "sky file"), "sky file '" + path + "'");
 }
 
 void save_sky_file(const Sky& sky, const std::string& path) {
   validate(sky);
-  const std::string text = sky_to_json(sky).dump(2) + "\n";
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("sky file '" + path + "': cannot be written");
-  });
+  write_json_file(path, sky_to_json(sky), "sky file");
 }
 
 Sky default_sky() {

@@ -2,11 +2,9 @@
 #include "nimbus/render/core/view_state.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
-#include "nimbus/base/atomic_file.hpp"
+#include "nimbus/volume/json_io.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
@@ -18,24 +16,9 @@ using json = nlohmann::json;
 
 [[noreturn]] void bad(const std::string& m) { throw std::invalid_argument(m); }
 
-double number(const json& v, const std::string& key) {
-  if (!v.is_number()) bad(key + " must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) bad(key + " must be finite");
-  return x;
-}
-
-int integer(const json& v, const std::string& key) {
-  if (!v.is_number_integer()) bad(key + " must be a whole number");
-  const long long x = v.get<long long>();
-  if (x < -1000000000LL || x > 1000000000LL) bad(key + " is out of range");
-  return static_cast<int>(x);
-}
-
-glm::dvec3 vec3(const json& v, const std::string& key) {
-  if (!v.is_array() || v.size() != 3) bad(key + " must be [x, y, z]");
-  return {number(v[0], key + "[0]"), number(v[1], key + "[1]"), number(v[2], key + "[2]")};
-}
+double number(const json& v, const std::string& key) { return volume::json_number(v, key); }
+int integer(const json& v, const std::string& key) { return volume::json_integer(v, key, -1000000000, 1000000000); }
+glm::dvec3 vec3(const json& v, const std::string& key) { return volume::json_vec3(v, key); }
 
 json to_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
@@ -115,10 +98,8 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         if (tk == "sky") s.sky_time_s = number(tv, tkey);
         else if (tk == "evolution") s.evolution_time_s = number(tv, tkey);
         else if (tk == "speed") s.speed = number(tv, tkey);
-        else if (tk == "paused") {
-          if (!tv.is_boolean()) bad(tkey + " must be true or false");
-          s.paused = tv.get<bool>();
-        } else bad(tkey + ": unknown key (known: sky, evolution, speed, paused)");
+        else if (tk == "paused") s.paused = volume::json_bool(tv, tkey);
+        else bad(tkey + ": unknown key (known: sky, evolution, speed, paused)");
       });
     } else if (k == "optics") {
       members(v, key, [&](const std::string& ok, const json& ov, const std::string& okey) {
@@ -141,10 +122,7 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         else if (rk == "cloud_shadow_res") s.cloud_shadow_res = integer(rv, rkey);
         else if (rk == "render_scale") s.render_scale = number(rv, rkey);
         else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
-        else if (rk == "jitter") {
-          if (!rv.is_boolean()) bad(rkey + " must be true or false");
-          s.jitter = rv.get<bool>();
-        }
+        else if (rk == "jitter") s.jitter = volume::json_bool(rv, rkey);
         else if (rk == "shafts") {
           if (!rv.is_string()) bad(rkey + " must be a shaft method such as raymarch:24");
           s.shafts = rv.get<std::string>();
@@ -185,28 +163,12 @@ json view_state_to_json(const ViewState& s) {
 }
 
 ViewState load_view_state(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("view state '" + path + "': cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error("view state '" + path + "': not JSON (" + e.what() + ")");
-  }
-  return view_state_from_json(doc, "view state '" + path + "'");
+  return view_state_from_json(volume::read_json_file(path, "view state"), "view state '" + path + "'");
 }
 
 void save_view_state(const ViewState& state, const std::string& path) {
   validate(state);
-  const std::string text = view_state_to_json(state).dump(2) + "\n";
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("view state '" + path + "': cannot be written");
-  });
+  volume::write_json_file(path, view_state_to_json(state), "view state");
 }
 
 ViewState default_view_state() {

@@ -1,0 +1,70 @@
+// JSON files and checked values (json_io.hpp).
+#include "nimbus/volume/json_io.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "nimbus/base/atomic_file.hpp"
+
+namespace nimbus::volume {
+namespace {
+
+std::string range_text(double lo, double hi) {
+  std::ostringstream o;
+  o << "[" << lo << ", " << hi << "]";
+  return o.str();
+}
+
+}  // namespace
+
+nlohmann::json read_json_file(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(what + " '" + path + "': cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(what + " '" + path + "': not JSON (" + e.what() + ")");
+  }
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& doc, const std::string& what) {
+  const std::string text = doc.dump(2) + "\n";
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error(what + " '" + path + "': cannot be written");
+  });
+}
+
+double json_number(const nlohmann::json& v, const std::string& key, double lo, double hi) {
+  if (!v.is_number()) throw std::invalid_argument(key + " must be a number");
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw std::invalid_argument(key + " must be finite");
+  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
+  return x;
+}
+
+int json_integer(const nlohmann::json& v, const std::string& key, int lo, int hi) {
+  if (!v.is_number_integer()) throw std::invalid_argument(key + " must be a whole number");
+  const long long x = v.get<long long>();
+  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
+  return static_cast<int>(x);
+}
+
+bool json_bool(const nlohmann::json& v, const std::string& key) {
+  if (!v.is_boolean()) throw std::invalid_argument(key + " must be true or false");
+  return v.get<bool>();
+}
+
+glm::dvec3 json_vec3(const nlohmann::json& v, const std::string& key, double limit) {
+  if (!v.is_array() || v.size() != 3) throw std::invalid_argument(key + " must be [x, y, z]");
+  return {json_number(v[0], key + "[0]", -limit, limit), json_number(v[1], key + "[1]", -limit, limit),
+          json_number(v[2], key + "[2]", -limit, limit)};
+}
+
+}  // namespace nimbus::volume

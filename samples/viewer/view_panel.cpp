@@ -159,6 +159,8 @@ void draw_panel(Viewer& viewer) {
   if (ImGui::Button("Save (Ctrl+S)")) viewer.key(Key::CtrlS);
   ImGui::SameLine();
   if (ImGui::Button("Load (Ctrl+O)")) viewer.key(Key::CtrlO);
+  if (ImGui::Button("Save sky (nimbus-sky.json)")) viewer.save_sky("nimbus-sky.json");
+  ImGui::SameLine();
   if (ImGui::Button("Reload shaders (F5)")) viewer.key(Key::F5);
   ImGui::SameLine();
   if (ImGui::Button("Frame (G)")) viewer.key(Key::G);

@@ -106,11 +106,15 @@ Script load_script(const std::string& path) {
             if (!iv.is_array() || iv.size() != 2) bad(ikey + " must be [elevation, azimuth] degrees");
             ev.kind = ScriptEvent::Kind::Sun;
             ev.amount = {number(iv[0], ikey + "[0]", -10, 90), number(iv[1], ikey + "[1]", 0, 359.999)};
+          } else if (ik == "save_sky") {
+            if (!iv.is_string() || iv.get<std::string>().empty()) bad(ikey + " must be a file name");
+            ev.kind = ScriptEvent::Kind::SaveSky;
+            ev.path = iv.get<std::string>();
           } else {
-            bad(ikey + ": unknown key (known: frame, key, drag, button, scroll, sun)");
+            bad(ikey + ": unknown key (known: frame, key, drag, button, scroll, sun, save_sky)");
           }
         }
-        if (kinds != 1) bad(ek + " must hold exactly one of key, drag, scroll, sun");
+        if (kinds != 1) bad(ek + " must hold exactly one of key, drag, scroll, sun, save_sky");
         s.events.push_back(ev);
       }
     } else {
@@ -146,6 +150,7 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
         case ScriptEvent::Kind::Drag: viewer.drag(e.button, e.amount.x, e.amount.y); break;
         case ScriptEvent::Kind::Scroll: viewer.scroll(e.amount.x); break;
         case ScriptEvent::Kind::Sun: viewer.set_sun(e.amount.x, e.amount.y); break;
+        case ScriptEvent::Kind::SaveSky: viewer.save_sky(e.path); break;
       }
       if (!viewer.message().empty()) std::fprintf(stderr, "frame %d: %s\n", f, viewer.message().c_str());
       if (!viewer.shader_error().empty()) std::fprintf(stderr, "frame %d: shader error: %s\n", f, viewer.shader_error().c_str());

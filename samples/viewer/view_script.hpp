@@ -20,10 +20,11 @@ struct ScriptCameraKey {
 
 struct ScriptEvent {
   int frame = 0;
-  enum class Kind { Key, Drag, Scroll, Sun } kind = Kind::Key;
+  enum class Kind { Key, Drag, Scroll, Sun, SaveSky } kind = Kind::Key;
   Key key = Key::Space;
   int button = 0;                 // Drag: 0 left, 1 right
   glm::dvec2 amount{0.0};         // Drag: pixels; Scroll: notches in x; Sun: elevation, azimuth degrees
+  std::string path;               // SaveSky: the sky file to write
 };
 
 struct Script {

@@ -11,6 +11,7 @@
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/gl/shader_source.hpp"
 #include "nimbus/render/image/image_io.hpp"
+#include "nimbus/volume/sky.hpp"
 
 namespace nimbus::viewer {
 
@@ -205,6 +206,15 @@ void Viewer::save_state() {
     message_ = "saved " + options_.state_path;
   } catch (const std::exception& e) {
     message_ = std::string("save failed: ") + e.what();
+  }
+}
+
+void Viewer::save_sky(const std::string& path) {
+  try {
+    volume::save_sky_file(state_.sky, path);
+    message_ = "saved the sky as " + path;
+  } catch (const std::exception& e) {
+    message_ = std::string("saving the sky failed: ") + e.what();
   }
 }
 

@@ -87,6 +87,8 @@ class Viewer {
   void reload_shaders();
   void save_state();
   void load_state();
+  // The current sky (clouds, wind, sun) as a sky file, for --sky or another state.
+  void save_sky(const std::string& path);
 
  private:
   CameraPose pose() const { return {state_.eye, state_.look_at}; }

@@ -170,6 +170,28 @@ TEST(Viewer, KeyframeSwapDoesNotPop) {
 }
 
 // Measured (llvmpipe): identical images.
+// The sky as edited (here: the sun moved) saved as a sky file, and read back as --sky.
+TEST(Viewer, SavesTheCurrentSkyAsASkyFile) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("save_sky");
+  const json state = small_state();
+  const json script = {{"size", {96, 54}}, {"frames", 2},
+                       {"events", {{{"frame", 0}, {"sun", {12, 250}}}, {{"frame", 1}, {"save_sky", d / "saved.json"}}}}};
+  const test::RunResult r = view(d, script, &state);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(d / "saved.json");
+  const json sky = json::parse(in);
+  EXPECT_EQ(sky["sun"]["elevation"], 12.0);
+  EXPECT_EQ(sky["sun"]["azimuth"], 250.0);
+  ASSERT_EQ(sky["clouds"].size(), 2u);
+  EXPECT_EQ(sky["clouds"][1]["preset"], "cumulus-mediocris");
+  EXPECT_EQ(sky["wind"], state["sky"]["wind"]);
+  write(d / "one_frame.json", json{{"size", {96, 54}}, {"frames", 1}});
+  const test::RunResult again = run_nimbus("view --headless --sky " + d / "saved.json" + " --script " + d / "one_frame.json" +
+                                           " --screenshot-dir " + d / "again");
+  EXPECT_EQ(again.code, 0) << again.output;
+}
+
 TEST(Viewer, ScreenshotEqualsRenderOfItsViewState) {
   NIMBUS_REQUIRE_GL();
   Dir d("shot");

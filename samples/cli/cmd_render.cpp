@@ -131,7 +131,7 @@ void add_render_command(CLI::App& app, Action& action) {
   }())->capture_default_str();
   cmd->add_option("--method", a->method,
                   "Scene alone: raymarch:N | analytic | analytic:table:N | shadowvolume:N | reference. "
-                  "With clouds: slices | reference (reference: --scene none only)")
+                  "With clouds: slices | reference | pathtrace (the CPU methods: --scene none only)")
       ->capture_default_str();
   add_cloud_render_options(cmd, a->clouds);
   add_camera_options(cmd, a->camera);

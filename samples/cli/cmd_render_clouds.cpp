@@ -111,6 +111,17 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
   cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
+  cmd->add_option("--ms-occlusion", a.ms_occlusion, "Multiple-scattering octaves: extinction scale a per octave, (0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--ms-contribution", a.ms_contribution, "Multiple-scattering octaves: radiance scale b per octave, [0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--ms-eccentricity", a.ms_eccentricity, "Multiple-scattering octaves: phase asymmetry scale c per octave, [0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--spp", a.spp, "--method pathtrace: samples per pixel")->capture_default_str();
+  cmd->add_option("--bounces", a.bounces, "--method pathtrace: scattering events per path at most (1: single scattering)")
+      ->capture_default_str();
+  cmd->add_option("--seed", a.seed, "--method pathtrace: random seed (the same seed gives the same image)")
+      ->capture_default_str();
 }
 
 int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
@@ -122,12 +133,12 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   try {
     cloud_method = render::parse_cloud_method(method);
   } catch (const std::invalid_argument&) {
-    throw UsageError("--method: '" + method + "' is not a cloud method (slices or reference)");
+    throw UsageError("--method: '" + method + "' is not a cloud method (slices, reference or pathtrace)");
   }
   const std::string scene_choice = scene_given ? scene_name : "sky";
   const bool no_scene = scene_choice == "none";
-  if (cloud_method == render::CloudMethod::Reference && !no_scene)
-    throw UsageError("--method reference renders clouds alone, without a scene: add --scene none");
+  if (render::is_cpu_method(cloud_method) && !no_scene)
+    throw UsageError("--method " + method + " renders clouds alone, without a scene: add --scene none");
   render::Scene scene;
   if (!no_scene) {
     try {
@@ -191,10 +202,13 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   settings.ambient = true;
   settings.blur_cone_rad = a.blur_deg * kPi / 180.0;
   settings.multiple.octaves = a.multiple;
+  settings.multiple.occlusion = a.ms_occlusion;
+  settings.multiple.contribution = a.ms_contribution;
+  settings.multiple.eccentricity = a.ms_eccentricity;
   try {
     render::validate(settings);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--slices/--light-res/--multiple/--blur: ") + e.what());
+    throw UsageError(std::string("--slices/--light-res/--multiple/--ms-*/--blur: ") + e.what());
   }
   render::ShaftMethod shafts;
   if (!no_scene) {
@@ -227,6 +241,14 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   fs.slices = settings;
   fs.shafts = shafts;
   fs.cloud_shadow_res = a.shadow_map_res;
+  fs.path_tracer.samples_per_pixel = a.spp;
+  fs.path_tracer.max_bounces = a.bounces;
+  fs.path_tracer.seed = a.seed;
+  try {
+    render::validate(fs.path_tracer);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--spp/--bounces: ") + e.what());
+  }
   std::unique_ptr<render::GlContext> gl;
   if (fs.method == render::CloudMethod::Slices) {
     try {
@@ -241,6 +263,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     std::lock_guard<std::mutex> lock(progress_mutex);
     if (reference_progress) reference_progress->update(x);
   };
+  fs.path_tracer.progress = fs.reference.progress;
   render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), light, fs);
 
   for (int frame = first; frame <= last; ++frame) {
@@ -259,8 +282,8 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     camera = apply_camera_args(camera_args, camera);
     if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, renderer.clouds());
 
-    if (fs.method == render::CloudMethod::Reference)
-      reference_progress = std::make_unique<Progress>("cloud reference" + (sequence ? " frame " + std::to_string(frame) : ""));
+    if (render::is_cpu_method(fs.method))
+      reference_progress = std::make_unique<Progress>("cloud " + method + (sequence ? " frame " + std::to_string(frame) : ""));
     render::FrameStats stats;
     render::Image image = renderer.render(camera, &stats);
     reference_progress.reset();

@@ -1,6 +1,7 @@
 // `nimbus render FILE.vdb | --preset NAME`: clouds by half-angle slicing (or the CPU reference),
 // over the sky scene, another scene or nothing, one frame or a sequence.
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,8 +30,12 @@ struct CloudRenderArgs {
   std::string cloud_phase = "dual:0.7,-0.25,0.8";
   std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
   int multiple = 0;
+  double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;
   bool no_jitter = false;
+  int spp = 64;                      // pathtrace: samples per pixel
+  int bounces = 1000;                // pathtrace: scattering events per path at most
+  uint64_t seed = 1;                 // pathtrace
 };
 
 void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& args);

@@ -79,6 +79,27 @@ TEST(RenderCloudsCli, ReferenceRendersCloudsAloneOnTheCpu) {
   fs::remove_all(d);
 }
 
+// The path tracer from the command line: clouds alone, the same seed the same image, and its
+// single-bounce image within its noise of the single-scattering reference's.
+TEST(RenderCloudsCli, PathTracerRendersCloudsAloneWithItsNoise) {
+  const fs::path d = temp_dir("pt");
+  const std::string cloud = "render --preset steam --voxel-size 0.02 --scene none --res 16x16 --ambient 0,0,0 ";
+  auto r = run_nimbus(cloud + "--method pathtrace --spp 8 --seed 3 -o " + (d / "a.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run_nimbus(cloud + "--method pathtrace --spp 8 --seed 3 -o " + (d / "b.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image a = render::read_exr(d / "a.exr"), b = render::read_exr(d / "b.exr");
+  EXPECT_TRUE(finite_non_negative(a));
+  EXPECT_EQ(a.metadata.at("method"), "cloud-path-tracer");
+  EXPECT_NE(a.metadata.at("path_tracer").find("8 samples per pixel"), std::string::npos);
+  EXPECT_EQ(a.rgba, b.rgba) << "same seed, same image";
+  EXPECT_EQ(run_nimbus(cloud + "--method pathtrace --scene sky -o " + (d / "c.exr").string()).code, 2) << "clouds alone";
+  EXPECT_EQ(run_nimbus(cloud + "--method pathtrace --spp 0 -o " + (d / "c.exr").string()).code, 2);
+  EXPECT_EQ(run_nimbus(cloud + "--method pathtrace --bounces 0 -o " + (d / "c.exr").string()).code, 2);
+  EXPECT_FALSE(fs::exists(d / "c.exr"));
+  fs::remove_all(d);
+}
+
 TEST(RenderCloudsCli, FramesWriteANumberedSequence) {
   const fs::path d = temp_dir("seq");
   const auto r = run_nimbus("render" + kSteam + "--scene none --frames 3-4 --fps 12 -o " + (d / "s.exr").string());

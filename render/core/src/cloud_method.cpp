@@ -8,13 +8,15 @@ namespace nimbus::render {
 CloudMethod parse_cloud_method(const std::string& text) {
   if (text == "slices") return CloudMethod::Slices;
   if (text == "reference") return CloudMethod::Reference;
-  throw std::invalid_argument("cloud method '" + text + "': expected slices or reference");
+  if (text == "pathtrace") return CloudMethod::PathTrace;
+  throw std::invalid_argument("cloud method '" + text + "': expected slices, reference or pathtrace");
 }
 
 std::string to_string(CloudMethod method) {
   switch (method) {
     case CloudMethod::Slices: return "slices";
     case CloudMethod::Reference: return "reference";
+    case CloudMethod::PathTrace: return "pathtrace";
   }
   return "?";
 }

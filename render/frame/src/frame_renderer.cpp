@@ -21,6 +21,11 @@ void validate(const FrameSettings& s) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("frame settings reference: ") + e.what());
   }
+  try {
+    validate(s.path_tracer);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("frame settings path_tracer: ") + e.what());
+  }
   if (s.shafts.kind == ShaftMethod::Kind::Reference)
     throw std::invalid_argument("frame settings shafts: the scene under GPU clouds needs a GPU method, not reference");
   if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192)
@@ -34,8 +39,8 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, const CloudLight& light
     : scene_(std::move(scene)), light_(light), settings_(settings) {
   validate(settings_);
   validate(light_);
-  if (settings_.method == CloudMethod::Reference && scene_)
-    throw std::invalid_argument("the cloud reference renders clouds alone, without a scene");
+  if (is_cpu_method(settings_.method) && scene_)
+    throw std::invalid_argument("the cloud " + to_string(settings_.method) + " renders clouds alone, without a scene");
   set_light(light_);
   if (scene_) validate(*scene_);
 }
@@ -67,7 +72,7 @@ void FrameRenderer::set_sky(const Sky& sky) {
 }
 
 void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
-  if (settings_.method == CloudMethod::Reference) {
+  if (is_cpu_method(settings_.method)) {
     if (clouds.empty()) throw std::invalid_argument("frame clouds: the list is empty");
     reference_clouds_ = std::move(clouds);
     reference_moved_ = reference_clouds_;
@@ -83,7 +88,7 @@ const std::vector<CloudVolume>& FrameRenderer::clouds() const {
 }
 
 void FrameRenderer::set_motion(const std::vector<CloudMotion>& motion) {
-  if (settings_.method != CloudMethod::Reference) {
+  if (!is_cpu_method(settings_.method)) {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
     cloud_renderer_->set_motion(motion);
     return;
@@ -126,6 +131,10 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
     if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
     image = render_cloud_reference(reference_moved_, camera, light_, settings_.reference);
     st.device = "CPU (double precision)";
+  } else if (settings_.method == CloudMethod::PathTrace) {
+    if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
+    image = render_cloud_path_traced(reference_moved_, camera, light_, settings_.path_tracer).image;
+    st.device = "CPU (double precision, path traced)";
   } else {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
     char buf[256];

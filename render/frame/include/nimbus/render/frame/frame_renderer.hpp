@@ -20,6 +20,7 @@
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/reference/cloud_path_tracer.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
 
@@ -31,6 +32,7 @@ struct FrameSettings {
   CloudMethod method = CloudMethod::Slices;
   CloudSliceSettings slices;         // Slices
   CloudReferenceSettings reference;  // Reference (its progress callback too)
+  PathTracerSettings path_tracer;    // PathTrace (its progress callback too)
   // The scene under the clouds: a GPU method (not Reference), and its shadow maps.
   ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
   ShaftSettings shaft_settings;

@@ -1,7 +1,7 @@
 #version 450 core
 // The viewer's display pass: the finished frame (premultiplied radiance, row 0 at the top, any
-// size: linear filtering scales it to the window) exposed, tone mapped and sRGB-encoded as the
-// PNG screenshots are, plus a triangular dither of one 8-bit code, which hides the banding of
+// size: linear filtering scales it to the window) exposed, tone mapped (AgX) and sRGB-encoded as
+// the PNG screenshots are, plus a triangular dither of one 8-bit code, which hides the banding of
 // smooth sky gradients in 8 bits (sebh/UnrealEngineSkyAtmosphere#15).
 #include "lib/contract.glsl"
 #include "lib/tonemap.glsl"
@@ -17,7 +17,7 @@ float hash(vec2 p) {  // a white-noise value in [0, 1) per pixel
 
 void main() {
   vec3 c = texture(u_frame, vec2(uv.x, 1.0 - uv.y)).rgb * u_exposure;
-  vec3 e = srgb_encode(aces_fitted(c));
+  vec3 e = srgb_encode(agx(c));
   float n = hash(gl_FragCoord.xy) + hash(gl_FragCoord.xy + 17.0) - 1.0;  // triangular in (-1, 1)
   o_color = vec4(e + u_dither * n / 255.0, 1.0);
 }

@@ -108,6 +108,31 @@ TEST(ImagePng, ToneCurvesHaveTheirDefiningValues) {
   EXPECT_EQ(preview_grey(1.0f, {0.0, Tonemap::AcesFitted}), 206);
 }
 
+// AgX, the default: values worked out by hand from its documented steps (image_png.cpp): on a
+// grey the inset and outset rows sum to 1, so 0.18 -> log2 encoding 0.6061 -> sigmoid 0.4999
+// -> 2.2 power 0.2175 -> sRGB 128; 1 -> 0.7560 -> 0.7951 -> 0.6038 -> 202; 0.01 -> 18.
+TEST(ImagePng, AgxIsTheDefaultAndRunsBrightColoursToWhite) {
+  EXPECT_EQ(PreviewOptions{}.tonemap, Tonemap::AgX);
+  EXPECT_EQ(preview_grey(0.0f, {0.0, Tonemap::AgX}), 0);
+  EXPECT_EQ(preview_grey(0.18f, {0.0, Tonemap::AgX}), 128);
+  EXPECT_EQ(preview_grey(1.0f, {0.0, Tonemap::AgX}), 202);
+  EXPECT_EQ(preview_grey(0.01f, {0.0, Tonemap::AgX}), 18);
+  EXPECT_EQ(preview_grey(1000.0f, {0.0, Tonemap::AgX}), 255);
+  int last = 0;
+  for (double v = 1e-5; v < 100.0; v *= 1.3) {
+    const int code = preview_grey(static_cast<float>(v), {0.0, Tonemap::AgX});
+    EXPECT_GE(code, last) << v;
+    last = code;
+  }
+  // A very bright pure red becomes white, as film does; a dim one stays red.
+  const float bright[3] = {1000.0f, 0.0f, 0.0f}, dim[3] = {0.3f, 0.0f, 0.0f};
+  const auto b = nimbus::render::preview_pixel(bright, {0.0, Tonemap::AgX});
+  const auto d = nimbus::render::preview_pixel(dim, {0.0, Tonemap::AgX});
+  EXPECT_GE(b[1], 250);
+  EXPECT_GE(b[2], 250);
+  EXPECT_GT(d[0], d[1] + 60);
+}
+
 TEST(ImagePng, RowZeroIsTheTopAndTheFileIsOpaqueSrgb) {
   TempDir dir;
   Image im(4, 3);

@@ -34,6 +34,36 @@ Rgb aces_fitted(const Rgb& c) {
   return out;
 }
 
+// AgX in its widely used minimal form (the figures of Benjamin Wrensch's fit of Troy Sobotka's
+// AgX, 2023; github.com/sobotka/AgX): the inset matrix pulls each primary a little towards the
+// others, log2 of the result is mapped from [-12.47393, 4.026069] onto [0, 1] (0.18 lands at
+// 0.606), a sixth-order polynomial fit of AgX's sigmoid gives the display value, the outset
+// matrix undoes most of the inset, and the display's 2.2 power returns linear light for the sRGB
+// encoding that follows. Each matrix row is divided by its sum (they sum to 1 within 2e-4), so a
+// grey stays exactly grey. Middle grey comes out at a display value of 0.50.
+Rgb agx(const Rgb& c) {
+  static constexpr double kInset[3][3] = {{0.842479062253094, 0.0784335999999992, 0.0792237451477643},
+                                          {0.0423282422610123, 0.878468636469772, 0.0791661274605434},
+                                          {0.0423756549057051, 0.0784336, 0.879142973793104}};
+  static constexpr double kOutset[3][3] = {{1.19687900512017, -0.0980208811401368, -0.0990297440797205},
+                                           {-0.0528968517574562, 1.15190312990417, -0.0989611768448433},
+                                           {-0.0529716355144438, -0.0980434501171241, 1.15107367264116}};
+  constexpr double kMinEv = -12.47393, kMaxEv = 4.026069;
+  Rgb v{}, w{}, out{};
+  for (int i = 0; i < 3; ++i)
+    v[i] = (kInset[i][0] * c[0] + kInset[i][1] * c[1] + kInset[i][2] * c[2]) / (kInset[i][0] + kInset[i][1] + kInset[i][2]);
+  for (double& x : v) {
+    const double e = std::clamp(std::log2(std::max(x, 1e-10)), kMinEv, kMaxEv);
+    const double t = (e - kMinEv) / (kMaxEv - kMinEv);
+    const double t2 = t * t, t4 = t2 * t2;
+    x = 15.5 * t4 * t2 - 40.14 * t4 * t + 31.96 * t4 - 6.868 * t2 * t + 0.4298 * t2 + 0.1191 * t - 0.00232;
+  }
+  for (int i = 0; i < 3; ++i)
+    w[i] = (kOutset[i][0] * v[0] + kOutset[i][1] * v[1] + kOutset[i][2] * v[2]) / (kOutset[i][0] + kOutset[i][1] + kOutset[i][2]);
+  for (int i = 0; i < 3; ++i) out[i] = std::pow(std::clamp(w[i], 0.0, 1.0), 2.2);
+  return out;
+}
+
 Rgb tonemap(Rgb c, PreviewOptions::Tonemap t) {
   switch (t) {
     case PreviewOptions::Tonemap::Clamp:
@@ -44,6 +74,8 @@ Rgb tonemap(Rgb c, PreviewOptions::Tonemap t) {
       return c;
     case PreviewOptions::Tonemap::AcesFitted:
       return aces_fitted(c);
+    case PreviewOptions::Tonemap::AgX:
+      return agx(c);
   }
   return c;
 }

@@ -30,7 +30,10 @@ struct PreviewOptions {
   double exposure_stops = 0.0;  // radiance is multiplied by 2^exposure_stops before tone mapping
   // Clamp: min(c, 1). Reinhard: c / (1 + c) per channel (Reinhard et al. 2002, eq. 3).
   // AcesFitted: Stephen Hill's fit of the ACES RRT + sRGB ODT (BakingLab, 2016).
-  enum class Tonemap { Clamp, Reinhard, AcesFitted } tonemap = Tonemap::AcesFitted;
+  // AgX: Troy Sobotka's AgX view transform (2022-23), the filmic default: a gamut inset, a log2
+  // encoding of 16.5 stops around middle grey, a sigmoid, and the outset; bright saturated
+  // colours run to white instead of skewing in hue, as film does (docs/clouds.md, "Output").
+  enum class Tonemap { Clamp, Reinhard, AcesFitted, AgX } tonemap = Tonemap::AgX;
 };
 
 // Writes an opaque 8-bit RGB PNG: the premultiplied image composited over black (that is, its

@@ -35,3 +35,36 @@ TEST(BenchNoise, BadOptionsAreUsageErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// `nimbus bench look`: a tiny run prints every case and method with finite numbers, and the
+// slicer's single scattering sits far below the multiply scattered reference (bias < -0.5),
+// which the octaves reduce; bad options are usage errors.
+TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
+  const Result r = run("bench look --res 40x30 --ref-spp 32 --spp 4 --slices 24");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* row : {"| front-lit | isotropic | slicer, single scattering", "| back-lit | hg:0.7 | path tracer, 4 spp",
+                          "| back-lit | dual:0.7,-0.25,0.8 | slicer, 3 octaves (a 0.5, b 0.6)"})
+    EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
+  // The front-lit isotropic rows: single scattering's bias, then the 3-octave one's.
+  auto bias_of = [&](const std::string& row) {
+    const std::size_t at = r.output.find(row);
+    if (at == std::string::npos) return 0.0;
+    std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    // | lighting | phase | method | ms | rmse | bias | ...
+    int bars = 0;
+    std::size_t p = 0;
+    while (bars < 5 && (p = line.find('|', p + 1)) != std::string::npos) ++bars;
+    return std::stod(line.substr(p + 1));
+  };
+  const double single = bias_of("| front-lit | isotropic | slicer, single scattering");
+  const double octaves = bias_of("| front-lit | isotropic | slicer, 3 octaves (a 0.5, b 0.6)");
+  EXPECT_LT(single, -0.5) << r.output;
+  EXPECT_GT(octaves, single + 0.2) << r.output;
+  EXPECT_EQ(r.output.find("nan"), std::string::npos);
+  EXPECT_EQ(run("bench look --spp 0").code, 2);
+  EXPECT_EQ(run("bench look --preset nothing").code, 2);
+}
+
+}  // namespace

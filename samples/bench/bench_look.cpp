@@ -1,0 +1,166 @@
+// `nimbus bench look`: how far the slicer's multiple-scattering approximations are from the
+// path-traced reference of the same model (issue 12), and what each costs, front- and back-lit,
+// isotropic, HG 0.7 and the default dual lobe; with the path tracer's own time and noise at
+// several sample counts. Clouds alone over black, the sun at irradiance 3, no ambient.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.hpp"
+#include "cli/render_args.hpp"
+#include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/frame/frame_renderer.hpp"
+#include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/image/image_metrics.hpp"
+#include "nimbus/render/image/svg_plot.hpp"
+#include "nimbus/render/reference/cloud_path_tracer.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+struct BenchLookArgs {
+  std::string preset = "cumulus-mediocris";
+  std::string res = "120x90";
+  int ref_spp = 2048;
+  std::string spp = "16,64,256";
+  int slices = 128;
+  std::string plot;
+};
+
+std::vector<int> parse_ints(const std::string& flag, const std::string& text) {
+  std::vector<int> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, 1, 1 << 20, flag));
+  if (v.empty()) throw UsageError(flag + ": give at least one number");
+  return v;
+}
+
+struct Octaves {
+  const char* name;
+  int octaves;
+  double a, b;
+};
+
+int run_bench_look(const BenchLookArgs& a) {
+  const auto [w, h] = parse_resolution("--res", a.res);
+  const std::vector<int> spps = parse_ints("--spp", a.spp);
+  if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
+  if (a.slices < 2 || a.slices > 4096) throw UsageError("--slices: must be in [2, 4096]");
+  render::PresetCloud preset;
+  try {
+    preset = render::load_preset_cloud(a.preset);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--preset: ") + e.what());
+  }
+  const auto gl = render::GlContext::create_headless();
+  struct Lighting {
+    const char* name;
+    glm::dvec3 to_sun;
+  };
+  struct PhaseCase {
+    const char* name;
+    render::DualLobePhase phase;
+  };
+  const Lighting lights[] = {{"front-lit", {0.8, 0.55, -0.25}}, {"back-lit", {-0.5, 0.55, -0.7}}};
+  const PhaseCase phases[] = {{"isotropic", {0.0, 0.0, 1.0}}, {"hg:0.7", {0.7, 0.0, 1.0}}, {"dual:0.7,-0.25,0.8", {0.7, -0.25, 0.8}}};
+  const Octaves methods[] = {{"single scattering", 0, 0.5, 0.5},
+                             {"2 octaves (a 0.5, b 0.5)", 2, 0.5, 0.5},
+                             {"3 octaves (a 0.5, b 0.5)", 3, 0.5, 0.5},
+                             {"3 octaves (a 0.5, b 0.6)", 3, 0.5, 0.6}};
+  std::printf("# nimbus bench look: %s, %dx%d, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
+              w, h, gl->renderer().c_str());
+  std::printf("# reference: the path tracer at %d samples per pixel (its own noise in its row); error: relative RMSE over\n"
+              "#   covered pixels against it (compare_images), which includes the reference's noise; slicer: %d slices,\n"
+              "#   light 256^2, GPU ms of its passes\n\n",
+              a.ref_spp, a.slices);
+  std::printf("| lighting | phase | method | ms | rel. RMSE | bias | noise (mean rel. std. error) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|\n");
+  std::vector<render::PlotSeries> series(std::size(methods) + 1);
+  for (std::size_t m = 0; m < std::size(methods); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
+  series.back().name = "path tracer";
+  for (const Lighting& l : lights)
+    for (const PhaseCase& p : phases) {
+      render::CloudOptics optics;
+      optics.phase = p.phase;
+      const std::vector<render::CloudVolume> clouds = {render::generate_preset_cloud(preset, std::nullopt, 0.0, optics)};
+      render::Camera cam;
+      cam.width = w;
+      cam.height = h;
+      cam.fov_deg = 44.8;
+      cam = render::frame_clouds(cam, clouds, false);
+      render::CloudLight light;
+      light.direction_to_light = l.to_sun;
+      render::PathTracerSettings ps;
+      ps.samples_per_pixel = a.ref_spp;
+      const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
+      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | %.4f |\n", l.name, p.name, a.ref_spp,
+                  1000.0 * ref.seconds, ref.mean_relative_error);
+      for (int spp : spps) {
+        ps.samples_per_pixel = spp;
+        ps.seed = 7;  // other streams than the reference's
+        const render::PathTracedImage pt = render::render_cloud_path_traced(clouds, cam, light, ps);
+        const render::ImageError e = render::compare_images(pt.image, ref.image);
+        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %+.4f | %.4f |\n", l.name, p.name, spp,
+                    1000.0 * pt.seconds, e.rel_rmse, e.mean_bias, pt.mean_relative_error);
+        series.back().x.push_back(1000.0 * pt.seconds);
+        series.back().y.push_back(e.rel_rmse);
+      }
+      for (std::size_t m = 0; m < std::size(methods); ++m) {
+        render::FrameSettings fs;
+        fs.slices.slices = a.slices;
+        fs.slices.ambient = false;
+        fs.slices.multiple.octaves = methods[m].octaves;
+        fs.slices.multiple.occlusion = methods[m].a;
+        fs.slices.multiple.contribution = methods[m].b;
+        render::FrameRenderer fr(std::nullopt, light, fs);
+        fr.set_clouds(clouds);
+        fr.render(cam);  // programs compiled, buffers made
+        double best = 1e300;
+        render::Image img;
+        for (int rep = 0; rep < 3; ++rep) {
+          render::FrameStats st;
+          img = fr.render(cam, &st);
+          best = std::min(best, st.clouds.total_ms);
+        }
+        const render::ImageError e = render::compare_images(img, ref.image);
+        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %+.4f | |\n", l.name, p.name, methods[m].name, best, e.rel_rmse,
+                    e.mean_bias);
+        series[m].x.push_back(best);
+        series[m].y.push_back(e.rel_rmse);
+      }
+      std::fflush(stdout);
+    }
+  if (!a.plot.empty()) {
+    render::Plot plot;
+    plot.title = "Clouds against the path tracer, " + a.preset + ", " + a.res;
+    plot.x_title = "time per frame (ms): slicer GPU passes, path tracer CPU (2 cores)";
+    plot.y_title = "relative RMSE vs path-traced reference";
+    plot.series = series;
+    render::write_svg_plot(a.plot, plot);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_look(CLI::App& bench, Action& action) {
+  auto a = std::make_shared<BenchLookArgs>();
+  CLI::App* cmd = bench.add_subcommand(
+      "look", "Multiple scattering: the slicer's approximations against the path-traced reference, and the tracer's noise");
+  cmd->add_option("--preset", a->preset, "The cloud")->capture_default_str();
+  cmd->add_option("--res", a->res, "Image size WxH")->capture_default_str();
+  cmd->add_option("--ref-spp", a->ref_spp, "Samples per pixel of the reference")->capture_default_str();
+  cmd->add_option("--spp", a->spp, "Comma-separated sample counts for the tracer's own rows")->capture_default_str();
+  cmd->add_option("--slices", a->slices, "Slicer slices")->capture_default_str();
+  cmd->add_option("--plot", a->plot, "Write an SVG plot of time against error here");
+  cmd->callback([&action, a] { action = [a] { return run_bench_look(*a); }; });
+}
+
+}  // namespace nimbus::cli

@@ -82,9 +82,8 @@ int run_bench_look(const BenchLookArgs& a) {
               a.ref_spp, a.slices);
   std::printf("| lighting | phase | method | ms | rel. RMSE | bias | noise (mean rel. std. error) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|\n");
-  std::vector<render::PlotSeries> series(std::size(methods) + 1);
+  std::vector<render::PlotSeries> series(std::size(methods));
   for (std::size_t m = 0; m < std::size(methods); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
-  series.back().name = "path tracer";
   for (const Lighting& l : lights)
     for (const PhaseCase& p : phases) {
       render::CloudOptics optics;
@@ -102,6 +101,8 @@ int run_bench_look(const BenchLookArgs& a) {
       const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
       std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | %.4f |\n", l.name, p.name, a.ref_spp,
                   1000.0 * ref.seconds, ref.mean_relative_error);
+      render::PlotSeries traced;  // one line per case: error against time as samples grow
+      traced.name = std::string("path tracer, ") + l.name + ", " + p.name;
       for (int spp : spps) {
         ps.samples_per_pixel = spp;
         ps.seed = 7;  // other streams than the reference's
@@ -109,9 +110,10 @@ int run_bench_look(const BenchLookArgs& a) {
         const render::ImageError e = render::compare_images(pt.image, ref.image);
         std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %+.4f | %.4f |\n", l.name, p.name, spp,
                     1000.0 * pt.seconds, e.rel_rmse, e.mean_bias, pt.mean_relative_error);
-        series.back().x.push_back(1000.0 * pt.seconds);
-        series.back().y.push_back(e.rel_rmse);
+        traced.x.push_back(1000.0 * pt.seconds);
+        traced.y.push_back(e.rel_rmse);
       }
+      series.push_back(traced);
       for (std::size_t m = 0; m < std::size(methods); ++m) {
         render::FrameSettings fs;
         fs.slices.slices = a.slices;

@@ -233,10 +233,11 @@ SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, d
   const std::vector<CloudVolume> clouds = {slab(tau, layers, n, phase, albedo)};
   const glm::dvec3 start(0.5 * n, layers + 4.0, 0.5 * n);
   const glm::dvec3 dir(std::sqrt(1.0 - mu0 * mu0), -mu0, 0.0);
+  const PhotonTracer tracer(clouds);
   double r = 0, r2 = 0, t = 0, t2 = 0;
   for (int p = 0; p < photons; ++p) {
-    const PhotonExit e = trace_photon(clouds, start - 3.0 * dir * (1.0 / mu0), dir, 7, static_cast<uint64_t>(p),
-                                      100000, roulette_after);
+    const PhotonExit e = tracer.trace(start - 3.0 * dir * (1.0 / mu0), dir, 7, static_cast<uint64_t>(p), 100000,
+                                      roulette_after);
     if (!e.escaped) continue;
     const double v = e.weight.x;
     if (e.direction.y > 0.0) {

@@ -52,7 +52,7 @@ SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(st
           // The sequence's own clock: a keyframe per frame, at the fps of its first file.
           std::snprintf(buf, sizeof buf, sc.file.c_str(), s.frames.front());
           double fps = 24.0;
-          load_cloud_grid(buf, sc.grid, static_cast<UpAxis>(s.up), &fps);
+          s.file_grid = load_cloud_grid(buf, sc.grid, static_cast<UpAxis>(s.up), &fps);  // kept for keyframe 0
           if (!(fps > 0.0 && fps <= 1000.0)) fps = 24.0;
           interval_s_ = 1.0 / fps;
           sequence_timed = true;
@@ -161,6 +161,10 @@ SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
       // Frame k of the sequence, looping.
       const int64_t count = static_cast<int64_t>(s.frames.size());
       const int frame = s.frames[static_cast<std::size_t>(((k % count) + count) % count)];
+      if (frame == s.frames.front() && s.file_grid) {
+        grids.push_back(s.file_grid);
+        continue;
+      }
       char buf[4096];
       std::snprintf(buf, sizeof buf, s.path.c_str(), frame);
       grids.push_back(load_cloud_grid(buf, s.grid, static_cast<UpAxis>(s.up)));

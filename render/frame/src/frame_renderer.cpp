@@ -113,12 +113,7 @@ void FrameRenderer::set_settings(const FrameSettings& settings) {
   if (settings.method != settings_.method) throw std::invalid_argument("frame settings method: cannot change");
   if (settings.volume_format != settings_.volume_format)
     throw std::invalid_argument("frame settings volume_format: cannot change");
-  const ShaftSettings& a = settings.shaft_settings;
-  const ShaftSettings& b = settings_.shaft_settings;
-  const bool same_shafts = a.point_shadow_res == b.point_shadow_res && a.sun_shadow_res == b.sun_shadow_res &&
-                           a.ground_extent_m == b.ground_extent_m && a.march_cutoff_optical == b.march_cutoff_optical &&
-                           a.silhouette_jump == b.silhouette_jump && a.max_skirt_quads == b.max_skirt_quads &&
-                           a.jitter_seed == b.jitter_seed;
+  const bool same_shafts = settings.shaft_settings == settings_.shaft_settings;
   settings_ = settings;
   if (!same_shafts) shaft_renderer_.reset();
 }

@@ -260,9 +260,19 @@ void validate(const PathTracerSettings& s) {
   }
 }
 
-PhotonExit trace_photon(const std::vector<CloudVolume>& clouds, const glm::dvec3& origin, const glm::dvec3& dir,
-                        uint64_t seed, uint64_t stream, int max_bounces, int roulette_after) {
-  const std::vector<TracedCloud> media = media_of(clouds);
+struct PhotonTracer::Impl {
+  std::vector<TracedCloud> media;
+};
+
+PhotonTracer::PhotonTracer(const std::vector<CloudVolume>& clouds) : impl_(std::make_unique<Impl>()) {
+  impl_->media = media_of(clouds);
+}
+
+PhotonTracer::~PhotonTracer() = default;
+
+PhotonExit PhotonTracer::trace(const glm::dvec3& origin, const glm::dvec3& dir, uint64_t seed, uint64_t stream,
+                               int max_bounces, int roulette_after) const {
+  const std::vector<TracedCloud>& media = impl_->media;
   PathRng rng(seed, stream);
   PhotonExit out;
   glm::dvec3 o = origin, d = glm::normalize(dir);

@@ -73,7 +73,8 @@ class SkyKeyframes {
     std::string grid;
     int up = 0;                          // UpAxis
     std::vector<int> frames;             // a sequence's frame numbers, ascending; empty: one file
-    mutable openvdb::FloatGrid::ConstPtr file_grid;  // one file, read once (worker thread)
+    // One file, read once (worker thread); for a sequence, its first frame, read for its fps.
+    mutable openvdb::FloatGrid::ConstPtr file_grid;
   };
   using Keyframe = std::vector<openvdb::FloatGrid::ConstPtr>;
   void run();

@@ -10,6 +10,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -56,8 +57,19 @@ struct PhotonExit {
   glm::dvec3 weight{1.0};
   int bounces = 0;
 };
-class PathRng;
-PhotonExit trace_photon(const std::vector<CloudVolume>& clouds, const glm::dvec3& origin, const glm::dvec3& dir,
-                        uint64_t seed, uint64_t stream, int max_bounces = 100000, int roulette_after = 1 << 30);
+// The clouds' brick majorants are built once, for any number of photons; `clouds` must outlive it.
+class PhotonTracer {
+ public:
+  explicit PhotonTracer(const std::vector<CloudVolume>& clouds);  // std::invalid_argument for a bad cloud
+  ~PhotonTracer();
+  PhotonTracer(const PhotonTracer&) = delete;
+  PhotonTracer& operator=(const PhotonTracer&) = delete;
+  PhotonExit trace(const glm::dvec3& origin, const glm::dvec3& dir, uint64_t seed, uint64_t stream,
+                   int max_bounces = 100000, int roulette_after = 1 << 30) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace nimbus::render

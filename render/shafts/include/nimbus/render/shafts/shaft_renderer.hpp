@@ -22,6 +22,8 @@ struct ShaftSettings {
   double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
   std::size_t max_skirt_quads = 1u << 19;  // per light; beyond it the whole ray is sampled
   unsigned jitter_seed = 1;
+
+  bool operator==(const ShaftSettings&) const = default;
 };
 
 // Per-frame costs (GPU time per pass, ms) and what the shadow-volume pass built.

@@ -4,13 +4,17 @@
 // Each slice sees the fog's unshadowed airlight in front of it; summed under the clouds'
 // blending, the fog in front is counted once. For the sun A_fog(0, t) = sigma_s p E
 // (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; point
-// lights take A * A_fog(0, D) at the alpha-weighted mean distance D. Output alpha 1.
+// lights take A * A_fog(0, D) at the alpha-weighted mean distance D. With a physical sky the
+// air's aerial perspective (lib/aerial_perspective.glsl) hazes the clouds at D and the surfaces
+// at their distance: x -> x T_air + S_air (weighted by alpha for the clouds). Output alpha 1.
 in vec2 uv;
 #include "lib/camera_ray.glsl"
 #include "lib/light_list.glsl"
 #include "lib/airlight.glsl"
+#include "lib/aerial_perspective.glsl"
 layout(binding = UNIT_SCENE_COLOR) uniform sampler2D u_scene_color;  // RGBA32F premultiplied scene radiance
 layout(binding = UNIT_CLOUD_COLOR) uniform sampler2D u_cloud_color;  // premultiplied cloud radiance, alpha
+layout(binding = UNIT_SCENE_DISTANCE) uniform sampler2D u_scene_distance;  // R32F metres to the visible surface, 0 = none
 layout(binding = UNIT_CLOUD_DISTANCE) uniform sampler2D u_cloud_distance;  // (sum w t, sum w (1 - e^{-sigma t}) / sigma, 0, alpha)
 uniform float u_sigma_t;             // fog extinction, per metre
 uniform float u_sigma_s;             // fog scattering, per metre
@@ -37,5 +41,18 @@ void main() {
   }
   float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun_to, -dir));
   air += lights.sun_irradiance * (sun * max(weighted.g, 0.0));
-  o_color = vec4(scene * (1.0 - A) + cloud.rgb + air, 1.0);
+  vec3 clouds = cloud.rgb;
+  if (u_aerial_on != 0) {
+    vec3 S, T;
+    if (A > 0.0) {
+      aerial_perspective(dir, D, S, T);
+      clouds = clouds * T + A * S;
+    }
+    float surface = texelFetch(u_scene_distance, px, 0).r;
+    if (surface > 0.0) {
+      aerial_perspective(dir, surface, S, T);
+      scene = scene * T + S;
+    }
+  }
+  o_color = vec4(scene * (1.0 - A) + clouds + air, 1.0);
 }

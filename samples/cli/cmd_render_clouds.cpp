@@ -12,6 +12,7 @@
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/core/daylight.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -168,8 +169,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     throw UsageError(std::string("--cloud-phase: ") + e.what());
   }
   if (a.ambient == "auto") {
-    optics.ambient_radiance = scene.sky ? 0.5 * (scene.sky->zenith_radiance_w_sr_m2 + scene.sky->horizon_radiance_w_sr_m2)
-                                        : glm::dvec3(0.0);
+    optics.ambient_radiance = scene.sky ? render::sky_mean_radiance(*scene.sky) : glm::dvec3(0.0);
   } else {
     optics.ambient_radiance = parse_colour("--ambient", a.ambient);
   }
@@ -186,6 +186,16 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (!no_scene) {
       if (!scene.sun) scene.sun = render::SunLight{};
       scene.sun->direction_to_sun = light.direction_to_light;
+      if (scene.sky && scene.sky->atmosphere) {
+        // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
+        try {
+          const render::Daylight d = render::daylight(light.direction_to_light);
+          scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
+          scene.sky = d.sky;
+        } catch (const std::invalid_argument& e) {
+          throw UsageError(std::string("--sun: ") + e.what());
+        }
+      }
       light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
     }
   } else if (!no_scene) {
@@ -194,6 +204,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     light.direction_to_light = scene.sun->direction_to_sun;
     light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
   }
+  if (a.ambient == "auto" && scene.sky) optics.ambient_radiance = render::sky_mean_radiance(*scene.sky);  // after --sun moved it
 
   render::CloudSliceSettings settings;
   settings.slices = a.slices;

@@ -55,6 +55,10 @@ const int UNIT_SCENE_COLOR = 12;       // sampler2D: the scene under the clouds 
 const int UNIT_CLOUD_COLOR = 13;       // sampler2D: the clouds' premultiplied radiance
 const int UNIT_CLOUD_DISTANCE = 14;    // sampler2D: the clouds' weighted distances
 const int UNIT_CLOUD_DENSITY_NEXT = 15; // sampler3D: the cloud's next keyframe (CloudBlock.blend mixes it in)
+// Units past 15 are fine: GL 4.5 guarantees 80 combined units; 16 is the limit per stage's count.
+const int UNIT_SKY_VIEW = 16;            // sampler2D: the physical sky's radiance (atmosphere_tables.hpp)
+const int UNIT_AERIAL_SCATTERING = 17;   // sampler3D: the air's in-scattered radiance to a distance
+const int UNIT_AERIAL_TRANSMITTANCE = 18; // sampler3D: the air's transmittance to a distance
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -195,10 +195,11 @@ TEST(Atmosphere, TheSkyDarkensThroughTwilightWithoutNaN) {
 }
 
 TEST(Atmosphere, NoAirNoSky) {
-  // Without scattering, nothing is scattered toward the viewer, whatever the sun.
+  // Without scattering (and a black ground), nothing is scattered toward the viewer, whatever the sun.
   Atmosphere a;
   a.rayleigh_scattering_per_m = glm::dvec3(0.0);
   a.mie_scattering_per_m = 0.0;
+  a.ground_albedo = 0.0;
   const auto t = build_atmosphere_tables(a, AtmosphereView{2.0, sun_at(20.0), 40000.0});
   for (const glm::vec3& v : t->sky_view.texels) EXPECT_EQ(v, glm::vec3(0.0f));
   EXPECT_EQ(t->sky_irradiance_up_w_m2, glm::dvec3(0.0));

@@ -1,5 +1,5 @@
 // The daylight model (render/core/daylight.hpp) and the sky's light on surfaces (scene.hpp):
-// directions, Kasten & Young's air mass, monotone dimming and reddening as the sun sets, and
+// directions, monotone dimming and reddening as the sun sets, and
 // the ambient terms' limits.
 #include <gtest/gtest.h>
 
@@ -23,13 +23,6 @@ TEST(Daylight, SunDirectionFollowsElevationAndAzimuth) {
     }
 }
 
-TEST(Daylight, AirMassIsKastenYoung) {
-  EXPECT_NEAR(relative_air_mass(90.0), 1.0, 1e-3);
-  EXPECT_NEAR(relative_air_mass(30.0), 1.9942, 2e-3);  // Kasten & Young 1989, table: 1.9943 at z = 60 deg
-  EXPECT_NEAR(relative_air_mass(0.0), 37.92, 0.1);      // ... and 37.92 at the horizon
-  EXPECT_TRUE(std::isfinite(relative_air_mass(-10.0)));
-}
-
 TEST(Daylight, SunDimsAndReddensAsItSetsAndSkyStaysFinite) {
   double last_g = 1e9, last_ratio = 0.0;
   for (double el = 90.0; el >= -10.0; el -= 2.5) {
@@ -37,9 +30,15 @@ TEST(Daylight, SunDimsAndReddensAsItSetsAndSkyStaysFinite) {
     const glm::dvec3 e = d.sun.irradiance_w_m2;
     for (int c = 0; c < 3; ++c) {
       EXPECT_TRUE(std::isfinite(e[c]) && e[c] >= 0.0);
-      EXPECT_TRUE(std::isfinite(d.sky.zenith_radiance_w_sr_m2[c]) && d.sky.zenith_radiance_w_sr_m2[c] > 0.0);
-      EXPECT_TRUE(std::isfinite(d.sky.horizon_radiance_w_sr_m2[c]) && d.sky.horizon_radiance_w_sr_m2[c] > 0.0);
+      EXPECT_TRUE(std::isfinite(d.sky.zenith_radiance_w_sr_m2[c]) && d.sky.zenith_radiance_w_sr_m2[c] >= 0.0);
+      EXPECT_TRUE(std::isfinite(d.sky.horizon_radiance_w_sr_m2[c]) && d.sky.horizon_radiance_w_sr_m2[c] >= 0.0);
+      EXPECT_TRUE(std::isfinite(d.ambient_w_sr_m2[c]) && d.ambient_w_sr_m2[c] >= 0.0);
+      // the clouds, 1.5 km up, see the sun through less air
+      EXPECT_GE(d.cloud_sun_irradiance_w_m2[c], e[c]) << el;
     }
+    ASSERT_TRUE(d.sky.atmosphere);
+    EXPECT_EQ(sky_radiance(d.sky, {0.0, 1.0, 0.0}), d.sky.zenith_radiance_w_sr_m2);
+    EXPECT_NEAR(sky_irradiance(d.sky, {0.0, 1.0, 0.0}).b, d.tables->sky_irradiance_up_w_m2.b, 1e-12);
     EXPECT_LE(e.g, last_g + 1e-12) << el;
     last_g = e.g;
     if (e.b > 1e-6) {
@@ -48,6 +47,11 @@ TEST(Daylight, SunDimsAndReddensAsItSetsAndSkyStaysFinite) {
     }
   }
   EXPECT_EQ(daylight(-5.0, 0.0).sun.irradiance_w_m2, glm::dvec3(0.0)) << "below the horizon";
+  // After sunset the clouds stay lit a little longer: their horizon is 1.2 degrees lower.
+  EXPECT_EQ(daylight(-0.5, 0.0).sun.irradiance_w_m2, glm::dvec3(0.0));
+  EXPECT_GT(daylight(-0.5, 0.0).cloud_sun_irradiance_w_m2.r, 0.0);
+  // The day's sky is far brighter than twilight's.
+  EXPECT_GT(daylight(30.0, 0.0).ambient_w_sr_m2.g, 100.0 * daylight(-8.0, 0.0).ambient_w_sr_m2.g);
   // The sky scene's sun (6 x (1, 0.95, 0.88) at about 32 degrees) within 2 %.
   const glm::dvec3 e = daylight(32.0, 0.0).sun.irradiance_w_m2;
   const glm::dvec3 scene = 6.0 * glm::dvec3(1.0, 0.95, 0.88);

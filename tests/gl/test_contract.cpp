@@ -133,7 +133,8 @@ const std::map<std::string, int>& expected_units() {
       {"u_scene_color", contract::UNIT_SCENE_COLOR},     {"u_cloud_color", contract::UNIT_CLOUD_COLOR},
       {"u_cloud_distance", contract::UNIT_CLOUD_DISTANCE}, {"u_tau", contract::IMAGE_CLOUD_TAU},
       {"u_range", contract::IMAGE_CLOUD_RANGE},         {"u_density_next", contract::UNIT_CLOUD_DENSITY_NEXT},
-      {"u_frame", contract::UNIT_SCENE_COLOR},
+      {"u_frame", contract::UNIT_SCENE_COLOR},            {"u_sky_view", contract::UNIT_SKY_VIEW},
+      {"u_aerial_scattering", contract::UNIT_AERIAL_SCATTERING}, {"u_aerial_transmittance", contract::UNIT_AERIAL_TRANSMITTANCE},
   };
   return units;
 }

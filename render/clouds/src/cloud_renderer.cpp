@@ -18,6 +18,7 @@
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/atmosphere_textures.hpp"
 #include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/resources.hpp"
@@ -60,6 +61,7 @@ struct CloudRenderer::Impl {
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
   std::map<std::pair<bool, int>, ShaderProgram> eye_programs;  // by (underlay, octaves)
   std::optional<ShaderProgram> composite_program;
+  std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
   UniformBuffer<CameraBlock> camera_ubo;
   UniformBuffer<LightsBlock> lights_ubo;
   UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
@@ -444,12 +446,20 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     cp.set("u_phase_g", static_cast<float>(fog.phase.g));
     s.lights_ubo.update(scene ? lights_block(*scene) : no_lights_block());
     s.lights_ubo.bind(contract::BLOCK_LIGHTS);
+    const auto& tables = scene && scene->sky ? scene->sky->atmosphere : nullptr;
+    if (tables) {
+      if (!s.aerial || s.aerial->tables != tables) s.aerial = upload_atmosphere(tables);
+      bind_aerial_perspective(cp, *s.aerial);
+    } else {
+      cp.set("u_aerial_on", 0);
+    }
     timer.time(kComposite, [&] {
       glBindFramebuffer(GL_FRAMEBUFFER, s.out_fbo.id());
       glViewport(0, 0, w, h);
       glBindTextureUnit(contract::UNIT_SCENE_COLOR, underlay->color_texture);
       glBindTextureUnit(contract::UNIT_CLOUD_COLOR, s.eye_color.id());
       glBindTextureUnit(contract::UNIT_CLOUD_DISTANCE, s.eye_distance.id());
+      glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay->distance_texture);
       cp.use();
       draw_fullscreen_triangle(s.empty_vao);
     });

@@ -154,7 +154,13 @@ void build_sky_view(AtmosphereTables& t) {
       const double sin_t = std::sqrt(std::max(1.0 - q.cos_theta * q.cos_theta, 0.0));
       const double nu = mu_s * q.cos_theta + sin_s * sin_t * q.cos_phi;
       glm::dvec3 L(0.0), T(1.0);
-      march(t, h, q.cos_theta, mu_s, nu, 0.0, ray_end(a, h, q.cos_theta), kSkySteps, true, L, T);
+      const double end = ray_end(a, h, q.cos_theta);
+      march(t, h, q.cos_theta, mu_s, nu, 0.0, end, kSkySteps, true, L, T);
+      if (ray_hits_ground(a, h, q.cos_theta)) {
+        // The ground far away, lit by the sun: T albedo / pi E_sun mu_s (Lambertian).
+        const ShellPoint g = shell_point(a, h, q.cos_theta, mu_s, nu, end);
+        L += T * (a.ground_albedo / M_PI) * table_transmittance(t, 0.0, g.mu_s) * sun_visibility(a, 0.0, g.mu_s) * std::max(g.mu_s, 0.0);
+      }
       t.sky_view.texels[static_cast<size_t>(y) * t.sky_view.width + x] = glm::vec3(L * E);
     }
   });

@@ -1,8 +1,9 @@
-// The sun and sky for a sun position (daylight.hpp).
+// The sun and sky for a sun position, from the physical sky (daylight.hpp).
 #include "nimbus/render/core/daylight.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -11,20 +12,17 @@ namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-// Optical depth of the atmosphere at the zenith per channel (R, G, B at about 650, 550, 450 nm):
-// Rayleigh 0.05, 0.10, 0.22 (Bucholtz 1995) plus 0.1 of aerosol.
-const glm::dvec3 kZenithDepth{0.15, 0.20, 0.32};
-// Irradiance above the atmosphere, W m^-2 per channel, scaled so that the sun at 32 degrees
-// matches the sky scene's 6 x (1, 0.95, 0.88).
-const glm::dvec3 kTopIrradiance{7.9, 8.3, 9.5};
-// A clear afternoon's gradient (a little bluer than the sky scene's hazy one), the reddened
-// horizon of a low sun, and the night floor the sky dims to.
-const glm::dvec3 kZenith{0.07, 0.15, 0.42}, kHorizon{0.40, 0.48, 0.62}, kHorizonLow{0.55, 0.38, 0.28};
-const glm::dvec3 kNight{0.004, 0.006, 0.012};
-
-double smoothstep(double a, double b, double x) {
-  const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
+// The tables of the last sun: the viewer asks every frame, the sun moves now and then.
+std::shared_ptr<const AtmosphereTables> tables_for(const glm::dvec3& direction_to_sun) {
+  static std::mutex mutex;
+  static std::shared_ptr<const AtmosphereTables> last;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (last && last->view.direction_to_sun == direction_to_sun) return last;
+  AtmosphereView view;
+  view.altitude_m = kDaylightViewerAltitudeM;
+  view.direction_to_sun = direction_to_sun;
+  last = build_atmosphere_tables(Atmosphere{}, view, last);
+  return last;
 }
 
 }  // namespace
@@ -34,30 +32,31 @@ glm::dvec3 sun_direction(double elevation_deg, double azimuth_deg) {
   return {std::cos(h) * std::sin(a), std::sin(h), -std::cos(h) * std::cos(a)};
 }
 
-double relative_air_mass(double elevation_deg) {
-  const double h = std::max(elevation_deg, -6.0);
-  const double m = 1.0 / (std::sin(h * kDeg) + 0.50572 * std::pow(h + 6.07995, -1.6364));
-  return std::max(m, 1.0);
-}
-
 Daylight daylight(double elevation_deg, double azimuth_deg) {
   if (!(elevation_deg >= -10.0 && elevation_deg <= 90.0))
     throw std::invalid_argument("sun elevation must be in [-10, 90] degrees, got " + std::to_string(elevation_deg));
   if (!std::isfinite(azimuth_deg)) throw std::invalid_argument("sun azimuth must be finite");
+  return daylight(sun_direction(elevation_deg, azimuth_deg));
+}
+
+Daylight daylight(const glm::dvec3& direction_to_sun) {
+  const double len = glm::length(direction_to_sun);
+  if (!(std::isfinite(len) && len > 1.0e-12)) throw std::invalid_argument("sun direction must be finite and non-zero");
+  const glm::dvec3 s = direction_to_sun / len;
+  if (s.y < std::sin(-10.0 * kDeg) - 1.0e-12)
+    throw std::invalid_argument("sun elevation must be in [-10, 90] degrees, got " + std::to_string(std::asin(s.y) / kDeg));
   Daylight d;
-  d.sun.direction_to_sun = sun_direction(elevation_deg, azimuth_deg);
-  const double m = relative_air_mass(elevation_deg);
-  const double up = smoothstep(-4.0, 1.0, elevation_deg);  // the disc sinks below the horizon
-  d.sun.irradiance_w_m2 = up * kTopIrradiance * glm::exp(-kZenithDepth * m);
-  // The sky is lit by the sun through the same air: brightest with a high sun, reddest at the
-  // horizon when the sun is low, dimming to the night floor through civil twilight.
-  const double day = smoothstep(-8.0, 12.0, elevation_deg) * (0.55 + 0.45 * smoothstep(5.0, 32.0, elevation_deg)) /
-                     (0.55 + 0.45 * smoothstep(5.0, 32.0, 32.0));
-  const double low = 1.0 - smoothstep(2.0, 25.0, elevation_deg);
-  d.sky.zenith_radiance_w_sr_m2 = kNight + day * kZenith * (1.0 - 0.35 * low);
-  d.sky.horizon_radiance_w_sr_m2 = kNight + day * glm::mix(kHorizon, kHorizonLow, low);
+  d.tables = tables_for(s);
+  d.sun.direction_to_sun = s;
+  d.sun.irradiance_w_m2 = table_sun_irradiance(*d.tables, 0.0, s.y);
+  d.cloud_sun_irradiance_w_m2 = table_sun_irradiance(*d.tables, kDaylightCloudAltitudeM, s.y);
+  d.sky.atmosphere = d.tables;
   d.sky.distance_m = 20000.0;
-  d.ambient_w_sr_m2 = 0.5 * (d.sky.zenith_radiance_w_sr_m2 + d.sky.horizon_radiance_w_sr_m2);
+  // The gradient's two radiances, for code that reads them: the table at the zenith and 5 degrees up.
+  d.sky.zenith_radiance_w_sr_m2 = table_sky_radiance(*d.tables, {0.0, 1.0, 0.0});
+  const glm::dvec3 side = glm::length(glm::dvec2(s.x, s.z)) > 1e-9 ? glm::normalize(glm::dvec3(-s.z, 0.0, s.x)) : glm::dvec3(1, 0, 0);
+  d.sky.horizon_radiance_w_sr_m2 = table_sky_radiance(*d.tables, glm::normalize(side + glm::dvec3(0.0, std::tan(5.0 * kDeg), 0.0)));
+  d.ambient_w_sr_m2 = d.tables->sky_mean_radiance_w_sr_m2;
   return d;
 }
 

@@ -138,12 +138,19 @@ void validate(const Scene& s) {
   }
 }
 
+glm::dvec3 sky_mean_radiance(const Sky& sky) {
+  if (sky.atmosphere) return sky.atmosphere->sky_mean_radiance_w_sr_m2;
+  return 0.5 * (sky.zenith_radiance_w_sr_m2 + sky.horizon_radiance_w_sr_m2);
+}
+
 glm::dvec3 sky_irradiance(const Sky& sky, const glm::dvec3& n) {
-  const glm::dvec3 mean = 0.5 * (sky.zenith_radiance_w_sr_m2 + sky.horizon_radiance_w_sr_m2);
+  const glm::dvec3 mean = sky.atmosphere ? sky.atmosphere->sky_irradiance_up_w_m2 / M_PI
+                                         : 0.5 * (sky.zenith_radiance_w_sr_m2 + sky.horizon_radiance_w_sr_m2);
   return M_PI * mean * (0.5 * (1.0 + std::clamp(n.y, -1.0, 1.0)));
 }
 
 glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir) {
+  if (sky.atmosphere) return table_sky_radiance(*sky.atmosphere, dir);
   const double w = std::sqrt(std::max(dir.y, 0.0));
   return sky.horizon_radiance_w_sr_m2 + (sky.zenith_radiance_w_sr_m2 - sky.horizon_radiance_w_sr_m2) * w;
 }

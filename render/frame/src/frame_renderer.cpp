@@ -63,7 +63,7 @@ void FrameRenderer::set_sky(const Sky& sky) {
   if (!scene_) throw std::invalid_argument("frame sky: there is no scene to put it in");
   const bool changed = !scene_->sky || scene_->sky->zenith_radiance_w_sr_m2 != sky.zenith_radiance_w_sr_m2 ||
                        scene_->sky->horizon_radiance_w_sr_m2 != sky.horizon_radiance_w_sr_m2 ||
-                       scene_->sky->distance_m != sky.distance_m;
+                       scene_->sky->distance_m != sky.distance_m || scene_->sky->atmosphere != sky.atmosphere;
   Scene next = *scene_;
   next.sky = sky;
   validate(next);

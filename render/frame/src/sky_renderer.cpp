@@ -34,7 +34,7 @@ std::optional<Scene> state_scene(const std::string& name, const Daylight& d) {
   if (name == "none") return std::nullopt;
   Scene scene = make_scene(name);
   if (name == "sky") {
-    scene.sun = d.sun;
+    scene.sun = SunLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2};
     scene.sky = d.sky;
   }
   return scene;
@@ -48,7 +48,7 @@ nlohmann::json clouds_of(const volume::Sky& sky) {
   return j;
 }
 
-CloudLight light_of(const Daylight& d) { return CloudLight{d.sun.direction_to_sun, d.sun.irradiance_w_m2}; }
+CloudLight light_of(const Daylight& d) { return CloudLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2}; }
 
 }  // namespace
 

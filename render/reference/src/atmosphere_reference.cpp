@@ -114,7 +114,8 @@ glm::dvec3 reference_multiple_scattering(const Atmosphere& a, double h, double m
 AtmosphereRadiance reference_sky(const Atmosphere& a, const AtmosphereRay& ray) {
   const glm::dvec3 sun = glm::normalize(ray.direction_to_sun), dir = glm::normalize(ray.direction);
   const double h = ray.altitude_m, mu = dir.y, mu_s = sun.y, nu = glm::dot(dir, sun);
-  const double end = std::min(ray_end(a, h, mu), ray.max_distance_m);
+  const double full = ray_end(a, h, mu);
+  const double end = std::min(full, ray.max_distance_m);
   auto t_of = [&](double s) { return end * s * s; };  // dense near the viewer
   // Psi_ms at kPsiNodes points (s = 0 .. 1), exactly.
   std::array<glm::dvec3, kPsiNodes> psi;
@@ -138,6 +139,11 @@ AtmosphereRadiance reference_sky(const Atmosphere& a, const AtmosphereRay& ray) 
                          m.scattering * psi_here;
     L += T * S * step_weight(m.extinction, dt);
     T *= glm::exp(-m.extinction * dt);
+  }
+  if (ray_hits_ground(a, h, mu) && ray.max_distance_m >= full) {
+    // The ray ends on the sunlit Lambertian ground.
+    const ShellPoint g = shell_point(a, h, mu, mu_s, nu, end);
+    L += T * (a.ground_albedo / M_PI) * sun_transmittance_exact(a, 0.0, g.mu_s) * std::max(g.mu_s, 0.0);
   }
   out.inscattered_w_sr_m2 = L * a.solar_irradiance_w_m2;
   out.transmittance = T;

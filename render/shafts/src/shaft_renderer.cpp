@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@
 #include "nimbus/render/core/airlight.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/atmosphere_textures.hpp"
 #include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/resources.hpp"
@@ -116,6 +118,7 @@ struct ShaftRenderer::Impl {
 
   // Jitter and the F table.
   GlTexture jitter_tex;
+  std::optional<AtmosphereTextures> atmosphere;  // the physical sky's tables, when the scene's sky has them
   const CloudShadowMap* cloud_shadow = nullptr;
   double opaque_ceiling_m = -1e300;  // top of the occluders (world y)
   // The frame's render targets, kept while the image size stays the same.
@@ -335,6 +338,11 @@ void ShaftRenderer::Impl::bind_sky(const ShaderProgram& p) const {
     p.set("u_sky_horizon", to_float(scene.sky->horizon_radiance_w_sr_m2));
     p.set("u_sky_distance", static_cast<float>(scene.sky->distance_m));
   }
+  if (atmosphere) {
+    bind_sky_view(p, *atmosphere);
+  } else {
+    p.set("u_sky_physical", 0);
+  }
   // With the sun above the horizon nothing shadows the fog above the highest occluder or cloud.
   double ceiling = 1e30;
   if (scene.sun && glm::normalize(scene.sun->direction_to_sun).y > 1e-6)
@@ -369,6 +377,7 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
   impl_->lights_block.update(lights_block(scene));
+  if (scene.sky && scene.sky->atmosphere) impl_->atmosphere = upload_atmosphere(scene.sky->atmosphere);
   const SceneTracer tracer(scene);
   for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
     glm::dvec3 lo, hi;

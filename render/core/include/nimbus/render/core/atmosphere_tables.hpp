@@ -5,7 +5,8 @@
 //   multiple scattering 64 x 32  Psi_ms, the isotropic radiance of the light scattered twice or
 //                                more, per unit solar irradiance, over (altitude, sun zenith);
 //   sky view 192 x 108           the sky's radiance seen from the viewer's altitude over
-//                                (azimuth from the sun, view zenith);
+//                                (azimuth from the sun, view zenith); below the horizon, the
+//                                air in front of the distant ground and the sunlit ground;
 //   aerial perspective 64x64x32  in-scattered radiance and transmittance from the viewer to a
 //                                distance along each view direction (the haze in front of things).
 // Every table is checked against render/reference/atmosphere_reference.hpp, the same model

@@ -1,13 +1,15 @@
-// The sun and the sky for a sun position, so that the viewer's sun slider moves everything that
-// depends on it: the sun's direction and colour on clouds and ground, the sky gradient behind
-// them, and the ambient light on the clouds. A small clear-sky model, not a reference: the sun's
-// irradiance is attenuated along Kasten & Young's relative air mass (1989) with RGB optical
-// depths of Rayleigh scattering plus a little aerosol, and the sky's zenith and horizon radiance
-// dim and redden as the sun sets. At 32 degrees elevation the sun is the sky scene's own
-// (scene_presets.cpp) to within 2 %.
+// The sun and the sky for a sun position, so that the viewer's sun slider and the sky scene move
+// everything that depends on it together: the sun's direction and colour on the ground and at
+// the clouds, the sky behind them, and the ambient light on the clouds. All of it comes from the
+// physical sky (atmosphere_tables.hpp, Hillaire 2020): the sun is the solar irradiance through
+// the air's transmittance (reddened and dimmed as it sets, gone once its disc is below the
+// horizon), the sky is the sky-view table, the ambient light is the sky's mean radiance.
 #pragma once
 #include <glm/glm.hpp>
 
+#include <memory>
+
+#include "nimbus/render/core/atmosphere_tables.hpp"
 #include "nimbus/render/core/scene.hpp"
 
 namespace nimbus::render {
@@ -16,17 +18,24 @@ namespace nimbus::render {
 // horizon and azimuth clockwise from north, both in degrees.
 glm::dvec3 sun_direction(double elevation_deg, double azimuth_deg);
 
-// Kasten & Young (1989): air mass relative to the zenith, m = 1 / (sin h + 0.50572 (h + 6.07995)^-1.6364),
-// h in degrees; finite down to h = -6 (where it is clamped).
-double relative_air_mass(double elevation_deg);
+// Where the sky is seen from (the sky scene's camera, 2 m up) and where the clouds are lit
+// (the presets' cumulus layer, 0.4-3 km up).
+inline constexpr double kDaylightViewerAltitudeM = 2.0;
+inline constexpr double kDaylightCloudAltitudeM = 1500.0;
 
 struct Daylight {
-  SunLight sun;                 // direction and irradiance (0 once the sun is 4 degrees below the horizon)
-  Sky sky;                      // zenith and horizon radiance, distance 20 km
-  glm::dvec3 ambient_w_sr_m2;   // the sky's mean radiance on a cloud: (zenith + horizon) / 2
+  SunLight sun;                           // at the ground: direction and irradiance
+  glm::dvec3 cloud_sun_irradiance_w_m2;   // the sun at the cloud layer (brighter and whiter near sunset);
+                                          // the sky scene lights its ground with it too (a few % brighter)
+  Sky sky;                                // the physical sky, ending 20 km away for the fog
+  glm::dvec3 ambient_w_sr_m2;             // the sky's mean radiance over the upper hemisphere
+  std::shared_ptr<const AtmosphereTables> tables;
 };
 
 // Throws std::invalid_argument for an elevation outside [-10, 90] or a non-finite azimuth.
+// The tables of the last sun asked for are kept (one rebuild per new sun; the view-independent
+// tables are built once).
 Daylight daylight(double elevation_deg, double azimuth_deg);
+Daylight daylight(const glm::dvec3& direction_to_sun);  // the elevation must be in [-10, 90] degrees
 
 }  // namespace nimbus::render

@@ -1,12 +1,14 @@
 // The light-shaft scene: ground (plane or heightfield terrain), simple occluders (boxes,
 // spheres) and point lights or the sun, inside a homogeneous medium. Units are metres, y up.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "nimbus/render/core/atmosphere_tables.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/medium.hpp"
 
@@ -61,21 +63,28 @@ struct SunLight {
 };
 
 // The sky behind everything: rays that meet no surface end at distance_m, where the sky's
-// radiance (a gradient from the horizon to the zenith, sky_radiance) shines through the fog.
+// radiance shines through the fog. Its radiance is a gradient from the horizon to the zenith,
+// or, with an atmosphere, the physical sky's table (atmosphere_tables.hpp, Hillaire 2020).
 struct Sky {
   glm::dvec3 zenith_radiance_w_sr_m2{0.04, 0.08, 0.2};
   glm::dvec3 horizon_radiance_w_sr_m2{0.22, 0.26, 0.32};
   double distance_m = 30000.0;  // where the fog ends, metres
+  std::shared_ptr<const AtmosphereTables> atmosphere;  // set: the physical sky replaces the gradient
 };
 
-// Radiance of the sky in unit direction `dir` (y up): horizon + (zenith - horizon) sqrt(max(dir.y, 0)).
-// shaders/lib/sky.glsl computes the same.
+// Radiance of the sky in unit direction `dir` (y up): horizon + (zenith - horizon) sqrt(max(dir.y, 0)),
+// or the sky-view table's. shaders/lib/sky.glsl computes the same.
 glm::dvec3 sky_radiance(const Sky& sky, const glm::dvec3& dir);
 
+// The sky's mean radiance over the upper hemisphere: (zenith + horizon) / 2 for the gradient,
+// the table's integral for the physical sky. The ambient light on clouds.
+glm::dvec3 sky_mean_radiance(const Sky& sky);
+
 // The sky's light on a surface with unit normal n (y up), so that the ground in a cloud's shadow
-// is lit by the sky, not black: the sky taken as uniform at its mean radiance
-// Lm = (zenith + horizon) / 2, and the surface seeing the share (1 + n.y) / 2 of it (a tilted
-// plane's view of the upper hemisphere), unoccluded: E = pi Lm (1 + n.y) / 2. Surfaces reflect
+// is lit by the sky, not black: the sky taken as uniform at a radiance Lm, and the surface
+// seeing the share (1 + n.y) / 2 of it (a tilted plane's view of the upper hemisphere),
+// unoccluded: E = pi Lm (1 + n.y) / 2, with Lm = (zenith + horizon) / 2 for the gradient and
+// E_up / pi (the table's cosine-weighted integral) for the physical sky. Surfaces reflect
 // albedo / pi E (surface.frag.glsl and the reference alike).
 glm::dvec3 sky_irradiance(const Sky& sky, const glm::dvec3& n);
 

@@ -26,7 +26,8 @@ struct AtmosphereRay {
   double max_distance_m = 1.0e30;              // where the ray stops, if before the ground or the top
 };
 struct AtmosphereRadiance {
-  glm::dvec3 inscattered_w_sr_m2{0.0};  // sun light scattered toward the viewer (every order)
+  glm::dvec3 inscattered_w_sr_m2{0.0};  // sun light scattered toward the viewer (every order), plus the
+                                        // sunlit ground's where the ray ends on it
   glm::dvec3 transmittance{1.0};
 };
 AtmosphereRadiance reference_sky(const Atmosphere& a, const AtmosphereRay& ray);

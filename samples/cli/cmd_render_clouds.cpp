@@ -189,7 +189,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       if (scene.sky && scene.sky->atmosphere) {
         // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
         try {
-          const render::Daylight d = render::daylight(light.direction_to_light);
+          const render::Daylight d = render::daylight(light.direction_to_light, scene.sky->atmosphere->view.altitude_m);
           scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
           scene.sky = d.sky;
         } catch (const std::invalid_argument& e) {

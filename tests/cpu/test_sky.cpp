@@ -1,6 +1,7 @@
 // Sky files (volume/sky.hpp): the shipped default, round trips, errors that name the key, and
 // each cloud's model parameters.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -62,7 +63,7 @@ TEST(Sky, JsonRoundTripKeepsEveryField) {
 }
 
 TEST(Sky, FileRoundTripIsAtomicAndErrorsNameTheFile) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "nimbus_test_sky";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("nimbus_test_sky_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const Sky a = sky_from_json(minimal(), "sky");

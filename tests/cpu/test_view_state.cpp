@@ -1,6 +1,7 @@
 // View states (render/core/view_state.hpp): the default is valid, JSON and files round-trip, and
 // bad contents name their key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -44,7 +45,7 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
 }
 
 TEST(ViewState, FileRoundTripAndErrors) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "nimbus_test_view_state";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("nimbus_test_view_state_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const ViewState s = default_view_state();

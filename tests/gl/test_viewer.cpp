@@ -4,6 +4,7 @@
 // the viewer running, and bad input gets one line and its exit code. The real window, with X
 // input events, is tests/viewer_x11_test.sh.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,7 @@ using test::run_nimbus;
 
 struct Dir {
   fs::path path;
-  explicit Dir(const std::string& name) : path(fs::temp_directory_path() / ("nimbus_test_viewer_" + name)) {
+  explicit Dir(const std::string& name) : path(fs::temp_directory_path() / ("nimbus_test_viewer_" + name + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }

@@ -13,13 +13,13 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // The tables of the last sun: the viewer asks every frame, the sun moves now and then.
-std::shared_ptr<const AtmosphereTables> tables_for(const glm::dvec3& direction_to_sun) {
+std::shared_ptr<const AtmosphereTables> tables_for(const glm::dvec3& direction_to_sun, double viewer_altitude_m) {
   static std::mutex mutex;
   static std::shared_ptr<const AtmosphereTables> last;
   std::lock_guard<std::mutex> lock(mutex);
-  if (last && last->view.direction_to_sun == direction_to_sun) return last;
+  if (last && last->view.direction_to_sun == direction_to_sun && last->view.altitude_m == viewer_altitude_m) return last;
   AtmosphereView view;
-  view.altitude_m = kDaylightViewerAltitudeM;
+  view.altitude_m = viewer_altitude_m;
   view.direction_to_sun = direction_to_sun;
   last = build_atmosphere_tables(Atmosphere{}, view, last);
   return last;
@@ -32,21 +32,23 @@ glm::dvec3 sun_direction(double elevation_deg, double azimuth_deg) {
   return {std::cos(h) * std::sin(a), std::sin(h), -std::cos(h) * std::cos(a)};
 }
 
-Daylight daylight(double elevation_deg, double azimuth_deg) {
+Daylight daylight(double elevation_deg, double azimuth_deg, double viewer_altitude_m) {
   if (!(elevation_deg >= -10.0 && elevation_deg <= 90.0))
     throw std::invalid_argument("sun elevation must be in [-10, 90] degrees, got " + std::to_string(elevation_deg));
   if (!std::isfinite(azimuth_deg)) throw std::invalid_argument("sun azimuth must be finite");
-  return daylight(sun_direction(elevation_deg, azimuth_deg));
+  return daylight(sun_direction(elevation_deg, azimuth_deg), viewer_altitude_m);
 }
 
-Daylight daylight(const glm::dvec3& direction_to_sun) {
+Daylight daylight(const glm::dvec3& direction_to_sun, double viewer_altitude_m) {
   const double len = glm::length(direction_to_sun);
   if (!(std::isfinite(len) && len > 1.0e-12)) throw std::invalid_argument("sun direction must be finite and non-zero");
   const glm::dvec3 s = direction_to_sun / len;
   if (s.y < std::sin(-10.0 * kDeg) - 1.0e-12)
     throw std::invalid_argument("sun elevation must be in [-10, 90] degrees, got " + std::to_string(std::asin(s.y) / kDeg));
   Daylight d;
-  d.tables = tables_for(s);
+  if (!(std::isfinite(viewer_altitude_m) && viewer_altitude_m >= 0.0 && viewer_altitude_m <= 99000.0))
+    throw std::invalid_argument("sky viewer altitude must be in [0, 99000] m, got " + std::to_string(viewer_altitude_m));
+  d.tables = tables_for(s, viewer_altitude_m);
   d.sun.direction_to_sun = s;
   d.sun.irradiance_w_m2 = table_sun_irradiance(*d.tables, 0.0, s.y);
   d.cloud_sun_irradiance_w_m2 = table_sun_irradiance(*d.tables, kDaylightCloudAltitudeM, s.y);

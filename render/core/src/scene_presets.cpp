@@ -170,18 +170,20 @@ Scene open_scene() {
 
 // An afternoon sky for clouds (issue 5): flat ground, the sun 33 degrees up to the right of the
 // camera and a little ahead (clouds lit from the side, with bright edges and shafts below them),
-// a thin forward-scattering haze (visibility about 200 km) for the shafts, and the physical sky
-// (daylight.hpp) beyond 20 km, which also gives the sun its colour. The camera stands 7 km south
-// of the origin, where the presets put their clouds (at 0.4-11 km altitude).
+// a thin forward-scattering haze (visibility about 400 km; the air itself adds the aerial
+// perspective) for the shafts, and the physical sky
+// (daylight.hpp) beyond 20 km, which also gives the sun its colour, seen from the camera's
+// height. The camera stands 7 km south of the origin, where the presets put their clouds (at
+// 0.4-11 km altitude).
 Scene sky() {
   Scene s;
   s.name = "sky";
-  s.medium = medium(2.0e-5, 0.9, Phase{PhaseKind::HenyeyGreenstein, 0.5});
+  s.medium = medium(1.0e-5, 0.9, Phase{PhaseKind::HenyeyGreenstein, 0.5});
   s.ground = GroundPlane{0.0, Material{{0.28, 0.3, 0.22}}};
-  const Daylight d = daylight(glm::normalize(glm::dvec3{0.8, 0.55, -0.25}));
+  s.camera = camera({0.0, 2.0, 7000.0}, {0.0, 1500.0, 0.0}, 60.0);
+  const Daylight d = daylight(glm::normalize(glm::dvec3{0.8, 0.55, -0.25}), s.camera.eye.y);
   s.sun = SunLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2};
   s.sky = d.sky;
-  s.camera = camera({0.0, 2.0, 7000.0}, {0.0, 1500.0, 0.0}, 60.0);
   s.camera.near_m = 1.0;
   s.camera.far_m = 40000.0;
   return s;

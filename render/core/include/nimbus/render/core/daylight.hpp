@@ -18,8 +18,8 @@ namespace nimbus::render {
 // horizon and azimuth clockwise from north, both in degrees.
 glm::dvec3 sun_direction(double elevation_deg, double azimuth_deg);
 
-// Where the sky is seen from (the sky scene's camera, 2 m up) and where the clouds are lit
-// (the presets' cumulus layer, 0.4-3 km up).
+// Where the sky is seen from by default (the viewer's eye level, 2 m up) and where the clouds are
+// lit (the presets' cumulus layer, 0.4-3 km up).
 inline constexpr double kDaylightViewerAltitudeM = 2.0;
 inline constexpr double kDaylightCloudAltitudeM = 1500.0;
 
@@ -35,7 +35,9 @@ struct Daylight {
 // Throws std::invalid_argument for an elevation outside [-10, 90] or a non-finite azimuth.
 // The tables of the last sun asked for are kept (one rebuild per new sun; the view-independent
 // tables are built once).
-Daylight daylight(double elevation_deg, double azimuth_deg);
-Daylight daylight(const glm::dvec3& direction_to_sun);  // the elevation must be in [-10, 90] degrees
+// The sky is seen from viewer_altitude_m, in [0, 99 km].
+Daylight daylight(double elevation_deg, double azimuth_deg, double viewer_altitude_m = kDaylightViewerAltitudeM);
+Daylight daylight(const glm::dvec3& direction_to_sun,  // the elevation must be in [-10, 90] degrees
+                  double viewer_altitude_m = kDaylightViewerAltitudeM);
 
 }  // namespace nimbus::render

@@ -55,6 +55,11 @@ const int UNIT_SCENE_COLOR = 12;       // sampler2D: the scene under the clouds 
 const int UNIT_CLOUD_COLOR = 13;       // sampler2D: the clouds' premultiplied radiance
 const int UNIT_CLOUD_DISTANCE = 14;    // sampler2D: the clouds' weighted distances
 const int UNIT_CLOUD_DENSITY_NEXT = 15; // sampler3D: the cloud's next keyframe (CloudBlock.blend mixes it in)
+// GL 4.5 guarantees 16 units per stage and the 16 above are taken: the light volume shares the
+// unit of the clouds' colour, which only the composite pass reads, and the slicer's eye pass (the
+// light volume's only reader) binds it before every frame (tests/gl/test_contract.cpp checks that
+// no program has both).
+const int UNIT_LIGHT_VOLUME = UNIT_CLOUD_COLOR;  // sampler3D: scattered light's fluence and flux (lib/cloud_light_volume.glsl)
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -97,6 +97,9 @@ TEST(ContractCodes, TextureUnitsAreDistinct) {
     EXPECT_GE(u, 0);
     EXPECT_LT(u, 16) << "GL 4.5 guarantees 16 texture units per stage";
   }
+  // The one shared unit: the light volume (eye pass) with the clouds' colour (composite pass);
+  // the GL contract test checks that no program samples both.
+  EXPECT_EQ(contract::UNIT_LIGHT_VOLUME, contract::UNIT_CLOUD_COLOR);
   EXPECT_EQ(std::set<int>({contract::BLOCK_CAMERA, contract::BLOCK_LIGHTS, contract::BLOCK_CLOUD}).size(), 3u);
 }
 

@@ -113,7 +113,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--ms-method", a.ms_method,
                   "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
                   "the default) or octaves (the default when --multiple N > 0 is given alone)");
-  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis, 4-256")->capture_default_str();
+  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis, 4-192")->capture_default_str();
   cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
   cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
@@ -156,8 +156,8 @@ static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& 
   } else {
     ms.octaves = a.multiple.value_or(0);
   }
-  if (a.ms_grid < 4 || a.ms_grid > 256)
-    throw UsageError("--ms-grid: must be in [4, 256] cells, got " + std::to_string(a.ms_grid));
+  if (a.ms_grid < 4 || a.ms_grid > 192)
+    throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
   if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
     throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
   ms.light_volume.resolution = a.ms_grid;

@@ -1,9 +1,10 @@
 // The light volume (render/core light_volume.hpp) as the slicer's eye pass reads it: the radiance
 // that once-or-more scattered sunlight in-scatters toward the eye, per unit irradiance and per
-// unit scattering coefficient, in the P1 approximation (docs/clouds.md eq. MS-1):
-//   (phi + 3 g F.w_o) / (4 pi), the flux term scaled per channel by phi_c / mean(phi), >= 0.
-// One RGBA32F 3D texture, twice as wide as the grid: fluence RGB in its first half along x, flux
-// xyz in its second; lookups are clamped to the texel centres of one half, so the halves never
+// unit scattering coefficient, with the radiance cut after l = 2 (docs/clouds.md eq. MS-1):
+//   phi / (4 pi) (1 + 3 p_1 F.w_o / mean(phi) + (15 / 2) p_2 w_o^T Q w_o / mean(phi)), >= 0,
+// p_l = w g_forward^l + (1 - w) g_back^l (as light_volume_inscatter). One RGBA32F 3D texture,
+// three times as wide as the grid: (fluence RGB, Q xx), (flux xyz, Q yy), (Q xy, xz, yz, 0) in
+// its thirds along x; lookups are clamped to the texel centres of one third, so the thirds never
 // blend (as light_volume_inscatter clamps to the edge cells).
 #ifndef NIMBUS_CLOUD_LIGHT_VOLUME_GLSL
 #define NIMBUS_CLOUD_LIGHT_VOLUME_GLSL
@@ -15,12 +16,20 @@ uniform vec3 u_lv_cells;       // cells per axis
 
 vec3 light_volume_inscatter(vec3 world, vec3 to_eye) {
   vec3 texel = clamp((world - u_lv_world_min) / u_lv_cell_m, vec3(0.5), u_lv_cells - 0.5);
-  vec3 tc = texel / vec3(2.0 * u_lv_cells.x, u_lv_cells.yz);
-  vec3 phi = textureLod(u_light_volume, tc, 0.0).rgb;
-  vec3 flux = textureLod(u_light_volume, tc + vec3(0.5, 0.0, 0.0), 0.0).rgb;
-  float mean = (phi.r + phi.g + phi.b) / 3.0;
-  float g = mix(cloud.phase.y, cloud.phase.x, cloud.phase.z);  // w g_forward + (1 - w) g_back
-  float directional = mean > 0.0 ? 3.0 * g * dot(flux, to_eye) / mean : 0.0;
-  return max(phi * (1.0 + directional) * (1.0 / (4.0 * 3.14159265358979)), vec3(0.0));
+  vec3 tc = texel / vec3(3.0 * u_lv_cells.x, u_lv_cells.yz);
+  float third = 1.0 / 3.0;
+  vec4 a = textureLod(u_light_volume, tc, 0.0);                          // fluence RGB, Q xx
+  vec4 b = textureLod(u_light_volume, tc + vec3(third, 0.0, 0.0), 0.0);  // flux xyz, Q yy
+  vec3 c = textureLod(u_light_volume, tc + vec3(2.0 * third, 0.0, 0.0), 0.0).xyz;  // Q xy, xz, yz
+  float mean = (a.r + a.g + a.b) / 3.0;
+  if (!(mean > 0.0)) return vec3(0.0);
+  vec3 w = to_eye;
+  float wqw = a.w * w.x * w.x + b.w * w.y * w.y - (a.w + b.w) * w.z * w.z +
+              2.0 * (c.x * w.x * w.y + c.y * w.x * w.z + c.z * w.y * w.z);
+  vec3 g = cloud.phase;  // g_forward, g_back, forward weight
+  float p1 = mix(g.y, g.x, g.z);
+  float p2 = mix(g.y * g.y, g.x * g.x, g.z);
+  float directional = (3.0 * p1 * dot(b.xyz, w) + 7.5 * p2 * wqw) / mean;
+  return max(a.rgb * (1.0 + directional) * (1.0 / (4.0 * 3.14159265358979)), vec3(0.0));
 }
 #endif

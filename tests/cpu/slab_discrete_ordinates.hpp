@@ -19,6 +19,7 @@ struct SlabSolution {
   std::vector<double> tau;             // optical depth from the lit face of each level, 0..tau
   std::vector<double> fluence;         // per level: fluence of the diffuse (scattered) light, int I dw
   std::vector<double> flux_down;       // per level: its net flux along the beam's depth axis, int I mu dw
+  std::vector<double> second;          // per level: int I (mu^2 - 1/3) dw
 };
 
 inline void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
@@ -112,11 +113,13 @@ inline SlabSolution solve_slab(double tau, double albedo, const DualLobePhase& p
     rt.R += 2.0 * M_PI * wt[n + i] * x[i] * I[n + i];
   }
   for (int k = 0; k <= layers; ++k) {
-    double f = 0.0, q = 0.0;
+    double f = 0.0, q = 0.0, m2 = 0.0;
     for (int i = 0; i < 2 * n; ++i) {
       f += 2.0 * M_PI * wt[i] * I[static_cast<std::size_t>(k) * 2 * n + i];
       q += 2.0 * M_PI * wt[i] * mu[i] * I[static_cast<std::size_t>(k) * 2 * n + i];
+      m2 += 2.0 * M_PI * wt[i] * (mu[i] * mu[i] - 1.0 / 3.0) * I[static_cast<std::size_t>(k) * 2 * n + i];
     }
+    rt.second.push_back(m2);
     rt.tau.push_back(k * d);
     rt.fluence.push_back(f);
     rt.flux_down.push_back(q);

@@ -28,7 +28,8 @@ CloudVolume ball(const DualLobePhase& phase) {
 }
 
 // 8^3 cells over [-0.6, 0.6]^3: fluence (2 + 3 (x + 0.6)) (1, 0.8, 0.6) per unit irradiance,
-// flux (0, 0, 0.5) x the mean fluence (toward +z, the eye).
+// flux (0, 0, 0.5) x the mean fluence (toward +z, the eye), second moment diag(-0.1, -0.05, 0.15)
+// + 0.05 (xy, xz, yz) off the diagonal, times the mean.
 LightVolume made_volume(bool zero) {
   LightVolume v;
   v.size[0] = v.size[1] = v.size[2] = 8;
@@ -36,6 +37,7 @@ LightVolume made_volume(bool zero) {
   v.cell_m = 0.15;
   v.fluence_rgb.assign(v.cells() * 3, 0.0f);
   v.flux_xyz.assign(v.cells() * 3, 0.0f);
+  v.quadrupole.assign(v.cells() * 5, 0.0f);
   if (zero) return v;
   for (int k = 0; k < 8; ++k)
     for (int j = 0; j < 8; ++j)
@@ -47,6 +49,8 @@ LightVolume made_volume(bool zero) {
         v.fluence_rgb[3 * q + 1] = static_cast<float>(0.8 * phi);
         v.fluence_rgb[3 * q + 2] = static_cast<float>(0.6 * phi);
         v.flux_xyz[3 * q + 2] = static_cast<float>(0.5 * 0.8 * phi);
+        const float quad[5] = {-0.1f, -0.05f, 0.05f, 0.05f, 0.05f};
+        for (int e = 0; e < 5; ++e) v.quadrupole[5 * q + e] = static_cast<float>(quad[e] * 0.8 * phi);
       }
   return v;
 }

@@ -78,7 +78,7 @@ struct CloudRenderer::Impl {
   GlTexture eye_color, eye_distance, out_color;
   GlFramebuffer eye_fbo, out_fbo;
 
-  // The light volume (set_light_volume): fluence and flux side by side along x.
+  // The light volume (set_light_volume): fluence, flux and second moment side by side along x.
   GlTexture light_volume_tex;
   glm::dvec3 lv_world_min{0.0};
   double lv_cell_m = 0.0;
@@ -236,26 +236,39 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 
 void CloudRenderer::set_light_volume(const LightVolume& volume) {
   const std::size_t n = volume.cells();
-  if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n || !(volume.cell_m > 0.0))
+  if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n ||
+      volume.quadrupole.size() != 5 * n || !(volume.cell_m > 0.0))
     throw std::invalid_argument("cloud renderer light volume: its sizes, cell and values do not agree");
-  for (std::size_t q = 0; q < 3 * n; ++q)
-    if (!std::isfinite(volume.fluence_rgb[q]) || !std::isfinite(volume.flux_xyz[q]))
-      throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (float x : volume.fluence_rgb)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (float x : volume.flux_xyz)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (float x : volume.quadrupole)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
   Impl& s = *impl_;
   const int nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
-  std::vector<float> texels(static_cast<std::size_t>(2 * nx) * ny * nz * 4, 0.0f);
+  // Three sections along x (lib/cloud_light_volume.glsl): (fluence RGB, Q xx), (flux xyz, Q yy),
+  // (Q xy, xz, yz, 0).
+  std::vector<float> texels(static_cast<std::size_t>(3 * nx) * ny * nz * 4, 0.0f);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const std::size_t src = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
-        const std::size_t row = static_cast<std::size_t>(2 * nx) * (j + static_cast<std::size_t>(ny) * k);
-        for (int c = 0; c < 3; ++c) {
-          texels[4 * (row + i) + c] = volume.fluence_rgb[3 * src + c];
-          texels[4 * (row + nx + i) + c] = volume.flux_xyz[3 * src + c];
+        const std::size_t row = static_cast<std::size_t>(3 * nx) * (j + static_cast<std::size_t>(ny) * k);
+        float* a = &texels[4 * (row + i)];
+        float* b = &texels[4 * (row + nx + i)];
+        float* c = &texels[4 * (row + 2 * nx + i)];
+        const float* q = &volume.quadrupole[5 * src];
+        for (int e = 0; e < 3; ++e) {
+          a[e] = volume.fluence_rgb[3 * src + e];
+          b[e] = volume.flux_xyz[3 * src + e];
+          c[e] = q[2 + e];
         }
+        a[3] = q[0];
+        b[3] = q[1];
       }
-  s.light_volume_tex = make_texture_3d(GL_RGBA32F, 2 * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
-  glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, 2 * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
+  s.light_volume_tex = make_texture_3d(GL_RGBA32F, 3 * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+  glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, 3 * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
   check_gl("uploading the light volume");
   s.lv_world_min = volume.world_min;
   s.lv_cell_m = volume.cell_m;

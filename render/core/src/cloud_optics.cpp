@@ -57,8 +57,8 @@ void validate(const MultipleScattering& m) {
 }
 
 void validate(const LightVolumeSettings& s) {
-  require(s.resolution >= 4 && s.resolution <= 256,
-          "light volume resolution must be in [4, 256] cells, got " + std::to_string(s.resolution));
+  require(s.resolution >= 4 && s.resolution <= 192,
+          "light volume resolution must be in [4, 192] cells, got " + std::to_string(s.resolution));
   require(s.photons >= 1 && s.photons <= (std::int64_t{1} << 28),
           "light volume photons must be in [1, 268435456], got " + std::to_string(s.photons));
   require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");

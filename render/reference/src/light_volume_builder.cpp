@@ -20,7 +20,7 @@ using namespace traced;
 namespace {
 
 constexpr std::size_t kMaxBytes = std::size_t{2} << 30;  // 2 GiB
-constexpr int kTallies = 6;                              // fluence RGB, flux xyz
+constexpr int kTallies = 11;                             // fluence RGB, flux xyz, Q xx yy xy xz yz
 constexpr int kSubsamples = 4;                           // per cell axis, for the covered fraction
 
 // The brick majorant of `m` at a world point (0 outside its bricks).
@@ -85,8 +85,8 @@ LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const Ligh
 }
 
 std::size_t light_volume_bytes(const LightVolume& grid) {
-  // Tallies (int64), the covered fraction (double), the result (float).
-  return grid.cells() * (kTallies * sizeof(std::int64_t) + sizeof(double) + kTallies * sizeof(float));
+  // Tallies (int64), the covered fraction (double), the values and the result (float).
+  return grid.cells() * (kTallies * sizeof(std::int64_t) + sizeof(double) + 2 * kTallies * sizeof(float) + 1);
 }
 
 LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
@@ -189,6 +189,12 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
             add(k + 3, mean * d.x);
             add(k + 4, mean * d.y);
             add(k + 5, mean * d.z);
+            // The traceless second moment: w (d d^T - I / 3).
+            add(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
+            add(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
+            add(k + 8, mean * d.x * d.y);
+            add(k + 9, mean * d.x * d.z);
+            add(k + 10, mean * d.y * d.z);
           }
           if (c.medium < 0) break;  // escaped
         }
@@ -215,17 +221,14 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   });
 
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
-  v.fluence_rgb.assign(n_cells * 3, 0.0f);
-  v.flux_xyz.assign(n_cells * 3, 0.0f);
   const double scale = area_m2 / static_cast<double>(n) * quantum / (cell * cell * cell);
+  std::vector<float> value(n_cells * kTallies, 0.0f);
   std::vector<char> known(n_cells, 0);
   for (std::size_t q = 0; q < n_cells; ++q) {
     if (!(covered[q] > 0.0)) continue;
     known[q] = 1;
-    for (int c = 0; c < 3; ++c) {
-      v.fluence_rgb[3 * q + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
-      v.flux_xyz[3 * q + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + 3 + c].load()) / covered[q]);
-    }
+    for (int c = 0; c < kTallies; ++c)
+      value[q * kTallies + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
   }
   // Cells no flight can cross hold no cloud, but the trilinear lookup of a neighbour reads them:
   // they take the mean of their known face neighbours, ring by ring (two rings).
@@ -238,25 +241,29 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           if (known[q]) continue;
           const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
           int count = 0;
-          float sum[6] = {0, 0, 0, 0, 0, 0};
+          double sum[kTallies] = {};
           for (const auto& b : nb) {
             if (b[0] < 0 || b[0] >= nx || b[1] < 0 || b[1] >= ny || b[2] < 0 || b[2] >= nz) continue;
             const std::size_t r = static_cast<std::size_t>(b[0]) + static_cast<std::size_t>(nx) * (b[1] + static_cast<std::size_t>(ny) * b[2]);
             if (!known[r]) continue;
             ++count;
-            for (int c = 0; c < 3; ++c) {
-              sum[c] += v.fluence_rgb[3 * r + c];
-              sum[3 + c] += v.flux_xyz[3 * r + c];
-            }
+            for (int c = 0; c < kTallies; ++c) sum[c] += value[r * kTallies + c];
           }
           if (count == 0) continue;
-          for (int c = 0; c < 3; ++c) {
-            v.fluence_rgb[3 * q + c] = sum[c] / count;
-            v.flux_xyz[3 * q + c] = sum[3 + c] / count;
-          }
+          for (int c = 0; c < kTallies; ++c) value[q * kTallies + c] = static_cast<float>(sum[c] / count);
           next[q] = 1;
         }
     known.swap(next);
+  }
+  v.fluence_rgb.resize(n_cells * 3);
+  v.flux_xyz.resize(n_cells * 3);
+  v.quadrupole.resize(n_cells * 5);
+  for (std::size_t q = 0; q < n_cells; ++q) {
+    for (int c = 0; c < 3; ++c) {
+      v.fluence_rgb[3 * q + c] = value[q * kTallies + c];
+      v.flux_xyz[3 * q + c] = value[q * kTallies + 3 + c];
+    }
+    for (int c = 0; c < 5; ++c) v.quadrupole[5 * q + c] = value[q * kTallies + 6 + c];
   }
   v.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return v;

@@ -36,8 +36,8 @@ struct CloudLight {
 // How the light volume (light_volume.hpp) is built: photons from the sun through the clouds
 // (render/reference light_volume_builder.hpp), tallied on a grid of cube cells over the clouds' box.
 struct LightVolumeSettings {
-  int resolution = 48;             // cells along the box's longest axis, [4, 256] (the others in proportion)
-  std::int64_t photons = 1 << 19;  // photons launched from the sun, [1, 1 << 28]
+  int resolution = 48;             // cells along the box's longest axis, [4, 192] (the others in proportion)
+  std::int64_t photons = 1 << 21;  // photons launched from the sun, [1, 1 << 28]
   std::uint64_t seed = 1;          // the same seed gives the same volume, whatever the threads
   int threads = 0;                 // 0 = all cores
   bool operator==(const LightVolumeSettings&) const = default;

@@ -4,7 +4,7 @@
 // first real collision on, every tentative collision of a flight (real or null, drawn at the
 // majorant's rate m) tallies weight / m metres of track into its cell: an unbiased track-length
 // estimate of the fluence of scattered light (Spanier & Gelbard 1969; eq. MS-2 in docs/clouds.md),
-// and the same times the direction for the net flux. Deterministic per seed, whatever the
+// and the same times the direction for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
 // threads: photon i draws from its own stream and the tallies are fixed-point integers.
 #pragma once
 #include <vector>

@@ -131,8 +131,9 @@ TEST(CloudLightVolume, AddsEqMS1AlongEachRayAsTheCpuMarch) {
   ASSERT_GT(covered, 200);
   const double rel_rms = std::sqrt(err2 / ref2);
   std::printf("covered %d pixels: relative RMS %.4f, worst %.4f of a peak %.4f\n", covered, rel_rms, worst, peak);
-  EXPECT_LT(rel_rms, 0.03);
-  EXPECT_LT(worst, 0.08 * peak);
+  // Measured on llvmpipe: relative RMS 2e-4, worst 8e-4 of the peak; tolerance 0.5 % and 1 %.
+  EXPECT_LT(rel_rms, 0.005);
+  EXPECT_LT(worst, 0.01 * peak);
 }
 
 TEST(CloudLightVolume, FrameRendererBuildsOnceAndAgainOnlyForANewSunDirection) {

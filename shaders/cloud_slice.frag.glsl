@@ -10,7 +10,9 @@
 // UNDERLAY 1: cut at the scene's surfaces, attenuated by the fog in front, and
 // (alpha t, alpha (1 - exp(-sigma_fog t)) / sigma_fog, 0, alpha) into the second output for the
 // fog's airlight in front of the clouds (cloud_composite.frag.glsl). OCTAVES: extra
-// multiple-scattering octaves (0 = single scattering).
+// multiple-scattering octaves (0 = single scattering). MS_VOLUME 1: the light volume's
+// in-scattered radiance of scattered light (lib/cloud_light_volume.glsl) is added to the exact
+// single scattering at each sample.
 // The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
 #include "lib/camera_ray.glsl"
 #include "lib/cloud_density.glsl"
@@ -19,6 +21,12 @@
 #endif
 #ifndef OCTAVES
 #define OCTAVES 0
+#endif
+#ifndef MS_VOLUME
+#define MS_VOLUME 0
+#endif
+#if MS_VOLUME
+#include "lib/cloud_light_volume.glsl"
 #endif
 in vec3 v_world;
 in vec3 v_tc;
@@ -72,7 +80,12 @@ void main() {
   float od = cloud.sigma_t * rho * slab;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
   float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
+#if MS_VOLUME
+  vec3 scattered = light_volume_inscatter(v_world + k * q, -q * inv_len);
+  vec3 color = cloud.albedo * (u_irradiance * (lit + scattered) + cloud.ambient) * alpha;  // (S / sigma_t) alpha
+#else
   vec3 color = cloud.albedo * (u_irradiance * lit + cloud.ambient) * alpha;  // (S / sigma_t) alpha
+#endif
 #if UNDERLAY
   float t = max(t_plane + offset, 0.0);
   float y = u_fog_sigma_t * t;

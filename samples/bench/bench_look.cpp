@@ -30,22 +30,27 @@ struct BenchLookArgs {
   int ref_spp = 2048;
   std::string spp = "16,64,256";
   int slices = 128;
+  std::string ms_grid = "48";       // light-volume rows: cells along the longest axis
+  std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
   std::string plot;
 };
 
-std::vector<int> parse_ints(const std::string& flag, const std::string& text) {
+std::vector<int> parse_ints(const std::string& flag, const std::string& text, int hi = 1 << 20) {
   std::vector<int> v;
   std::stringstream ss(text);
   std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, 1, 1 << 20, flag));
+  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, 1, hi, flag));
   if (v.empty()) throw UsageError(flag + ": give at least one number");
   return v;
 }
 
 struct Octaves {
-  const char* name;
+  std::string name;
   int octaves;
   double a, b;
+  bool light_volume = false;
+  int grid = 0;
+  int photons = 0;
 };
 
 int run_bench_look(const BenchLookArgs& a) {
@@ -70,20 +75,26 @@ int run_bench_look(const BenchLookArgs& a) {
   };
   const Lighting lights[] = {{"front-lit", {0.8, 0.55, -0.25}}, {"back-lit", {-0.5, 0.55, -0.7}}};
   const PhaseCase phases[] = {{"isotropic", {0.0, 0.0, 1.0}}, {"hg:0.7", {0.7, 0.0, 1.0}}, {"dual:0.7,-0.25,0.8", {0.7, -0.25, 0.8}}};
-  const Octaves methods[] = {{"single scattering", 0, 0.5, 0.5},
-                             {"2 octaves (a 0.5, b 0.5)", 2, 0.5, 0.5},
-                             {"3 octaves (a 0.5, b 0.5)", 3, 0.5, 0.5},
-                             {"3 octaves (a 0.5, b 0.6)", 3, 0.5, 0.6}};
+  std::vector<Octaves> methods = {{"single scattering", 0, 0.5, 0.5},
+                                  {"2 octaves (a 0.5, b 0.5)", 2, 0.5, 0.5},
+                                  {"3 octaves (a 0.5, b 0.5)", 3, 0.5, 0.5},
+                                  {"3 octaves (a 0.5, b 0.6)", 3, 0.5, 0.6}};
+  for (int grid : parse_ints("--ms-grid", a.ms_grid)) {
+    if (grid < 4 || grid > 192) throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(grid));
+    for (int photons : parse_ints("--ms-photons", a.ms_photons, 1 << 28))
+      methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons", 0, 0.5,
+                         0.5, true, grid, photons});
+  }
   std::printf("# nimbus bench look: %s, %dx%d, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
               w, h, gl->renderer().c_str());
   std::printf("# reference: the path tracer at %d samples per pixel (its own noise in its row); error: relative RMSE over\n"
               "#   covered pixels against it (compare_images), which includes the reference's noise; slicer: %d slices,\n"
               "#   light 256^2, GPU ms of its passes\n\n",
               a.ref_spp, a.slices);
-  std::printf("| lighting | phase | method | ms | rel. RMSE | bias | noise (mean rel. std. error) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|\n");
-  std::vector<render::PlotSeries> series(std::size(methods));
-  for (std::size_t m = 0; m < std::size(methods); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
+  std::printf("| lighting | phase | method | ms | rel. RMSE | bias | noise (mean rel. std. error) | light volume build, CPU ms |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|\n");
+  std::vector<render::PlotSeries> series(methods.size());
+  for (std::size_t m = 0; m < methods.size(); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
   for (const Lighting& l : lights)
     for (const PhaseCase& p : phases) {
       render::CloudOptics optics;
@@ -99,7 +110,7 @@ int run_bench_look(const BenchLookArgs& a) {
       render::PathTracerSettings ps;
       ps.samples_per_pixel = a.ref_spp;
       const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
-      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | %.4f |\n", l.name, p.name, a.ref_spp,
+      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | %.4f | |\n", l.name, p.name, a.ref_spp,
                   1000.0 * ref.seconds, ref.mean_relative_error);
       render::PlotSeries traced;  // one line per case: error against time as samples grow
       traced.name = std::string("path tracer, ") + l.name + ", " + p.name;
@@ -108,32 +119,40 @@ int run_bench_look(const BenchLookArgs& a) {
         ps.seed = 7;  // other streams than the reference's
         const render::PathTracedImage pt = render::render_cloud_path_traced(clouds, cam, light, ps);
         const render::ImageError e = render::compare_images(pt.image, ref.image);
-        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %+.4f | %.4f |\n", l.name, p.name, spp,
+        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %+.4f | %.4f | |\n", l.name, p.name, spp,
                     1000.0 * pt.seconds, e.rel_rmse, e.mean_bias, pt.mean_relative_error);
         traced.x.push_back(1000.0 * pt.seconds);
         traced.y.push_back(e.rel_rmse);
       }
       series.push_back(traced);
-      for (std::size_t m = 0; m < std::size(methods); ++m) {
+      for (std::size_t m = 0; m < methods.size(); ++m) {
         render::FrameSettings fs;
         fs.slices.slices = a.slices;
         fs.slices.ambient = false;
         fs.slices.multiple.octaves = methods[m].octaves;
         fs.slices.multiple.occlusion = methods[m].a;
         fs.slices.multiple.contribution = methods[m].b;
+        if (methods[m].light_volume) {
+          fs.slices.multiple.method = render::MultipleScatteringMethod::LightVolume;
+          fs.slices.multiple.light_volume.resolution = methods[m].grid;
+          fs.slices.multiple.light_volume.photons = methods[m].photons;
+        }
         render::FrameRenderer fr(std::nullopt, light, fs);
         fr.set_clouds(clouds);
-        fr.render(cam);  // programs compiled, buffers made
+        render::FrameStats first;
+        fr.render(cam, &first);  // programs compiled, buffers made, the light volume built
         double best = 1e300;
         render::Image img;
-        for (int rep = 0; rep < 3; ++rep) {
+        for (int rep = 0; rep < 5; ++rep) {
           render::FrameStats st;
           img = fr.render(cam, &st);
           best = std::min(best, st.clouds.total_ms);
         }
         const render::ImageError e = render::compare_images(img, ref.image);
-        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %+.4f | |\n", l.name, p.name, methods[m].name, best, e.rel_rmse,
-                    e.mean_bias);
+        char build[32] = "";
+        if (methods[m].light_volume) std::snprintf(build, sizeof build, "%.0f", first.light_volume_build_ms);
+        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %+.4f | | %s |\n", l.name, p.name, methods[m].name.c_str(), best,
+                    e.rel_rmse, e.mean_bias, build);
         series[m].x.push_back(best);
         series[m].y.push_back(e.rel_rmse);
       }
@@ -161,6 +180,9 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ref-spp", a->ref_spp, "Samples per pixel of the reference")->capture_default_str();
   cmd->add_option("--spp", a->spp, "Comma-separated sample counts for the tracer's own rows")->capture_default_str();
   cmd->add_option("--slices", a->slices, "Slicer slices")->capture_default_str();
+  cmd->add_option("--ms-grid", a->ms_grid, "Comma-separated light-volume resolutions (cells along the longest axis)")
+      ->capture_default_str();
+  cmd->add_option("--ms-photons", a->ms_photons, "Comma-separated light-volume photon counts")->capture_default_str();
   cmd->add_option("--plot", a->plot, "Write an SVG plot of time against error here");
   cmd->callback([&action, a] { action = [a] { return run_bench_look(*a); }; });
 }

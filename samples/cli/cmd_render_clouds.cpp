@@ -108,7 +108,15 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--cloud-phase", a.cloud_phase, "Cloud phase: isotropic, hg:G or dual:GF,GB,W")->capture_default_str();
   cmd->add_option("--ambient", a.ambient, "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)")
       ->capture_default_str();
-  cmd->add_option("--multiple", a.multiple, "Multiple-scattering octaves, 0-3 (0: single scattering)")
+  cmd->add_option("--multiple", a.multiple,
+                  "Multiple scattering: 0 = single scattering; octaves 1-3 (the octaves method, unless --ms-method "
+                  "light-volume, which takes 1 = on)");
+  cmd->add_option("--ms-method", a.ms_method,
+                  "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
+                  "the default) or octaves (the default when --multiple N > 0 is given alone)");
+  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis, 4-192")->capture_default_str();
+  cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
+  cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
   cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
@@ -123,6 +131,49 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--seed", a.seed, "--method pathtrace: random seed (the same seed gives the same image)")
       ->capture_default_str();
+}
+
+// --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
+// bad value a UsageError naming its flag.
+static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a) {
+  render::MultipleScattering ms;
+  if (a.ms_method.empty()) {
+    ms.method = a.multiple && *a.multiple > 0 ? render::MultipleScatteringMethod::Octaves
+                                              : render::MultipleScatteringMethod::LightVolume;
+  } else {
+    try {
+      ms.method = render::parse_multiple_scattering_method(a.ms_method);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--ms-method: ") + e.what());
+    }
+  }
+  if (a.multiple && (*a.multiple < 0 || *a.multiple > 3))
+    throw UsageError("--multiple: must be in [0, 3], got " + std::to_string(*a.multiple));
+  if (ms.method == render::MultipleScatteringMethod::LightVolume) {
+    if (a.multiple && *a.multiple > 1)
+      throw UsageError("--multiple: --ms-method light-volume takes 0 (single scattering) or 1 (on), got " +
+                       std::to_string(*a.multiple));
+    if (a.multiple && *a.multiple == 0) ms.method = render::MultipleScatteringMethod::Octaves;  // octaves 0: single
+  } else {
+    ms.octaves = a.multiple.value_or(0);
+  }
+  if (a.ms_grid < 4 || a.ms_grid > 192)
+    throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
+  if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
+    throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
+  ms.light_volume.resolution = a.ms_grid;
+  ms.light_volume.photons = a.ms_photons;
+  ms.light_volume.seed = a.ms_seed;
+  auto check = [](double v, bool ok, const char* flag, const char* range) {
+    if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));
+  };
+  check(a.ms_occlusion, a.ms_occlusion > 0.0 && a.ms_occlusion <= 1.0, "--ms-occlusion", "(0, 1]");
+  check(a.ms_contribution, a.ms_contribution >= 0.0 && a.ms_contribution <= 1.0, "--ms-contribution", "[0, 1]");
+  check(a.ms_eccentricity, a.ms_eccentricity >= 0.0 && a.ms_eccentricity <= 1.0, "--ms-eccentricity", "[0, 1]");
+  ms.occlusion = a.ms_occlusion;
+  ms.contribution = a.ms_contribution;
+  ms.eccentricity = a.ms_eccentricity;
+  return ms;
 }
 
 int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
@@ -212,14 +263,14 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   settings.jitter = !a.no_jitter;
   settings.ambient = true;
   settings.blur_cone_rad = a.blur_deg * kPi / 180.0;
-  settings.multiple.octaves = a.multiple;
+  settings.multiple = multiple_scattering_of(a);
   settings.multiple.occlusion = a.ms_occlusion;
   settings.multiple.contribution = a.ms_contribution;
   settings.multiple.eccentricity = a.ms_eccentricity;
   try {
     render::validate(settings);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--slices/--light-res/--multiple/--ms-*/--blur: ") + e.what());
+    throw UsageError(std::string("--slices/--light-res/--multiple/--blur: ") + e.what());
   }
   render::ShaftMethod shafts;
   if (!no_scene) {

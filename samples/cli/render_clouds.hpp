@@ -29,7 +29,11 @@ struct CloudRenderArgs {
   std::string cloud_albedo;          // R,G,B
   std::string cloud_phase = "dual:0.7,-0.25,0.8";
   std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
-  int multiple = 0;
+  std::optional<int> multiple;      // octaves 0-3; light-volume: 0 (off) or 1; unset: see --ms-method
+  std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves
+  int ms_grid = 48;                  // light volume: cells along the clouds' longest axis
+  int64_t ms_photons = 1 << 21;      // light volume: photons from the sun
+  uint64_t ms_seed = 1;              // light volume
   double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;
   bool no_jitter = false;

@@ -59,6 +59,7 @@ const int UNIT_CLOUD_DENSITY_NEXT = 15; // sampler3D: the cloud's next keyframe 
 const int UNIT_SKY_VIEW = 16;            // sampler2D: the physical sky's radiance (atmosphere_tables.hpp)
 const int UNIT_AERIAL_SCATTERING = 17;   // sampler3D: the air's in-scattered radiance to a distance
 const int UNIT_AERIAL_TRANSMITTANCE = 18; // sampler3D: the air's transmittance to a distance
+const int UNIT_LIGHT_VOLUME = 19;        // sampler3D: scattered light's fluence and flux (lib/cloud_light_volume.glsl)
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -129,6 +129,12 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
       {kSteam + "--cloud-albedo 2", "albedo"},
       {kSteam + "--slices 1", "--slices"},
       {kSteam + "--multiple 9", "--multiple"},
+      {kSteam + "--ms-method diffusion", "--ms-method"},
+      {kSteam + "--ms-method light-volume --multiple 2", "--multiple"},
+      {kSteam + "--ms-grid 3", "--ms-grid"},
+      {kSteam + "--ms-grid 193", "--ms-grid"},
+      {kSteam + "--ms-photons 0", "--ms-photons"},
+      {kSteam + "--ms-occlusion 0", "--ms-occlusion"},
       {kSteam + "--frames 5-2", "--frames"},
       {kSteam + "--sun 0,0,0", "--sun"},
       {kSteam + "--shafts reference", "--shafts"},
@@ -140,6 +146,34 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
     EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
   }
   EXPECT_FALSE(fs::exists(d / "x.exr"));
+  fs::remove_all(d);
+}
+
+double radiance_sum(const render::Image& img) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < img.rgba.size(); i += 4) s += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
+  return s;
+}
+
+// The slicer's default is the light volume (its build time on stderr, its grid in the metadata);
+// --multiple 0 is single scattering; --multiple N alone keeps meaning N octaves.
+TEST(RenderCloudsCli, LightVolumeIsTheDefaultAndMultipleZeroIsSingleScattering) {
+  const fs::path d = temp_dir("ms");
+  const std::string common = kSteam + "--scene none --cloud-extinction 60 --sun 0.3,0.8,-0.5 --no-jitter ";
+  auto lv = run_nimbus("render" + common + "--ms-photons 20000 --ms-grid 16 -o " + (d / "lv.exr").string());
+  ASSERT_EQ(lv.code, 0) << lv.output;
+  EXPECT_NE(lv.output.find("light volume built in"), std::string::npos) << lv.output;
+  auto ss = run_nimbus("render" + common + "--multiple 0 -o " + (d / "ss.exr").string());
+  ASSERT_EQ(ss.code, 0) << ss.output;
+  auto oct = run_nimbus("render" + common + "--multiple 2 -o " + (d / "oct.exr").string());
+  ASSERT_EQ(oct.code, 0) << oct.output;
+  const render::Image a = render::read_exr(d / "lv.exr"), b = render::read_exr(d / "ss.exr"), c = render::read_exr(d / "oct.exr");
+  EXPECT_NE(a.metadata.at("light_volume").find("20000 photons"), std::string::npos) << a.metadata.at("light_volume");
+  EXPECT_NE(a.metadata.at("slices").find("multiple scattering light-volume"), std::string::npos) << a.metadata.at("slices");
+  EXPECT_EQ(b.metadata.count("light_volume"), 0u);
+  EXPECT_NE(b.metadata.at("slices").find("octaves 0"), std::string::npos) << b.metadata.at("slices");
+  EXPECT_NE(c.metadata.at("slices").find("octaves 2"), std::string::npos) << c.metadata.at("slices");
+  EXPECT_GT(radiance_sum(a), radiance_sum(b));  // scattered light only adds
   fs::remove_all(d);
 }
 

@@ -42,6 +42,7 @@ std::vector<ProgramSpec> renderer_programs() {
       {{"shadow_volume_build.comp.glsl"}, ""},
       {{"shadow_volume_interval.vert.glsl", "shadow_volume_interval.frag.glsl"}, ""},
       {{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 1\n#define OCTAVES 2\n"},
+      {{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 1\n#define OCTAVES 0\n#define MS_VOLUME 1\n"},
       {{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, ""},
       {{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}, ""},
       {{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"}, ""},
@@ -135,6 +136,7 @@ const std::map<std::string, int>& expected_units() {
       {"u_range", contract::IMAGE_CLOUD_RANGE},         {"u_density_next", contract::UNIT_CLOUD_DENSITY_NEXT},
       {"u_frame", contract::UNIT_SCENE_COLOR},            {"u_sky_view", contract::UNIT_SKY_VIEW},
       {"u_aerial_scattering", contract::UNIT_AERIAL_SCATTERING}, {"u_aerial_transmittance", contract::UNIT_AERIAL_TRANSMITTANCE},
+      {"u_light_volume", contract::UNIT_LIGHT_VOLUME},
   };
   return units;
 }

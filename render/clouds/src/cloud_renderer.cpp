@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 #include <stdexcept>
 #include <utility>
 
@@ -59,7 +60,7 @@ struct CloudRenderer::Impl {
   std::vector<glm::dvec3> hull_points;     // all their vertices
   ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}};
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
-  std::map<std::pair<bool, int>, ShaderProgram> eye_programs;  // by (underlay, octaves)
+  std::map<std::tuple<bool, int, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, light volume)
   std::optional<ShaderProgram> composite_program;
   std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
   UniformBuffer<CameraBlock> camera_ubo;
@@ -79,18 +80,24 @@ struct CloudRenderer::Impl {
   GlTexture eye_color, eye_distance, out_color;
   GlFramebuffer eye_fbo, out_fbo;
 
-  const ShaderProgram& eye_program(bool underlay, int octaves);
+  // The light volume (set_light_volume): fluence, flux and second moment side by side along x.
+  GlTexture light_volume_tex;
+  glm::dvec3 lv_world_min{0.0};
+  double lv_cell_m = 0.0;
+  glm::ivec3 lv_cells{0};
+
+  const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume);
   void upload_mesh(const SliceMesh& mesh);
   void ensure_light_buffers(int res);
   void ensure_eye_buffers(int w, int h, bool distance);
 };
 
-const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves) {
-  const auto key = std::make_pair(underlay, octaves);
+const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves, bool light_volume) {
+  const auto key = std::make_tuple(underlay, octaves, light_volume);
   auto it = eye_programs.find(key);
   if (it == eye_programs.end()) {
     const std::string defines = "#define UNDERLAY " + std::string(underlay ? "1" : "0") + "\n#define OCTAVES " +
-                                std::to_string(octaves) + "\n";
+                                std::to_string(octaves) + "\n#define MS_VOLUME " + (light_volume ? "1" : "0") + "\n";
     it = eye_programs.emplace(key, ShaderProgram({"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, defines)).first;
   }
   return it->second;
@@ -229,6 +236,49 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
   }
 }
 
+void CloudRenderer::set_light_volume(const LightVolume& volume) {
+  const std::size_t n = volume.cells();
+  if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n ||
+      volume.quadrupole.size() != 5 * n || !(volume.cell_m > 0.0))
+    throw std::invalid_argument("cloud renderer light volume: its sizes, cell and values do not agree");
+  for (float x : volume.fluence_rgb)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (float x : volume.flux_xyz)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (float x : volume.quadrupole)
+    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  Impl& s = *impl_;
+  const int nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
+  // Three sections along x (lib/cloud_light_volume.glsl): (fluence RGB, Q xx), (flux xyz, Q yy),
+  // (Q xy, xz, yz, 0).
+  std::vector<float> texels(static_cast<std::size_t>(3 * nx) * ny * nz * 4, 0.0f);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t src = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+        const std::size_t row = static_cast<std::size_t>(3 * nx) * (j + static_cast<std::size_t>(ny) * k);
+        float* a = &texels[4 * (row + i)];
+        float* b = &texels[4 * (row + nx + i)];
+        float* c = &texels[4 * (row + 2 * nx + i)];
+        const float* q = &volume.quadrupole[5 * src];
+        for (int e = 0; e < 3; ++e) {
+          a[e] = volume.fluence_rgb[3 * src + e];
+          b[e] = volume.flux_xyz[3 * src + e];
+          c[e] = q[2 + e];
+        }
+        a[3] = q[0];
+        b[3] = q[1];
+      }
+  s.light_volume_tex = make_texture_3d(GL_RGBA32F, 3 * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+  glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, 3 * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
+  check_gl("uploading the light volume");
+  s.lv_world_min = volume.world_min;
+  s.lv_cell_m = volume.cell_m;
+  s.lv_cells = glm::ivec3(nx, ny, nz);
+}
+
+bool CloudRenderer::has_light_volume() const { return impl_->light_volume_tex.id() != 0; }
+
 CloudRenderer::~CloudRenderer() = default;
 
 const std::vector<CloudVolume>& CloudRenderer::clouds() const { return impl_->clouds; }
@@ -295,7 +345,10 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   s.ensure_eye_buffers(w, h, underlay != nullptr);
   if (underlay && !s.composite_program)
     s.composite_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"});
-  const ShaderProgram& eye = s.eye_program(underlay != nullptr, settings.multiple.octaves);
+  const bool light_volume = settings.multiple.method == MultipleScatteringMethod::LightVolume;
+  if (light_volume && !has_light_volume())
+    throw std::logic_error("cloud renderer: multiple-scattering method light-volume needs set_light_volume first");
+  const ShaderProgram& eye = s.eye_program(underlay != nullptr, light_volume ? 0 : settings.multiple.octaves, light_volume);
   const ShaderProgram& lp = s.light_program;
   const bool blur = settings.blur_cone_rad > 0.0;
   GpuTimer timer(kPassCount, stats != nullptr);
@@ -314,6 +367,11 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                     static_cast<float>(ms.eccentricity)));
   eye.set("u_world_to_light", to_float(lf.world_to_uv));
+  if (light_volume) {
+    eye.set("u_lv_world_min", to_float(s.lv_world_min));
+    eye.set("u_lv_cell_m", static_cast<float>(s.lv_cell_m));
+    eye.set("u_lv_cells", glm::vec3(s.lv_cells));
+  }
   eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
   // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the
   // golden ratio (Cranley-Patterson), so every pixel sees a new offset each frame.
@@ -389,6 +447,7 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     if (underlay) glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 1, zero);
   });
   glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
+  if (light_volume) glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
   if (underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());
   int drawn = 0;

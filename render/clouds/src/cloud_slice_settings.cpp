@@ -44,9 +44,14 @@ void describe_slices(Image& image, const CloudSliceSettings& settings) {
   o.precision(9);
   o << s.slices << " slices, light buffer " << s.light_res << "^2, jitter " << (s.jitter ? "on" : "off") << " frame "
     << s.frame << ", ambient " << (s.ambient ? "on" : "off") << ", blur_cone_rad " << s.blur_cone_rad
-    << ", multiple-scattering octaves " << s.multiple.octaves << " (occlusion " << s.multiple.occlusion
-    << " contribution " << s.multiple.contribution << " eccentricity " << s.multiple.eccentricity << "), branch "
-    << branch_name(s.branch);
+    << ", multiple scattering " << to_string(s.multiple.method);
+  if (s.multiple.method == MultipleScatteringMethod::LightVolume)
+    o << " (resolution " << s.multiple.light_volume.resolution << ", photons " << s.multiple.light_volume.photons
+      << ", seed " << s.multiple.light_volume.seed << ")";
+  else
+    o << ", octaves " << s.multiple.octaves << " (occlusion " << s.multiple.occlusion << " contribution "
+      << s.multiple.contribution << " eccentricity " << s.multiple.eccentricity << ")";
+  o << ", branch " << branch_name(s.branch);
   image.metadata["slices"] = o.str();
 }
 

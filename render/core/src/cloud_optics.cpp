@@ -51,6 +51,31 @@ void validate(const MultipleScattering& m) {
           "multiple-scattering contribution must be in [0, 1]");
   require(std::isfinite(m.eccentricity) && m.eccentricity >= 0.0 && m.eccentricity <= 1.0,
           "multiple-scattering eccentricity must be in [0, 1]");
+  require(m.method == MultipleScatteringMethod::Octaves || m.method == MultipleScatteringMethod::LightVolume,
+          "multiple-scattering method is not one of octaves, light-volume");
+  validate(m.light_volume);
+}
+
+void validate(const LightVolumeSettings& s) {
+  require(s.resolution >= 4 && s.resolution <= 192,
+          "light volume resolution must be in [4, 192] cells, got " + std::to_string(s.resolution));
+  require(s.photons >= 1 && s.photons <= (std::int64_t{1} << 28),
+          "light volume photons must be in [1, 268435456], got " + std::to_string(s.photons));
+  require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");
+}
+
+MultipleScatteringMethod parse_multiple_scattering_method(const std::string& text) {
+  if (text == "octaves") return MultipleScatteringMethod::Octaves;
+  if (text == "light-volume") return MultipleScatteringMethod::LightVolume;
+  throw std::invalid_argument("multiple-scattering method '" + text + "': expected octaves or light-volume");
+}
+
+std::string to_string(MultipleScatteringMethod m) {
+  switch (m) {
+    case MultipleScatteringMethod::Octaves: return "octaves";
+    case MultipleScatteringMethod::LightVolume: return "light-volume";
+  }
+  return "unknown";
 }
 
 double cloud_phase_value(const DualLobePhase& p, double cos_theta) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "nimbus/render/clouds/cloud_shadow.hpp"
+#include "nimbus/render/reference/light_volume_builder.hpp"
 #include "nimbus/render/core/metadata.hpp"
 
 namespace nimbus::render {
@@ -49,6 +50,7 @@ FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::set_light(const CloudLight& light) {
   validate(light);
+  if (glm::normalize(light.direction_to_light) != glm::normalize(light_.direction_to_light)) light_volume_stale_ = true;
   light_ = light;
   if (!scene_) return;
   if (!scene_->sun) scene_->sun = SunLight{};
@@ -72,6 +74,7 @@ void FrameRenderer::set_sky(const Sky& sky) {
 }
 
 void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
+  light_volume_stale_ = true;
   if (is_cpu_method(settings_.method)) {
     if (clouds.empty()) throw std::invalid_argument("frame clouds: the list is empty");
     reference_clouds_ = std::move(clouds);
@@ -91,6 +94,7 @@ void FrameRenderer::set_motion(const std::vector<CloudMotion>& motion) {
   if (!is_cpu_method(settings_.method)) {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
     cloud_renderer_->set_motion(motion);
+    light_volume_stale_ = true;
     return;
   }
   if (motion.size() != reference_clouds_.size())
@@ -104,6 +108,7 @@ void FrameRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 void FrameRenderer::set_optics(const CloudOptics& optics) {
   validate(optics);
   if (cloud_renderer_) cloud_renderer_->set_optics(optics);
+  light_volume_stale_ = true;
   for (CloudVolume& c : reference_clouds_) c.optics = optics;
   for (CloudVolume& c : reference_moved_) c.optics = optics;
 }
@@ -116,6 +121,22 @@ void FrameRenderer::set_settings(const FrameSettings& settings) {
   const bool same_shafts = settings.shaft_settings == settings_.shaft_settings;
   settings_ = settings;
   if (!same_shafts) shaft_renderer_.reset();
+}
+
+double FrameRenderer::update_light_volume() {
+  const MultipleScattering& ms = settings_.slices.multiple;
+  if (ms.method != MultipleScatteringMethod::LightVolume) return 0.0;
+  if (!light_volume_stale_ && cloud_renderer_->has_light_volume() && ms.light_volume == light_volume_built_) return 0.0;
+  const LightVolume v = build_light_volume(cloud_renderer_->clouds(), light_, ms.light_volume);
+  cloud_renderer_->set_light_volume(v);
+  light_volume_stale_ = false;
+  light_volume_built_ = ms.light_volume;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s", v.size[0],
+                v.size[1], v.size[2], v.cell_m, static_cast<long long>(v.photons), static_cast<unsigned long long>(v.seed),
+                v.build_seconds);
+  light_volume_description_ = buf;
+  return 1000.0 * v.build_seconds;
 }
 
 Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
@@ -132,6 +153,10 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
     st.device = "CPU (double precision, path traced)";
   } else {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
+    const bool had = cloud_renderer_->has_light_volume() && !light_volume_stale_ &&
+                     settings_.slices.multiple.light_volume == light_volume_built_;
+    st.light_volume_build_ms = update_light_volume();
+    st.light_volume_rebuilt = settings_.slices.multiple.method == MultipleScatteringMethod::LightVolume && !had;
     char buf[256];
     if (scene_) {
       if (!shaft_renderer_) shaft_renderer_ = std::make_unique<ShaftRenderer>(*scene_, settings_.shaft_settings);
@@ -159,6 +184,16 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
       std::snprintf(buf, sizeof buf, "clouds: light %.0f ms, slices %.0f ms", st.clouds.light_ms, st.clouds.slices_ms);
     }
     st.summary = buf;
+    if (settings_.slices.multiple.method == MultipleScatteringMethod::LightVolume) {
+      image.metadata["light_volume"] = light_volume_description_;
+      char lv[96];
+      std::snprintf(lv, sizeof lv, ", light volume %s", st.light_volume_rebuilt ? "" : "reused");
+      st.summary += lv;
+      if (st.light_volume_rebuilt) {
+        std::snprintf(lv, sizeof lv, "built in %.0f ms (CPU)", st.light_volume_build_ms);
+        st.summary += lv;
+      }
+    }
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     st.device = renderer ? renderer : "OpenGL";
   }

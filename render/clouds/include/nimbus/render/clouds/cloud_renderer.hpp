@@ -14,6 +14,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/light_volume.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/clouds/cloud_slice_settings.hpp"
 #include "nimbus/render/gl/volume_texture.hpp"
@@ -58,12 +59,19 @@ class CloudRenderer {
   // std::invalid_argument for bad optics.
   void set_optics(const CloudOptics& optics);
 
+  // The light volume that the multiple-scattering method light-volume reads (light_volume.hpp;
+  // built on the CPU by render/reference light_volume_builder.hpp, by FrameRenderer when the light
+  // or the clouds change). Uploaded as given; kept until replaced. Throws std::invalid_argument
+  // when its sizes and values do not agree or a value is not finite.
+  void set_light_volume(const LightVolume& volume);
+  bool has_light_volume() const;
+
   // The clouds as they are drawn (moved).
   const std::vector<CloudVolume>& clouds() const;
   std::vector<const VolumeTexture*> textures() const;  // in the clouds' order (cloud_shadow.hpp)
   std::vector<const VolumeTexture*> next_textures() const;  // their next keyframes (nullptr: none)
 
-  // One frame. Without an underlay: clouds over transparent black, RGB premultiplied radiance,
+  // One frame (std::logic_error for the light-volume method before set_light_volume). Without an underlay: clouds over transparent black, RGB premultiplied radiance,
   // alpha = 1 - transmittance (comparable with render_cloud_reference). With one: slices behind
   // the scene's surfaces are hidden, fog in front of the clouds attenuates them and adds its
   // airlight, and the result is the finished frame. Metadata: describe_clouds' and describe_slices'.

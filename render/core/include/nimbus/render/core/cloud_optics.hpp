@@ -2,6 +2,7 @@
 // dual-lobe Henyey-Greenstein phase, an ambient sky term, and the directional light (the sun)
 // that the half-angle slicer and the CPU reference both use.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -32,20 +33,43 @@ struct CloudLight {
   glm::dvec3 irradiance_w_m2{3.0};                 // per channel, where it enters the clouds
 };
 
+// How the light volume (light_volume.hpp) is built: photons from the sun through the clouds
+// (render/reference light_volume_builder.hpp), tallied on a grid of cube cells over the clouds' box.
+struct LightVolumeSettings {
+  int resolution = 48;             // cells along the box's longest axis, [4, 192] (the others in proportion)
+  std::int64_t photons = 1 << 21;  // photons launched from the sun, [1, 1 << 28]
+  std::uint64_t seed = 1;          // the same seed gives the same volume, whatever the threads
+  int threads = 0;                 // 0 = all cores
+  bool operator==(const LightVolumeSettings&) const = default;
+};
+
+// Which multiple-scattering approximation the slicer adds to its exact single scattering.
+enum class MultipleScatteringMethod {
+  Octaves,      // Unreal-style octaves below (octaves = 0: single scattering)
+  LightVolume,  // the per-voxel light volume of photon-traced scattered light (light_volume.hpp)
+};
+
 // Unreal-style multiple-scattering approximation (research-render.md section 2): octave k = 0..N
 // sees the light through extinction scaled by a^k, adds b^k of its radiance, with phase
 // asymmetry scaled by c^k. octaves = 0 is single scattering.
 struct MultipleScattering {
-  int octaves = 0;            // extra octaves, [0, 3]
+  MultipleScatteringMethod method = MultipleScatteringMethod::Octaves;
+  int octaves = 0;            // extra octaves, [0, 3] (Octaves only)
   double occlusion = 0.5;     // a, (0, 1]
   double contribution = 0.5;  // b, [0, 1]
   double eccentricity = 0.5;  // c, [0, 1]
+  LightVolumeSettings light_volume;  // LightVolume only
 };
+
+// "octaves" / "light-volume" <-> the method; parsing throws std::invalid_argument naming the text.
+MultipleScatteringMethod parse_multiple_scattering_method(const std::string& text);
+std::string to_string(MultipleScatteringMethod method);
 
 // Throw std::invalid_argument naming the field (NaN, infinity, out of range, zero direction).
 void validate(const CloudOptics& optics);
 void validate(const CloudLight& light);
 void validate(const MultipleScattering& ms);
+void validate(const LightVolumeSettings& settings);
 
 // Double-precision phase value per steradian for cos(theta).
 double cloud_phase_value(const DualLobePhase& phase, double cos_theta);

@@ -48,6 +48,10 @@ void validate(const FrameSettings& settings);
 struct FrameStats {
   ShaftFrameStats scene;    // the surfaces and shafts under the clouds (zeros without a scene)
   CloudFrameStats clouds;   // the slicer's passes (zeros for the reference)
+  // The light volume's build on the CPU this frame (multiple-scattering method light-volume),
+  // apart from the GPU passes: 0 when the last one was reused.
+  double light_volume_build_ms = 0;
+  bool light_volume_rebuilt = false;  // this frame built a new light volume
   std::string device;       // GL_RENDERER, or "CPU (double precision)"
   std::string summary;      // one line of the times above; empty for the reference
 };
@@ -80,7 +84,8 @@ class FrameRenderer {
   // format cannot change (std::invalid_argument); new shaft settings rebuild the scene's renderer.
   void set_settings(const FrameSettings& settings);
 
-  // Moves the sun (the scene's too): its shadow maps are rebuilt at the next frame.
+  // Moves the sun (the scene's too): its shadow maps (and a light volume, if the direction
+  // changed) are rebuilt at the next frame.
   void set_light(const CloudLight& light);
   // A new sky behind the scene (its gradient follows the sun in the viewer).
   void set_sky(const Sky& sky);
@@ -104,6 +109,12 @@ class FrameRenderer {
   std::unique_ptr<CloudRenderer> cloud_renderer_;
   std::unique_ptr<ShaftRenderer> shaft_renderer_;
   std::unique_ptr<CloudShadowBuilder> shadow_builder_;
+  // The light volume is rebuilt when the clouds, their motion or optics, the light's direction or
+  // the light-volume settings change, and only then.
+  bool light_volume_stale_ = true;
+  LightVolumeSettings light_volume_built_;
+  std::string light_volume_description_;
+  double update_light_volume();  // ms spent building, 0 if reused
 };
 
 }  // namespace nimbus::render

@@ -1,0 +1,63 @@
+// The per-voxel light volume (seed 004, "Helligkeitsberechnung an den Gitterpunkten": brightness
+// computed at grid points, then read while slicing): on a coarse grid of cells over the clouds'
+// box, the fluence phi and the net flux F of the sunlight that has scattered at least once, per
+// unit sun irradiance, and the traceless second moment Q = int L(w) (w w^T - I / 3) dw. The slicer
+// adds the radiance it in-scatters toward the eye to its exact single scattering, with the
+// radiance cut after its l = 2 spherical harmonics (l <= 1 is the P1 or diffusion form, Jensen et
+// al. 2001, eq. 3): L(w) ~ phi / (4 pi) + 3 F.w / (4 pi) + 15 w^T Q w / (8 pi), so that with a
+// phase whose Legendre coefficients are p_1 = g and p_2 (Henyey-Greenstein: g^l)
+//   int p(w_i . w_o) L(w_i) dw_i = phi / (4 pi) + 3 g F.w_o / (4 pi) + 15 p_2 w_o^T Q w_o / (8 pi)
+//                                                                         (docs/clouds.md, eq. MS-1)
+// clamped at 0. Built on the CPU by the photon tracer of render/reference
+// (light_volume_builder.hpp); plain data here.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/core/cloud_optics.hpp"
+
+namespace nimbus::render {
+
+struct LightVolume {
+  int size[3] = {0, 0, 0};        // cells per axis
+  glm::dvec3 world_min{0.0};      // the grid's corner, metres
+  double cell_m = 0.0;            // cube cells, metres per side
+  // Per cell, x fastest: fluence of once-or-more scattered light per unit irradiance, RGB
+  // (dimensionless: W m^-2 per W m^-2), and the net flux per unit irradiance (xyz, world axes,
+  // the channels' mean).
+  std::vector<float> fluence_rgb;
+  std::vector<float> flux_xyz;
+  // Per cell: Q per unit irradiance (the channels' mean): xx, yy, xy, xz, yz (zz = -xx - yy).
+  std::vector<float> quadrupole;
+  // How it was made, for metadata and the bench.
+  std::int64_t photons = 0;
+  std::uint64_t seed = 0;
+  double build_seconds = 0.0;
+
+  std::size_t cells() const { return static_cast<std::size_t>(size[0]) * size[1] * size[2]; }
+  glm::dvec3 world_max() const { return world_min + cell_m * glm::dvec3(size[0], size[1], size[2]); }
+};
+
+struct LightVolumeSample {
+  glm::dvec3 fluence{0.0};  // RGB
+  glm::dvec3 flux{0.0};     // xyz
+  glm::dmat3 quadrupole{0.0};  // symmetric, traceless
+};
+
+// The cells' trilinear interpolation at a world point, cell values at cell centres, clamped to
+// the edge cells outside (as the GL texture with GL_CLAMP_TO_EDGE samples it).
+LightVolumeSample sample_light_volume(const LightVolume& volume, const glm::dvec3& world_m);
+
+// Legendre coefficients of the dual-lobe phase (p_0 = 1): p_l = w g_forward^l + (1 - w) g_back^l.
+double phase_legendre(const DualLobePhase& phase, int l);
+
+// Eq. MS-1 per unit irradiance, RGB: the radiance that the light volume's scattered light
+// in-scatters at `world_m` toward the eye, per unit scattering coefficient, where `to_eye` is the
+// unit direction of propagation toward the eye; the flux and quadrupole terms scaled per channel
+// by fluence_c / mean(fluence); each channel clamped at 0.
+glm::dvec3 light_volume_inscatter(const LightVolume& volume, const DualLobePhase& phase, const glm::dvec3& world_m,
+                                  const glm::dvec3& to_eye);
+
+}  // namespace nimbus::render

@@ -1,0 +1,32 @@
+// Builds the light volume (nimbus/render/core/light_volume.hpp) on the CPU: photons from the sun
+// through the clouds with the path tracer's own free flights (delta tracking against the 8^3
+// brick majorants, cloud_path_tracer.hpp), their weights the product of the albedos met; from the
+// first real collision on, every tentative collision of a flight (real or null, drawn at the
+// majorant's rate m) tallies weight / m metres of track into its cell: an unbiased track-length
+// estimate of the fluence of scattered light (Spanier & Gelbard 1969; eq. MS-2 in docs/clouds.md),
+// and the same times the direction for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
+// threads: photon i draws from its own stream and the tallies are fixed-point integers.
+#pragma once
+#include <vector>
+
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/render/core/light_volume.hpp"
+
+namespace nimbus::render {
+
+// The grid the volume gets for these clouds and settings: cube cells, `resolution` along the
+// union box's longest axis. std::invalid_argument for an empty list or bad settings.
+LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const LightVolumeSettings& settings);
+
+// Bytes that building that grid takes (the tallies and the result), for a refusal before
+// allocating.
+std::size_t light_volume_bytes(const LightVolume& grid);
+
+// The volume for `light`'s direction (its irradiance does not enter: the volume is per unit
+// irradiance). Throws std::invalid_argument naming a bad cloud, light or setting, and
+// std::length_error when the tallies would need more than 4 GiB.
+LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+                               const LightVolumeSettings& settings);
+
+}  // namespace nimbus::render

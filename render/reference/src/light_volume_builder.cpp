@@ -1,0 +1,272 @@
+// The light volume's photon tracer (light_volume_builder.hpp).
+#include "nimbus/render/reference/light_volume_builder.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "traced_media.hpp"
+
+namespace nimbus::render {
+
+using namespace traced;
+
+namespace {
+
+constexpr std::size_t kMaxBytes = std::size_t{2} << 30;  // 2 GiB
+constexpr int kTallies = 11;                             // fluence RGB, flux xyz, Q xx yy xy xz yz
+constexpr int kSubsamples = 4;                           // per cell axis, for the covered fraction
+
+// The brick majorant of `m` at a world point (0 outside its bricks).
+double majorant_at(const TracedCloud& m, const glm::dvec3& world) {
+  const glm::dvec3 u = glm::dvec3(m.cloud->world_to_index * glm::dvec4(world, 1.0)) - m.shift + 1.0;
+  int b[3];
+  for (int a = 0; a < 3; ++a) {
+    const double x = std::floor(u[a] / kBrick);
+    if (!(x >= 0.0 && x < m.nb[a])) return 0.0;
+    b[a] = static_cast<int>(x);
+  }
+  return m.majorant[static_cast<std::size_t>(b[0] + m.nb[0] * (b[1] + m.nb[1] * b[2]))];
+}
+
+double total_majorant(const std::vector<TracedCloud>& media, const glm::dvec3& world) {
+  double s = 0.0;
+  for (const TracedCloud& m : media) s += majorant_at(m, world);
+  return s;
+}
+
+
+// Delta tracking in one cloud as TracedCloud::free_flight, recording every tentative collision
+// (the real one included) into `points`. Returns the real collision's distance or +inf.
+double free_flight_recorded(const TracedCloud& c, const glm::dvec3& o, const glm::dvec3& d, double t1, PathRng& rng,
+                            std::vector<double>& points) {
+  double hit = kInf;
+  c.march(o, d, 0.0, t1, [&](double s0, double s1, double m, const glm::dvec3& lo, const glm::dvec3& ld) {
+    if (m <= 0.0) return true;
+    double t = s0;
+    while (true) {
+      t -= std::log(1.0 - rng.uniform()) / m;
+      if (t >= s1) return true;
+      points.push_back(t);
+      if (rng.uniform() * m < c.sigma_t(lo, ld, t)) {
+        hit = t;
+        return false;
+      }
+    }
+  });
+  return hit;
+}
+
+}  // namespace
+
+LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const LightVolumeSettings& settings) {
+  validate(settings);
+  if (clouds.empty()) throw std::invalid_argument("light volume clouds: the list is empty");
+  glm::dvec3 lo, hi;
+  cloud_bounds(clouds, lo, hi);
+  const glm::dvec3 extent = hi - lo;
+  const double longest = std::max({extent.x, extent.y, extent.z});
+  if (!(longest > 0.0) || !std::isfinite(longest))
+    throw std::invalid_argument("light volume clouds: their bounds are empty or not finite");
+  LightVolume v;
+  v.cell_m = longest / settings.resolution;
+  v.world_min = lo;
+  for (int a = 0; a < 3; ++a)
+    v.size[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / v.cell_m - 1e-9)), 1, settings.resolution);
+  v.photons = settings.photons;
+  v.seed = settings.seed;
+  return v;
+}
+
+std::size_t light_volume_bytes(const LightVolume& grid) {
+  // Tallies (int64), the covered fraction (double), the values and the result (float).
+  return grid.cells() * (kTallies * sizeof(std::int64_t) + sizeof(double) + 2 * kTallies * sizeof(float) + 1);
+}
+
+LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+                               const LightVolumeSettings& settings) {
+  validate(light);
+  LightVolume v = light_volume_grid(clouds, settings);
+  if (light_volume_bytes(v) > kMaxBytes)
+    throw std::length_error("light volume: " + std::to_string(v.size[0]) + "x" + std::to_string(v.size[1]) + "x" +
+                            std::to_string(v.size[2]) + " cells would take " + std::to_string(light_volume_bytes(v) >> 20) +
+                            " MiB, more than 2048");
+  const std::vector<TracedCloud> media = media_of(clouds);
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n_cells = v.cells();
+  const int nx = v.size[0], ny = v.size[1], nz = v.size[2];
+  const double cell = v.cell_m;
+  auto cell_of = [&](const glm::dvec3& x) {
+    const glm::dvec3 u = (x - v.world_min) / cell;
+    const int i = std::clamp(static_cast<int>(std::floor(u.x)), 0, nx - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(u.y)), 0, ny - 1);
+    const int k = std::clamp(static_cast<int>(std::floor(u.z)), 0, nz - 1);
+    return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+  };
+
+  // The launch rectangle: perpendicular to the light, covering the grid's box seen from the sun.
+  const glm::dvec3 l = -glm::normalize(light.direction_to_light);  // propagation
+  const glm::dvec3 a = std::abs(l.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 eu = glm::normalize(glm::cross(a, l)), ev = glm::cross(l, eu);
+  double umin = kInf, umax = -kInf, vmin = kInf, vmax = -kInf, lmin = kInf;
+  const glm::dvec3 hi = v.world_max();
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p((c & 1) ? hi.x : v.world_min.x, (c & 2) ? hi.y : v.world_min.y, (c & 4) ? hi.z : v.world_min.z);
+    umin = std::min(umin, glm::dot(p, eu));
+    umax = std::max(umax, glm::dot(p, eu));
+    vmin = std::min(vmin, glm::dot(p, ev));
+    vmax = std::max(vmax, glm::dot(p, ev));
+    lmin = std::min(lmin, glm::dot(p, l));
+  }
+  const double area_m2 = (umax - umin) * (vmax - vmin);
+  const std::int64_t n = settings.photons;
+  // Positions on the rectangle: the R2 sequence (Roberts 2018), shifted per seed (Cranley-Patterson).
+  PathRng shift_rng(settings.seed, ~std::uint64_t{0});
+  const double shift_u = shift_rng.uniform(), shift_v = shift_rng.uniform();
+
+  // Fixed-point tallies of weight x metres: integer sums do not depend on the order of the adds.
+  const double quantum = 1e-9 * cell;
+  std::vector<std::atomic<std::int64_t>> tally(n_cells * kTallies);
+  for (auto& t : tally) t.store(0, std::memory_order_relaxed);
+  auto add = [&](std::size_t idx, double value) {
+    tally[idx].fetch_add(std::llround(value / quantum), std::memory_order_relaxed);
+  };
+
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, n, 1024), [&](const tbb::blocked_range<std::int64_t>& r) {
+      std::vector<double> points;
+      for (std::int64_t i = r.begin(); i < r.end(); ++i) {
+        PathRng rng(settings.seed, static_cast<std::uint64_t>(i));
+        const double fi = static_cast<double>(i);
+        const double x = std::fmod(shift_u + fi * 0.7548776662466927, 1.0);
+        const double y = std::fmod(shift_v + fi * 0.5698402909980532, 1.0);
+        glm::dvec3 o = eu * (umin + x * (umax - umin)) + ev * (vmin + y * (vmax - vmin)) + l * (lmin - cell);
+        glm::dvec3 d = l;
+        // The unscattered flight: single scattering is the slicer's own, so nothing is tallied.
+        Collision c = collide(media, o, d, rng);
+        if (c.medium < 0) continue;
+        glm::dvec3 weight(1.0);
+        for (int bounce = 1; bounce < 100000; ++bounce) {
+          const CloudVolume& hit = *media[static_cast<std::size_t>(c.medium)].cloud;
+          o += c.t * d;
+          weight *= hit.optics.albedo;
+          if (bounce >= 16) {  // Russian roulette, as the path tracer (unbiased)
+            const double q = std::min(0.95, std::max({weight.x, weight.y, weight.z}));
+            if (rng.uniform() >= q) break;
+            weight /= q;
+          }
+          if (!(std::max({weight.x, weight.y, weight.z}) > 0.0)) break;
+          d = sample_phase(hit.optics.phase, d, rng);
+          // The next flight, every cloud's tentative collisions recorded; the nearest real one ends it.
+          points.clear();
+          c = Collision{};
+          for (std::size_t j = 0; j < media.size(); ++j) {
+            const double t = free_flight_recorded(media[j], o, d, c.t, rng, points);
+            if (t < c.t) {
+              c.t = t;
+              c.medium = static_cast<int>(j);
+            }
+          }
+          // Each tentative collision stands for 1 / (the majorants' sum there) metres of track.
+          for (double t : points) {
+            if (t > c.t) continue;
+            const glm::dvec3 p = o + t * d;
+            const double m = total_majorant(media, p);
+            if (!(m > 0.0)) continue;
+            const std::size_t k = cell_of(p) * kTallies;
+            const glm::dvec3 wt = weight / m;
+            add(k + 0, wt.x);
+            add(k + 1, wt.y);
+            add(k + 2, wt.z);
+            const double mean = (wt.x + wt.y + wt.z) / 3.0;
+            add(k + 3, mean * d.x);
+            add(k + 4, mean * d.y);
+            add(k + 5, mean * d.z);
+            // The traceless second moment: w (d d^T - I / 3).
+            add(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
+            add(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
+            add(k + 8, mean * d.x * d.y);
+            add(k + 9, mean * d.x * d.z);
+            add(k + 10, mean * d.y * d.z);
+          }
+          if (c.medium < 0) break;  // escaped
+        }
+      }
+    });
+  });
+
+  // The part of each cell where tentative collisions can happen (some brick's majorant > 0).
+  std::vector<double> covered(n_cells, 0.0);
+  arena.execute([&] {
+    tbb::parallel_for(0, nz, [&](int k) {
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          int hits = 0;
+          for (int s = 0; s < kSubsamples * kSubsamples * kSubsamples; ++s) {
+            const glm::dvec3 f((s % kSubsamples + 0.5) / kSubsamples, ((s / kSubsamples) % kSubsamples + 0.5) / kSubsamples,
+                               (s / (kSubsamples * kSubsamples) + 0.5) / kSubsamples);
+            if (total_majorant(media, v.world_min + cell * (glm::dvec3(i, j, k) + f)) > 0.0) ++hits;
+          }
+          covered[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k)] =
+              static_cast<double>(hits) / (kSubsamples * kSubsamples * kSubsamples);
+        }
+    });
+  });
+
+  // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
+  const double scale = area_m2 / static_cast<double>(n) * quantum / (cell * cell * cell);
+  std::vector<float> value(n_cells * kTallies, 0.0f);
+  std::vector<char> known(n_cells, 0);
+  for (std::size_t q = 0; q < n_cells; ++q) {
+    if (!(covered[q] > 0.0)) continue;
+    known[q] = 1;
+    for (int c = 0; c < kTallies; ++c)
+      value[q * kTallies + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
+  }
+  // Cells no flight can cross hold no cloud, but the trilinear lookup of a neighbour reads them:
+  // they take the mean of their known face neighbours, ring by ring (two rings).
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<char> next = known;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+          if (known[q]) continue;
+          const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+          int count = 0;
+          double sum[kTallies] = {};
+          for (const auto& b : nb) {
+            if (b[0] < 0 || b[0] >= nx || b[1] < 0 || b[1] >= ny || b[2] < 0 || b[2] >= nz) continue;
+            const std::size_t r = static_cast<std::size_t>(b[0]) + static_cast<std::size_t>(nx) * (b[1] + static_cast<std::size_t>(ny) * b[2]);
+            if (!known[r]) continue;
+            ++count;
+            for (int c = 0; c < kTallies; ++c) sum[c] += value[r * kTallies + c];
+          }
+          if (count == 0) continue;
+          for (int c = 0; c < kTallies; ++c) value[q * kTallies + c] = static_cast<float>(sum[c] / count);
+          next[q] = 1;
+        }
+    known.swap(next);
+  }
+  v.fluence_rgb.resize(n_cells * 3);
+  v.flux_xyz.resize(n_cells * 3);
+  v.quadrupole.resize(n_cells * 5);
+  for (std::size_t q = 0; q < n_cells; ++q) {
+    for (int c = 0; c < 3; ++c) {
+      v.fluence_rgb[3 * q + c] = value[q * kTallies + c];
+      v.flux_xyz[3 * q + c] = value[q * kTallies + 3 + c];
+    }
+    for (int c = 0; c < 5; ++c) v.quadrupole[5 * q + c] = value[q * kTallies + 6 + c];
+  }
+  v.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return v;
+}
+
+}  // namespace nimbus::render

@@ -1,0 +1,263 @@
+// The light volume (render/core light_volume.hpp, render/reference light_volume_builder.hpp): the
+// fluence and flux of scattered light in a wide homogeneous slab agree with a discrete-ordinates
+// solution written in the tests (slab_discrete_ordinates.hpp); no scattering, no scattered light;
+// more albedo, more of it; never negative; the flux and second moment bounded by the fluence; the
+// same seed gives the same volume whatever the threads; bad settings and sizes are refused; eq.
+// MS-1's lookup by hand-derived values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "nimbus/render/core/light_volume.hpp"
+#include "nimbus/render/reference/light_volume_builder.hpp"
+#include "slab_discrete_ordinates.hpp"
+
+namespace nimbus::render {
+namespace {
+
+// n x layers x n voxels of 1 m, density 1 (trilinear ramps to 0 one voxel beyond each face).
+CloudVolume slab(double tau, int layers, int n, const DualLobePhase& phase, double albedo) {
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0, 0, 0), openvdb::Coord(n - 1, layers - 1, n - 1)), 1.0f, true);
+  grid->tree().voxelizeActiveTiles();
+  CloudOptics o;
+  o.extinction_per_m = tau / layers;
+  o.albedo = glm::dvec3(albedo);
+  o.phase = phase;
+  return make_cloud_volume(*grid, o, "slab");
+}
+
+std::size_t index(const LightVolume& v, int i, int j, int k) {
+  return static_cast<std::size_t>(i) + static_cast<std::size_t>(v.size[0]) * (j + static_cast<std::size_t>(v.size[1]) * k);
+}
+
+CloudLight overhead_sun() {
+  CloudLight l;
+  l.direction_to_light = glm::dvec3(0.0, 1.0, 0.0);  // the beam travels down, -y, at mu0 = 1
+  l.irradiance_w_m2 = glm::dvec3(1.0);
+  return l;
+}
+
+struct SlabCase {
+  double tau, albedo;
+  DualLobePhase phase;
+};
+
+// Measured (2^18 photons, 64 cells across): fluence within 2.1 %, flux and Q_yy within 1 % of the
+// fluence; tolerance 4 %.
+TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
+  const int layers = 40, n = 320;
+  const SlabCase cases[] = {{2.0, 0.9, DualLobePhase{}}, {4.0, 0.99, DualLobePhase{0.7, 0.0, 1.0}}};
+  for (const SlabCase& c : cases) {
+    const std::vector<CloudVolume> clouds = {slab(c.tau, layers, n, c.phase, c.albedo)};
+    LightVolumeSettings s;
+    s.resolution = 64;
+    s.photons = 1 << 18;
+    const LightVolume v = build_light_volume(clouds, overhead_sun(), s);
+    const test::SlabSolution dom = test::solve_slab(c.tau, c.albedo, c.phase, 1.0);
+    const double sigma = c.tau / layers;
+    // The DOM's fluence at height y inside the full-density part (voxel centres 0 .. layers - 1;
+    // the density ramps to 0 over the voxel above, half a voxel of optical depth).
+    auto dom_at = [&](double y, const std::vector<double>& profile) {
+      const double t = sigma * (layers - 0.5 - y);
+      const double x = t / c.tau * (profile.size() - 1);
+      const std::size_t i = std::min(static_cast<std::size_t>(x), profile.size() - 2);
+      return profile[i] + (x - i) * (profile[i + 1] - profile[i]);
+    };
+    int compared = 0;
+    for (int j = 0; j < v.size[1]; ++j) {
+      const double y0 = v.world_min.y + j * v.cell_m, y1 = y0 + v.cell_m;
+      if (y0 < 0.0 || y1 > layers - 1.0) continue;  // cells wholly in the uniform part
+      // The cell's mean of the DOM profile, and of the central columns (away from the slab's sides).
+      double phi_dom = 0.0, flux_dom = 0.0, q_dom = 0.0;
+      for (int q = 0; q < 32; ++q) {
+        const double y = y0 + (q + 0.5) / 32.0 * v.cell_m;
+        phi_dom += dom_at(y, dom.fluence) / 32.0;
+        flux_dom += dom_at(y, dom.flux_down) / 32.0;
+        q_dom += dom_at(y, dom.second) / 32.0;
+      }
+      double phi = 0.0, flux_y = 0.0, q_yy = 0.0;
+      int cells = 0;
+      for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
+        for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i) {
+          const std::size_t q = index(v, i, j, k);
+          phi += v.fluence_rgb[3 * q];
+          flux_y += v.flux_xyz[3 * q + 1];
+          q_yy += v.quadrupole[5 * q + 1];
+          ++cells;
+        }
+      phi /= cells;
+      flux_y /= cells;
+      q_yy /= cells;
+      std::printf("tau %g albedo %g g %g: cell y [%.1f, %.1f]: fluence %.4f (DOM %.4f), downward flux %.4f (DOM %.4f), "
+                  "Q_yy %.4f (DOM %.4f)\n",
+                  c.tau, c.albedo, c.phase.g_forward, y0, y1, phi, phi_dom, -flux_y, flux_dom, q_yy, q_dom);
+      EXPECT_NEAR(phi, phi_dom, 0.04 * phi_dom) << "cell y " << y0;
+      EXPECT_NEAR(-flux_y, flux_dom, 0.04 * phi_dom) << "cell y " << y0;
+      EXPECT_NEAR(q_yy, q_dom, 0.04 * phi_dom) << "cell y " << y0;
+      ++compared;
+    }
+    EXPECT_GE(compared, 5);
+  }
+}
+
+std::vector<CloudVolume> small_slab(double albedo) { return {slab(1.5, 16, 48, DualLobePhase{0.5, 0.0, 1.0}, albedo)}; }
+
+LightVolumeSettings small_settings() {
+  LightVolumeSettings s;
+  s.resolution = 16;
+  s.photons = 1 << 14;
+  return s;
+}
+
+TEST(LightVolume, NoAlbedoNoScatteredLightAndMoreAlbedoMore) {
+  const LightVolume none = build_light_volume(small_slab(0.0), overhead_sun(), small_settings());
+  for (float f : none.fluence_rgb) EXPECT_EQ(f, 0.0f);
+  for (float f : none.flux_xyz) EXPECT_EQ(f, 0.0f);
+  for (float f : none.quadrupole) EXPECT_EQ(f, 0.0f);
+  double previous = 0.0;
+  for (double albedo : {0.3, 0.7, 0.95}) {
+    const LightVolume v = build_light_volume(small_slab(albedo), overhead_sun(), small_settings());
+    double total = 0.0;
+    for (std::size_t q = 0; q < v.cells(); ++q) {
+      for (int c = 0; c < 3; ++c) EXPECT_GE(v.fluence_rgb[3 * q + c], 0.0f);
+      // A fluence bounds its flux: |F| <= phi.
+      const glm::dvec3 F(v.flux_xyz[3 * q], v.flux_xyz[3 * q + 1], v.flux_xyz[3 * q + 2]);
+      EXPECT_LE(glm::length(F), v.fluence_rgb[3 * q] * (1.0 + 1e-5) + 1e-9);
+      // |Q_yy| = |int L (mu^2 - 1/3)| <= (2/3) phi.
+      EXPECT_LE(std::abs(v.quadrupole[5 * q + 1]), (2.0 / 3.0) * v.fluence_rgb[3 * q] * (1.0 + 1e-5) + 1e-9);
+      total += v.fluence_rgb[3 * q];
+    }
+    EXPECT_GT(total, previous) << "albedo " << albedo;
+    previous = total;
+  }
+}
+
+TEST(LightVolume, ChromaticAlbedoScalesItsChannels) {
+  // One scattering into the volume at least: each channel's weight is albedo^k, so with
+  // albedo (0.9, 0.5, 0) red > green > blue = 0.
+  std::vector<CloudVolume> clouds = small_slab(0.9);
+  clouds[0].optics.albedo = glm::dvec3(0.9, 0.5, 0.0);
+  const LightVolume v = build_light_volume(clouds, overhead_sun(), small_settings());
+  double r = 0, g = 0, b = 0;
+  for (std::size_t q = 0; q < v.cells(); ++q) {
+    r += v.fluence_rgb[3 * q];
+    g += v.fluence_rgb[3 * q + 1];
+    b += v.fluence_rgb[3 * q + 2];
+  }
+  EXPECT_GT(r, g);
+  EXPECT_GT(g, 0.0);
+  EXPECT_EQ(b, 0.0);
+}
+
+TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
+  LightVolumeSettings one = small_settings(), two = small_settings(), other = small_settings();
+  one.threads = 1;
+  two.threads = 2;
+  other.seed = 2;
+  const CloudLight sun = overhead_sun();
+  const LightVolume a = build_light_volume(small_slab(0.9), sun, one);
+  const LightVolume b = build_light_volume(small_slab(0.9), sun, two);
+  const LightVolume c = build_light_volume(small_slab(0.9), sun, other);
+  EXPECT_EQ(a.fluence_rgb, b.fluence_rgb);
+  EXPECT_EQ(a.flux_xyz, b.flux_xyz);
+  EXPECT_NE(a.fluence_rgb, c.fluence_rgb);
+}
+
+TEST(LightVolume, RefusesBadSettingsNamingThem) {
+  const std::vector<CloudVolume> clouds = small_slab(0.9);
+  const CloudLight sun = overhead_sun();
+  auto message = [&](LightVolumeSettings s) {
+    try {
+      build_light_volume(clouds, sun, s);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  LightVolumeSettings s = small_settings();
+  s.resolution = 3;
+  EXPECT_NE(message(s).find("resolution"), std::string::npos) << message(s);
+  s.resolution = 193;
+  EXPECT_NE(message(s).find("resolution"), std::string::npos);
+  s = small_settings();
+  s.photons = 0;
+  EXPECT_NE(message(s).find("photons"), std::string::npos);
+  s.photons = (std::int64_t{1} << 28) + 1;
+  EXPECT_NE(message(s).find("photons"), std::string::npos);
+  s = small_settings();
+  s.threads = -1;
+  EXPECT_NE(message(s).find("threads"), std::string::npos);
+  EXPECT_THROW(build_light_volume({}, sun, small_settings()), std::invalid_argument);
+  // The largest grid allowed fits the 2 GiB bound; its size is known before anything is allocated.
+  s = small_settings();
+  s.resolution = 192;
+  const LightVolume grid = light_volume_grid(clouds, s);
+  EXPECT_EQ(grid.size[0], 192);
+  EXPECT_LE(light_volume_bytes(grid), std::size_t{2} << 30);
+  EXPECT_TRUE(grid.fluence_rgb.empty());
+}
+
+// A 2x1x1 volume by hand: cell values at cell centres, clamped beyond them.
+LightVolume two_cells() {
+  LightVolume v;
+  v.size[0] = 2;
+  v.size[1] = v.size[2] = 1;
+  v.world_min = glm::dvec3(0.0);
+  v.cell_m = 2.0;
+  v.fluence_rgb = {4.0f * float(M_PI), 4.0f * float(M_PI), 4.0f * float(M_PI),
+                   8.0f * float(M_PI), 8.0f * float(M_PI), 0.0f};
+  v.flux_xyz = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 2.0f * float(M_PI)};
+  v.quadrupole.assign(10, 0.0f);
+  return v;
+}
+
+TEST(LightVolume, InscatterIsEqMS1ByHand) {
+  const LightVolume v = two_cells();
+  const DualLobePhase iso{};
+  // At the first cell's centre (1, 1, 1) and before it: phi / 4 pi = 1 per channel.
+  for (double x : {1.0, 0.2}) {
+    const glm::dvec3 m = light_volume_inscatter(v, iso, glm::dvec3(x, 1, 1), glm::dvec3(0, 0, 1));
+    EXPECT_NEAR(m.x, 1.0, 1e-6);
+    EXPECT_NEAR(m.z, 1.0, 1e-6);
+  }
+  // Halfway between the centres (x = 2): phi = 6 pi (R, G), 2 pi (B); F = (0, 0, pi).
+  // Isotropic: phi / 4 pi = 1.5, 1.5, 0.5.
+  glm::dvec3 m = light_volume_inscatter(v, iso, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(m.x, 1.5, 1e-6);
+  EXPECT_NEAR(m.z, 0.5, 1e-6);
+  // g = 0.5 (one lobe, or two lobes of the same mean cosine), toward +z: mean phi = 14 pi / 3,
+  // 3 g F.w / mean = 1.5 pi / (14 pi / 3) = 9 / 28; R = 1.5 (1 + 9/28).
+  for (const DualLobePhase& p : {DualLobePhase{0.5, 0.0, 1.0}, DualLobePhase{0.75, 0.0, 2.0 / 3.0}}) {
+    m = light_volume_inscatter(v, p, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
+    EXPECT_NEAR(m.x, 1.5 * (1.0 + 9.0 / 28.0), 1e-6);
+    EXPECT_NEAR(m.z, 0.5 * (1.0 + 9.0 / 28.0), 1e-6);
+  }
+  // Against the flux with g = 0.9, halfway: 1 - 3 (0.9) pi / (14 pi / 3) = 1 - 8.1 / 14.
+  m = light_volume_inscatter(v, DualLobePhase{0.9, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, -1));
+  EXPECT_NEAR(m.x, 1.5 * (1.0 - 8.1 / 14.0), 1e-6);
+  // At the second cell (x = 3): mean phi = 16 pi / 3, 1 - 3 (0.9) 2 pi / (16 pi / 3) = 1 - 16.2 / 16 < 0: clamped to 0.
+  m = light_volume_inscatter(v, DualLobePhase{0.9, 0.0, 1.0}, glm::dvec3(3, 1, 1), glm::dvec3(0, 0, -1));
+  EXPECT_EQ(m.x, 0.0);
+  EXPECT_EQ(m.y, 0.0);
+  // The second moment: Q = diag(-1, -1, 2) pi / 3 in both cells (traceless), at x = 2 with g = 0.5
+  // (p_2 = 0.25) toward +z, w^T Q w = 2 pi / 3 and with the flux term 9 / 28:
+  // 1 + 9 / 28 + 7.5 (0.25) (2 pi / 3) / (14 pi / 3) = 1 + 9 / 28 + 3.75 / 14.
+  LightVolume q = v;
+  for (int cell = 0; cell < 2; ++cell) {
+    q.quadrupole[5 * cell + 0] = -float(M_PI) / 3.0f;
+    q.quadrupole[5 * cell + 1] = -float(M_PI) / 3.0f;
+  }
+  m = light_volume_inscatter(q, DualLobePhase{0.5, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(m.x, 1.5 * (1.0 + 9.0 / 28.0 + 3.75 / 14.0), 1e-6);
+  // Seen along x: w^T Q w = -pi / 3, no flux term: 1 - 7.5 (0.25) (pi / 3) / (14 pi / 3) = 1 - 1.875 / 14.
+  m = light_volume_inscatter(q, DualLobePhase{0.5, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(1, 0, 0));
+  EXPECT_NEAR(m.x, 1.5 * (1.0 - 1.875 / 14.0), 1e-6);
+}
+
+}  // namespace
+}  // namespace nimbus::render

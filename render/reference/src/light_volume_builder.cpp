@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -224,11 +225,60 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   const double scale = area_m2 / static_cast<double>(n) * quantum / (cell * cell * cell);
   std::vector<float> value(n_cells * kTallies, 0.0f);
   std::vector<char> known(n_cells, 0);
-  for (std::size_t q = 0; q < n_cells; ++q) {
-    if (!(covered[q] > 0.0)) continue;
-    known[q] = 1;
-    for (int c = 0; c < kTallies; ++c)
-      value[q * kTallies + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
+  // A cell the cloud barely touches divides a few rare collisions by a small covered fraction:
+  // a firefly. Below half coverage the cell pools its 3^3 neighbourhood instead, sum of tallies
+  // over sum of covered fractions (a ratio estimator over more photons; measured: no specks).
+  constexpr double kPoolBelow = 0.5;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+        if (!(covered[q] > 0.0)) continue;
+        known[q] = 1;
+        if (covered[q] >= kPoolBelow) {
+          for (int c = 0; c < kTallies; ++c)
+            value[q * kTallies + c] = static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
+          continue;
+        }
+        double area = 0.0, sum[kTallies] = {};
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+              const int a = i + di, b = j + dj, cc = k + dk;
+              if (a < 0 || a >= nx || b < 0 || b >= ny || cc < 0 || cc >= nz) continue;
+              const std::size_t r = static_cast<std::size_t>(a) + static_cast<std::size_t>(nx) * (b + static_cast<std::size_t>(ny) * cc);
+              area += covered[r];
+              for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
+            }
+        for (int c = 0; c < kTallies; ++c) value[q * kTallies + c] = static_cast<float>(scale * sum[c] / area);
+      }
+  // The flux and the second moment carry the view-dependent part, and their noise shows as white
+  // specks where a cell's noisy flux happens to point at the eye (measured: one at seed 1 on
+  // cumulus-mediocris, none at seed 2). They vary slowly in space: each known cell takes their
+  // anisotropy over its known 3^3 neighbourhood: F = phi sum(F) / sum(phi), the same for Q (a
+  // fluence-weighted mean of the neighbours' F / phi, so |F| <= phi still holds). The fluence
+  // keeps its own cell's value.
+  {
+    const std::vector<float> before = value;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+          if (!known[q]) continue;
+          double sum[kTallies] = {}, phi = 0.0;
+          for (int dk = -1; dk <= 1; ++dk)
+            for (int dj = -1; dj <= 1; ++dj)
+              for (int di = -1; di <= 1; ++di) {
+                const int a = i + di, b = j + dj, cc = k + dk;
+                if (a < 0 || a >= nx || b < 0 || b >= ny || cc < 0 || cc >= nz) continue;
+                const std::size_t r = static_cast<std::size_t>(a) + static_cast<std::size_t>(nx) * (b + static_cast<std::size_t>(ny) * cc);
+                if (!known[r]) continue;
+                phi += (before[r * kTallies] + before[r * kTallies + 1] + before[r * kTallies + 2]) / 3.0;  // F, Q: the channels' mean
+                for (int c = 3; c < kTallies; ++c) sum[c] += before[r * kTallies + c];
+              }
+          const double own = (before[q * kTallies] + before[q * kTallies + 1] + before[q * kTallies + 2]) / 3.0;
+          for (int c = 3; c < kTallies; ++c) value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
+        }
   }
   // Cells no flight can cross hold no cloud, but the trilinear lookup of a neighbour reads them:
   // they take the mean of their known face neighbours, ring by ring (two rings).

@@ -104,6 +104,13 @@ ShellPoint shell_point(const Atmosphere& a, double altitude_m, double mu, double
   return p;
 }
 
+glm::dvec3 fibonacci_sphere(int i, int n) {
+  const double mu = 1.0 - (2.0 * i + 1.0) / n;
+  const double phi = i * M_PI * (3.0 - std::sqrt(5.0));
+  const double s = std::sqrt(std::max(1.0 - mu * mu, 0.0));
+  return {s * std::cos(phi), mu, s * std::sin(phi)};
+}
+
 double sun_visibility(const Atmosphere& a, double altitude_m, double mu_s) {
   const double mu_h = horizon_cos(a, altitude_m);
   // near the horizon d(mu) = sin(theta) d(theta), sin(theta) ~ 1

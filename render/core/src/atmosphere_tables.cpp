@@ -108,11 +108,8 @@ void build_multiple_scattering(AtmosphereTables& t) {
       const glm::dvec3 sun_dir{std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0};
       glm::dvec3 L2(0.0), fms(0.0);
       for (int i = 0; i < kMsDirections; ++i) {
-        // Fibonacci sphere: equal areas
-        const double mu = 1.0 - (2.0 * i + 1.0) / kMsDirections;
-        const double phi = i * M_PI * (3.0 - std::sqrt(5.0));
-        const double s = std::sqrt(std::max(1.0 - mu * mu, 0.0));
-        const glm::dvec3 dir{s * std::cos(phi), mu, s * std::sin(phi)};
+        const glm::dvec3 dir = fibonacci_sphere(i, kMsDirections);
+        const double mu = dir.y;
         const double nu = glm::dot(dir, sun_dir);
         const bool ground = ray_hits_ground(a, h, mu);
         const double end = ray_end(a, h, mu);

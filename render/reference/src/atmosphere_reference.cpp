@@ -78,10 +78,8 @@ glm::dvec3 reference_multiple_scattering(const Atmosphere& a, double h, double m
   const glm::dvec3 sun_dir{std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0};
   std::vector<glm::dvec3> L(kPsiDirections), F(kPsiDirections);
   tbb::parallel_for(0, kPsiDirections, [&](int i) {
-    const double mu = 1.0 - (2.0 * i + 1.0) / kPsiDirections;
-    const double phi = i * M_PI * (3.0 - std::sqrt(5.0));
-    const double s = std::sqrt(std::max(1.0 - mu * mu, 0.0));
-    const glm::dvec3 dir{s * std::cos(phi), mu, s * std::sin(phi)};
+    const glm::dvec3 dir = fibonacci_sphere(i, kPsiDirections);
+    const double mu = dir.y;
     const double nu = glm::dot(dir, sun_dir);
     const double end = ray_end(a, h, mu);
     glm::dvec3 Li(0.0), Fi(0.0), T(1.0);

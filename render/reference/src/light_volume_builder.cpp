@@ -225,6 +225,16 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   const double scale = area_m2 / static_cast<double>(n) * quantum / (cell * cell * cell);
   std::vector<float> value(n_cells * kTallies, 0.0f);
   std::vector<char> known(n_cells, 0);
+  // Calls f(r) for each cell r of the 3^3 neighbourhood of (i, j, k) inside the grid, itself included.
+  auto for_neighbourhood = [&](int i, int j, int k, const auto& f) {
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int a = i + di, b = j + dj, c = k + dk;
+          if (a < 0 || a >= nx || b < 0 || b >= ny || c < 0 || c >= nz) continue;
+          f(static_cast<std::size_t>(a) + static_cast<std::size_t>(nx) * (b + static_cast<std::size_t>(ny) * c));
+        }
+  };
   // A cell the cloud barely touches divides a few rare collisions by a small covered fraction:
   // a firefly. Below half coverage the cell pools its 3^3 neighbourhood instead, sum of tallies
   // over sum of covered fractions (a ratio estimator over more photons; measured: no specks).
@@ -241,15 +251,10 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           continue;
         }
         double area = 0.0, sum[kTallies] = {};
-        for (int dk = -1; dk <= 1; ++dk)
-          for (int dj = -1; dj <= 1; ++dj)
-            for (int di = -1; di <= 1; ++di) {
-              const int a = i + di, b = j + dj, cc = k + dk;
-              if (a < 0 || a >= nx || b < 0 || b >= ny || cc < 0 || cc >= nz) continue;
-              const std::size_t r = static_cast<std::size_t>(a) + static_cast<std::size_t>(nx) * (b + static_cast<std::size_t>(ny) * cc);
-              area += covered[r];
-              for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
-            }
+        for_neighbourhood(i, j, k, [&](std::size_t r) {
+          area += covered[r];
+          for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
+        });
         for (int c = 0; c < kTallies; ++c) value[q * kTallies + c] = static_cast<float>(scale * sum[c] / area);
       }
   // The flux and the second moment carry the view-dependent part, and their noise shows as white
@@ -266,16 +271,11 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
           if (!known[q]) continue;
           double sum[kTallies] = {}, phi = 0.0;
-          for (int dk = -1; dk <= 1; ++dk)
-            for (int dj = -1; dj <= 1; ++dj)
-              for (int di = -1; di <= 1; ++di) {
-                const int a = i + di, b = j + dj, cc = k + dk;
-                if (a < 0 || a >= nx || b < 0 || b >= ny || cc < 0 || cc >= nz) continue;
-                const std::size_t r = static_cast<std::size_t>(a) + static_cast<std::size_t>(nx) * (b + static_cast<std::size_t>(ny) * cc);
-                if (!known[r]) continue;
-                phi += (before[r * kTallies] + before[r * kTallies + 1] + before[r * kTallies + 2]) / 3.0;  // F, Q: the channels' mean
-                for (int c = 3; c < kTallies; ++c) sum[c] += before[r * kTallies + c];
-              }
+          for_neighbourhood(i, j, k, [&](std::size_t r) {
+            if (!known[r]) return;
+            phi += (before[r * kTallies] + before[r * kTallies + 1] + before[r * kTallies + 2]) / 3.0;  // F, Q: the channels' mean
+            for (int c = 3; c < kTallies; ++c) sum[c] += before[r * kTallies + c];
+          });
           const double own = (before[q * kTallies] + before[q * kTallies + 1] + before[q * kTallies + 2]) / 3.0;
           for (int c = 3; c < kTallies; ++c) value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
         }

@@ -67,6 +67,9 @@ struct ShellPoint {
 };
 ShellPoint shell_point(const Atmosphere& a, double altitude_m, double mu, double mu_s, double nu, double t_m);
 
+// Direction i of n spread over the sphere with equal areas (the Fibonacci sphere), y up.
+glm::dvec3 fibonacci_sphere(int i, int n);
+
 // The share of the sun's disc above the horizon seen from h (a linear ramp across the disc).
 double sun_visibility(const Atmosphere& a, double altitude_m, double mu_s);
 

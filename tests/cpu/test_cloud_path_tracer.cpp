@@ -12,6 +12,7 @@
 #include "nimbus/render/reference/cloud_path_tracer.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
 #include "slab_discrete_ordinates.hpp"
+#include "slab_volume.hpp"
 
 using nimbus::render::test::solve_slab;
 using nimbus::render::test::SlabSolution;
@@ -44,20 +45,7 @@ CloudVolume ball(int n, double voxel_m, double extinction_per_m, const DualLobeP
   return make_cloud_volume(*grid, o, "ball");
 }
 
-// A plane-parallel slab: n x layers x n voxels of 1 m, density 1, of total optical thickness tau
-// (trilinear ramps at its faces change the profile, not the total).
-CloudVolume slab(double tau, int layers, int n, const DualLobePhase& phase, double albedo) {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.0f);
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
-  grid->fill(openvdb::CoordBBox(openvdb::Coord(0, 0, 0), openvdb::Coord(n - 1, layers - 1, n - 1)), 1.0f, true);
-  grid->tree().voxelizeActiveTiles();
-  CloudOptics o;
-  o.extinction_per_m = tau / layers;
-  o.albedo = glm::dvec3(albedo);
-  o.phase = phase;
-  return make_cloud_volume(*grid, o, "slab");
-}
+using test::slab;
 
 Camera camera_at(const glm::dvec3& eye, const glm::dvec3& at, int size, double fov) {
   Camera c;

@@ -13,23 +13,12 @@
 #include "nimbus/render/core/light_volume.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "slab_discrete_ordinates.hpp"
+#include "slab_volume.hpp"
 
 namespace nimbus::render {
 namespace {
 
-// n x layers x n voxels of 1 m, density 1 (trilinear ramps to 0 one voxel beyond each face).
-CloudVolume slab(double tau, int layers, int n, const DualLobePhase& phase, double albedo) {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.0f);
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
-  grid->fill(openvdb::CoordBBox(openvdb::Coord(0, 0, 0), openvdb::Coord(n - 1, layers - 1, n - 1)), 1.0f, true);
-  grid->tree().voxelizeActiveTiles();
-  CloudOptics o;
-  o.extinction_per_m = tau / layers;
-  o.albedo = glm::dvec3(albedo);
-  o.phase = phase;
-  return make_cloud_volume(*grid, o, "slab");
-}
+using test::slab;
 
 std::size_t index(const LightVolume& v, int i, int j, int k) {
   return static_cast<std::size_t>(i) + static_cast<std::size_t>(v.size[0]) * (j + static_cast<std::size_t>(v.size[1]) * k);

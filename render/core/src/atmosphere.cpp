@@ -90,6 +90,19 @@ double distance_to_ground(const Atmosphere& a, double altitude_m, double mu) {
   return k / std::max(-r * mu + root, 1.0e-9);
 }
 
+double distance_to_exit(const Atmosphere& a, double altitude_m, double mu) {
+  return ray_hits_ground(a, altitude_m, mu) ? distance_to_ground(a, altitude_m, mu) : distance_to_top(a, altitude_m, mu);
+}
+
+glm::dvec3 step_weight(const glm::dvec3& sigma, double dt) {
+  glm::dvec3 w;
+  for (int c = 0; c < 3; ++c) {
+    const double y = sigma[c] * dt;
+    w[c] = y < 1.0e-6 ? dt * (1.0 - 0.5 * y) : -std::expm1(-y) / sigma[c];
+  }
+  return w;
+}
+
 ShellPoint shell_point(const Atmosphere& a, double altitude_m, double mu, double mu_s, double nu, double t_m) {
   const double R = a.bottom_radius_m;
   const double h = std::max(altitude_m, 0.0);

@@ -34,21 +34,6 @@ AtmosphereTable make_table(int w, int h, int d = 1) {
   return t;
 }
 
-// (1 - e^{-sigma dt}) / sigma per channel: the energy-conserving step weight (Hillaire 2015).
-glm::dvec3 step_weight(const glm::dvec3& sigma, double dt) {
-  glm::dvec3 w;
-  for (int c = 0; c < 3; ++c) {
-    const double y = sigma[c] * dt;
-    w[c] = y < 1.0e-6 ? dt * (1.0 - 0.5 * y) : -std::expm1(-y) / sigma[c];
-  }
-  return w;
-}
-
-// Distance to where a ray leaves the air: the ground or the top.
-double ray_end(const Atmosphere& a, double h, double mu) {
-  return ray_hits_ground(a, h, mu) ? distance_to_ground(a, h, mu) : distance_to_top(a, h, mu);
-}
-
 // Radiance scattered toward the viewer per unit solar irradiance at one point (Hillaire eq. 3
 // with Psi_ms for the higher orders): single scattering by both phases plus sigma_s Psi_ms.
 glm::dvec3 scattering_source(const AtmosphereTables& t, const AtmosphereMedium& m, const ShellPoint& p, double nu) {
@@ -112,7 +97,7 @@ void build_multiple_scattering(AtmosphereTables& t) {
         const double mu = dir.y;
         const double nu = glm::dot(dir, sun_dir);
         const bool ground = ray_hits_ground(a, h, mu);
-        const double end = ray_end(a, h, mu);
+        const double end = distance_to_exit(a, h, mu);
         glm::dvec3 L(0.0), fsum(0.0), T(1.0);
         for (int k = 0; k < kMsSteps; ++k) {
           const double a0 = end * k / kMsSteps, a1 = end * (k + 1) / kMsSteps, dt = a1 - a0;
@@ -151,7 +136,7 @@ void build_sky_view(AtmosphereTables& t) {
       const double sin_t = std::sqrt(std::max(1.0 - q.cos_theta * q.cos_theta, 0.0));
       const double nu = mu_s * q.cos_theta + sin_s * sin_t * q.cos_phi;
       glm::dvec3 L(0.0), T(1.0);
-      const double end = ray_end(a, h, q.cos_theta);
+      const double end = distance_to_exit(a, h, q.cos_theta);
       march(t, h, q.cos_theta, mu_s, nu, 0.0, end, kSkySteps, true, L, T);
       if (ray_hits_ground(a, h, q.cos_theta)) {
         // The ground far away, lit by the sun: T albedo / pi E_sun mu_s (Lambertian).
@@ -177,7 +162,7 @@ void build_aerial_perspective(AtmosphereTables& t) {
       const double sin_s = std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0));
       const double sin_t = std::sqrt(std::max(1.0 - q.cos_theta * q.cos_theta, 0.0));
       const double nu = mu_s * q.cos_theta + sin_s * sin_t * q.cos_phi;
-      const double end = ray_end(a, h, q.cos_theta);
+      const double end = distance_to_exit(a, h, q.cos_theta);
       glm::dvec3 L(0.0), T(1.0);
       double prev = 0.0;
       for (int z = 0; z < D; ++z) {
@@ -198,7 +183,6 @@ void build_aerial_perspective(AtmosphereTables& t) {
 void integrate_sky(AtmosphereTables& t) {
   const int nt = 32, np = 64;
   glm::dvec3 E(0.0), mean(0.0);
-  const glm::dvec3 sun = glm::normalize(t.view.direction_to_sun);
   for (int i = 0; i < nt; ++i) {
     const double th = (i + 0.5) * 0.5 * M_PI / nt;
     for (int j = 0; j < np; ++j) {
@@ -210,7 +194,6 @@ void integrate_sky(AtmosphereTables& t) {
       mean += L * dw;
     }
   }
-  (void)sun;
   t.sky_irradiance_up_w_m2 = E;
   t.sky_mean_radiance_w_sr_m2 = mean / (2.0 * M_PI);
 }

@@ -19,10 +19,6 @@ constexpr int kSunSteps = 48;  // midpoint steps of the sun's optical depth insi
 constexpr int kViewSteps = 2000;
 constexpr int kPsiNodes = 24;
 
-double ray_end(const Atmosphere& a, double h, double mu) {
-  return ray_hits_ground(a, h, mu) ? distance_to_ground(a, h, mu) : distance_to_top(a, h, mu);
-}
-
 // Optical depth along (h, mu) over [0, d]: each density profile integrated adaptively, then
 // weighted by its coefficients per channel.
 glm::dvec3 optical_depth(const Atmosphere& a, double h, double mu, double d) {
@@ -58,15 +54,6 @@ glm::dvec3 sun_transmittance_exact(const Atmosphere& a, double h, double mu_s) {
   return glm::exp(-optical_depth(a, h, mu, distance_to_top(a, h, mu))) * vis;
 }
 
-glm::dvec3 step_weight(const glm::dvec3& sigma, double dt) {
-  glm::dvec3 w;
-  for (int c = 0; c < 3; ++c) {
-    const double y = sigma[c] * dt;
-    w[c] = y < 1.0e-8 ? dt : -std::expm1(-y) / sigma[c];
-  }
-  return w;
-}
-
 }  // namespace
 
 glm::dvec3 reference_transmittance(const Atmosphere& a, double altitude_m, double mu) {
@@ -81,7 +68,7 @@ glm::dvec3 reference_multiple_scattering(const Atmosphere& a, double h, double m
     const glm::dvec3 dir = fibonacci_sphere(i, kPsiDirections);
     const double mu = dir.y;
     const double nu = glm::dot(dir, sun_dir);
-    const double end = ray_end(a, h, mu);
+    const double end = distance_to_exit(a, h, mu);
     glm::dvec3 Li(0.0), Fi(0.0), T(1.0);
     for (int k = 0; k < kPsiSteps; ++k) {
       const double dt = end / kPsiSteps;
@@ -112,7 +99,7 @@ glm::dvec3 reference_multiple_scattering(const Atmosphere& a, double h, double m
 AtmosphereRadiance reference_sky(const Atmosphere& a, const AtmosphereRay& ray) {
   const glm::dvec3 sun = glm::normalize(ray.direction_to_sun), dir = glm::normalize(ray.direction);
   const double h = ray.altitude_m, mu = dir.y, mu_s = sun.y, nu = glm::dot(dir, sun);
-  const double full = ray_end(a, h, mu);
+  const double full = distance_to_exit(a, h, mu);
   const double end = std::min(full, ray.max_distance_m);
   auto t_of = [&](double s) { return end * s * s; };  // dense near the viewer
   // Psi_ms at kPsiNodes points (s = 0 .. 1), exactly.

@@ -58,6 +58,8 @@ bool ray_hits_ground(const Atmosphere& a, double altitude_m, double mu);
 // Distance to the top of the atmosphere (from inside), or to the ground; stable forms.
 double distance_to_top(const Atmosphere& a, double altitude_m, double mu);
 double distance_to_ground(const Atmosphere& a, double altitude_m, double mu);  // only where ray_hits_ground
+// Distance to where the ray leaves the air: the ground if it meets it, else the top.
+double distance_to_exit(const Atmosphere& a, double altitude_m, double mu);
 // Where the ray is after distance t: its altitude, and the cosines of the zenith angles of the
 // ray and of the sun there (nu = cos of the angle between the ray and the sun).
 struct ShellPoint {
@@ -66,6 +68,10 @@ struct ShellPoint {
   double mu_s;
 };
 ShellPoint shell_point(const Atmosphere& a, double altitude_m, double mu, double mu_s, double nu, double t_m);
+
+// The energy-conserving step weight per channel (Hillaire 2015): int_0^dt e^{-sigma s} ds =
+// (1 - e^{-sigma dt}) / sigma, by its series where sigma dt is tiny.
+glm::dvec3 step_weight(const glm::dvec3& sigma, double dt);
 
 // Direction i of n spread over the sphere with equal areas (the Fibonacci sphere), y up.
 glm::dvec3 fibonacci_sphere(int i, int n);

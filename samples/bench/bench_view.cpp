@@ -68,6 +68,9 @@ struct PathResult {
   int64_t keyframes = 0;          // made during the path
   double keyframe_s = 0.0;        // generation time of those
   double longest_generating = 0;  // the longest frame while a keyframe was being made
+  int stale = 0, stand_in = 0;    // frames drawn with an earlier light volume / the octaves standing in
+  int64_t volumes = 0;            // light volumes made during the path
+  double volume_s = 0.0;          // their build time
 };
 
 enum class Path { Orbit, TimeLapse };
@@ -78,6 +81,10 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
   v.state().paused = false;
   v.state().speed = path == Path::Orbit ? 10.0 : 30.0;
   const auto k0 = v.keyframes().stats();
+  const auto volume_stats = [&v] {
+    return v.light_volumes() ? v.light_volumes()->stats() : render::KeyframeLightVolumes::Stats{};
+  };
+  const auto l0 = volume_stats();
   double clock = 0.0;          // real seconds the viewer has seen
   auto last = Clock::now();
   for (int f = 0; f < frames; ++f) {
@@ -94,6 +101,8 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     r.ms.push_back(rep.cpu_ms);
     r.levels[rep.quality_level]++;
     r.held += rep.info.waited;
+    r.stale += rep.info.multiple == "light volume (stale)";
+    r.stand_in += v.state().multiple_method == "light-volume" && rep.info.multiple == "octaves";
     if (busy || v.keyframes().stats().keyframes_made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
     if (adaptive && error_every > 0 && f % error_every == 0) {
       // Outside the clock: the viewer does not see the time this takes.
@@ -105,10 +114,13 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
   const auto k1 = v.keyframes().stats();
   r.keyframes = k1.keyframes_made - k0.keyframes_made;
   r.keyframe_s = k1.seconds_total - k0.seconds_total;
+  const auto l1 = volume_stats();
+  r.volumes = l1.volumes_made - l0.volumes_made;
+  r.volume_s = l1.seconds_total - l0.seconds_total;
   return r;
 }
 
-std::string levels_text(const std::map<int, int>& levels, int frames) {
+std::string levels_text(const std::map<int, int>& levels) {
   std::ostringstream o;
   for (const auto& [l, n] : levels) {
     const viewer::QualityLevel& q = viewer::kQualityLevels[l];
@@ -133,15 +145,22 @@ int run_bench_view(const BenchViewArgs& a) {
   viewer::ViewerOptions options;
   std::printf("# nimbus bench view: the default sky (%zu clouds, %.0f m voxels, keyframes every %.0f s of sky time), %s\n",
               start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, gl->renderer().c_str());
-  std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %d octaves; adaptive budget %.0f ms\n",
-              start.slices, start.light_res, start.shafts.c_str(), start.cloud_shadow_res, start.multiple_octaves, a.budget_ms);
+  char ms[128];
+  if (start.multiple_method == "light-volume")
+    std::snprintf(ms, sizeof ms, "light volume (%d cells, %lld photons; %d octaves before the first)", start.ms_grid,
+                  static_cast<long long>(start.ms_photons), start.multiple_octaves);
+  else
+    std::snprintf(ms, sizeof ms, "%d octaves", start.multiple_octaves);
+  std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %s; adaptive budget %.0f ms\n",
+              start.slices, start.light_res, start.shafts.c_str(), start.cloud_shadow_res, ms, a.budget_ms);
   std::printf("# orbit: 1.8 deg of tumble per frame, sky time x10; time-lapse: still camera, sky time x30; real time steps\n");
   std::printf("# frame = the viewer's whole frame on the CPU (render, readback); error = rel. RMSE of the adaptive frame,\n");
   std::printf("#   upscaled as the display does, against the full-quality frame of the same state (one frame in %d)\n\n",
               a.error_every);
   std::printf("| size | path | quality | frames | median ms | p95 ms | max ms | fps (median) | frames per level (scale/slices) | "
-              "error median / max | keyframes made (s each) | frames held | longest frame while generating |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|\n");
+              "error median / max | keyframes made (s each) | frames held | longest frame while generating | "
+              "light volumes made (s each) | frames: stale volume / octaves |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|---|---|\n");
   for (const auto& [w, h] : sizes) {
     struct Row {
       Path path;
@@ -162,10 +181,12 @@ int run_bench_view(const BenchViewArgs& a) {
       if (r.keyframes > 0) std::snprintf(kf, sizeof kf, "%lld (%.2f s)", static_cast<long long>(r.keyframes), r.keyframe_s / r.keyframes);
       char gen[32] = "-";
       if (r.longest_generating > 0) std::snprintf(gen, sizeof gen, "%.0f ms", r.longest_generating);
-      std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s |\n", w, h, row.name,
+      char lv[64] = "0";
+      if (r.volumes > 0) std::snprintf(lv, sizeof lv, "%lld (%.2f s)", static_cast<long long>(r.volumes), r.volume_s / r.volumes);
+      std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s | %s | %d / %d |\n", w, h, row.name,
                   row.adaptive ? "adaptive" : "full (anchor)", a.frames, med, percentile(r.ms, 0.95),
-                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels, a.frames).c_str(), err,
-                  kf, r.held, gen);
+                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels).c_str(), err,
+                  kf, r.held, gen, lv, r.stale, r.stand_in);
       std::fflush(stdout);
     }
   }

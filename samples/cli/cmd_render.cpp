@@ -1,5 +1,6 @@
 // `nimbus render`: a light-shaft scene rendered by one of the GPU methods (on a headless GL
 // context) or by the exact CPU reference, written as a linear half-float EXR (and a PNG preview).
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +41,17 @@ struct RenderArgs {
 
 int run_render(const RenderArgs& a) {
   if (a.output.empty()) throw UsageError("-o: an output file (.exr) is required");
+  // The image is always a linear EXR: a name that says otherwise (out.png) would get EXR bytes.
+  const auto ends_with = [](const std::string& s, const std::string& tail) {
+    if (s.size() < tail.size()) return false;
+    for (std::size_t i = 0; i < tail.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(s[s.size() - tail.size() + i])) != tail[i]) return false;
+    return true;
+  };
+  if (!ends_with(a.output, ".exr"))
+    throw UsageError("-o '" + a.output + "': the image is written as linear OpenEXR, so its name must end in .exr (a PNG: --preview)");
+  if (!a.preview.empty() && !ends_with(a.preview, ".png"))
+    throw UsageError("--preview '" + a.preview + "': the preview is a PNG, so its name must end in .png");
   if (!a.view_state.empty()) {
     if (!a.clouds.files.empty() || !a.clouds.presets.empty() || a.scene_given || a.method_given)
       throw UsageError("--view-state: the state holds the clouds, scene and method; give none of FILE, --preset, --scene, --method");

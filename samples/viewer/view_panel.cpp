@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -121,7 +122,15 @@ void draw_panel(Viewer& viewer) {
     slider("phase g forward", s.phase.g_forward, 0.0, 0.95);
     slider("phase g back", s.phase.g_back, -0.95, 0.0);
     slider("phase forward weight", s.phase.forward_weight, 0.0, 1.0);
-    ImGui::SliderInt("multiple-scattering octaves", &s.multiple_octaves, 0, 3);
+    bool volume = s.multiple_method == "light-volume";
+    if (ImGui::Checkbox("light volume (photon-traced multiple scattering)", &volume))
+      s.multiple_method = volume ? "light-volume" : "octaves";
+    if (volume) {
+      ImGui::SliderInt("light volume cells", &s.ms_grid, 16, 96);
+      int photons_log2 = static_cast<int>(std::lround(std::log2(static_cast<double>(s.ms_photons))));
+      if (ImGui::SliderInt("light volume photons (log2)", &photons_log2, 14, 24)) s.ms_photons = std::int64_t{1} << photons_log2;
+    }
+    ImGui::SliderInt(volume ? "octaves (until the volume is made)" : "multiple-scattering octaves", &s.multiple_octaves, 0, 3);
   }
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::SliderInt("slices", &s.slices, 8, 512);
@@ -151,6 +160,8 @@ void draw_panel(Viewer& viewer) {
     ImGui::Text("GPU slices     %7.1f ms", st.clouds.slices_ms);
     ImGui::Text("GPU composite  %7.1f ms", st.clouds.composite_ms);
     ImGui::Text("keyframe upload%7.1f ms", r.info.upload_ms);
+    ImGui::Text("multiple scattering: %s", r.info.multiple.c_str());
+    if (s.multiple_method == "light-volume") ImGui::Text("light volume mix %6.1f ms", r.info.light_volume_ms);
     ImGui::Text("keyframes %lld+1, blend %.2f", static_cast<long long>(r.info.keyframe), r.info.blend);
     ImGui::TextWrapped("%s", st.clouds.timing.c_str());
   }

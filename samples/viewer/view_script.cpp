@@ -181,6 +181,8 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
                       {"width", r.info.width},
                       {"height", r.info.height},
                       {"slices", r.info.slices},
+                      {"multiple", r.info.multiple},
+                      {"light_volume_ms", r.info.light_volume_ms},
                       {"screenshot", shot}});
   }
   if (!s.record.empty()) {

@@ -83,6 +83,8 @@ class Viewer {
     return renderer_->render(state_, width, height, quality, true);
   }
   render::SkyKeyframes& keyframes() { return renderer_->keyframes(); }
+  // The keyframes' light volumes (null until the light-volume method was first drawn).
+  const render::KeyframeLightVolumes* light_volumes() const { return renderer_->light_volumes(); }
   // F5: shaders from options.shader_dir; a broken one keeps the running programs (shader_error()).
   void reload_shaders();
   void save_state();

@@ -11,7 +11,7 @@
 #include "lib/cloud_block.glsl"
 layout(binding = UNIT_LIGHT_VOLUME) uniform sampler3D u_light_volume;
 uniform vec3 u_lv_world_min;   // the grid's corner, metres
-uniform float u_lv_cell_m;     // cube cells, metres per side
+uniform vec3 u_lv_cell_m;      // a cell's sides, metres per axis
 uniform vec3 u_lv_cells;       // cells per axis
 
 vec3 light_volume_inscatter(vec3 world, vec3 to_eye) {

@@ -48,14 +48,28 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
                           "| back-lit | dual:0.7,-0.25,0.8 | slicer, 3 octaves (a 0.5, b 0.6)"})
     EXPECT_NE(r.output.find(row), std::string::npos) << row << "\n" << r.output;
   // The front-lit isotropic rows: single scattering's bias, then the 3-octave one's.
+  // The column headed "bias" in the table's header row.
+  auto column_of = [&](const std::string& name) {
+    const std::size_t at = r.output.find("| lighting |");
+    if (at == std::string::npos) return -1;
+    const std::string header = r.output.substr(at, r.output.find('\n', at) - at);
+    int bars = 0;
+    for (std::size_t p = 0; p < header.size(); ++p) {
+      if (header[p] == '|') ++bars;
+      if (header.compare(p, name.size() + 2, " " + name + " ") == 0) return bars;
+    }
+    return -1;
+  };
+  const int bias_column = column_of("bias");
+  ASSERT_GT(bias_column, 0) << r.output;
   auto bias_of = [&](const std::string& row) {
     const std::size_t at = r.output.find(row);
     if (at == std::string::npos) return 0.0;
     std::string line = r.output.substr(at, r.output.find('\n', at) - at);
-    // | lighting | phase | method | ms | rmse | bias | ...
     int bars = 0;
     std::size_t p = 0;
-    while (bars < 5 && (p = line.find('|', p + 1)) != std::string::npos) ++bars;
+    // p starts on the row's first bar, so bias_column - 1 more bars reach the bias cell's.
+    while (bars < bias_column - 1 && (p = line.find('|', p + 1)) != std::string::npos) ++bars;
     return std::stod(line.substr(p + 1));
   };
   const double single = bias_of("| front-lit | isotropic | slicer, single scattering");

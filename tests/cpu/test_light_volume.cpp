@@ -3,11 +3,12 @@
 // solution written in the tests (slab_discrete_ordinates.hpp); no scattering, no scattered light;
 // more albedo, more of it; never negative; the flux and second moment bounded by the fluence; the
 // same seed gives the same volume whatever the threads; bad settings and sizes are refused; eq.
-// MS-1's lookup by hand-derived values.
+// MS-1's lookup by hand-derived values; two keyframes' volumes on different grids mix linearly.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "nimbus/render/core/light_volume.hpp"
@@ -59,12 +60,12 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
     };
     int compared = 0;
     for (int j = 0; j < v.size[1]; ++j) {
-      const double y0 = v.world_min.y + j * v.cell_m, y1 = y0 + v.cell_m;
+      const double y0 = v.world_min.y + j * v.cell_m.y, y1 = y0 + v.cell_m.y;
       if (y0 < 0.0 || y1 > layers - 1.0) continue;  // cells wholly in the uniform part
       // The cell's mean of the DOM profile, and of the central columns (away from the slab's sides).
       double phi_dom = 0.0, flux_dom = 0.0, q_dom = 0.0;
       for (int q = 0; q < 32; ++q) {
-        const double y = y0 + (q + 0.5) / 32.0 * v.cell_m;
+        const double y = y0 + (q + 0.5) / 32.0 * v.cell_m.y;
         phi_dom += dom_at(y, dom.fluence) / 32.0;
         flux_dom += dom_at(y, dom.flux_down) / 32.0;
         q_dom += dom_at(y, dom.second) / 32.0;
@@ -197,7 +198,7 @@ LightVolume two_cells() {
   v.size[0] = 2;
   v.size[1] = v.size[2] = 1;
   v.world_min = glm::dvec3(0.0);
-  v.cell_m = 2.0;
+  v.cell_m = glm::dvec3(2.0);
   v.fluence_rgb = {4.0f * float(M_PI), 4.0f * float(M_PI), 4.0f * float(M_PI),
                    8.0f * float(M_PI), 8.0f * float(M_PI), 0.0f};
   v.flux_xyz = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 2.0f * float(M_PI)};
@@ -246,6 +247,70 @@ TEST(LightVolume, InscatterIsEqMS1ByHand) {
   // Seen along x: w^T Q w = -pi / 3, no flux term: 1 - 7.5 (0.25) (pi / 3) / (14 pi / 3) = 1 - 1.875 / 14.
   m = light_volume_inscatter(q, DualLobePhase{0.5, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(1, 0, 0));
   EXPECT_NEAR(m.x, 1.5 * (1.0 - 1.875 / 14.0), 1e-6);
+}
+
+// A volume on `size` cells of `cell_m` from `world_min`, every quantity a linear function of the
+// cell centre (its own coefficients per quantity), which trilinear interpolation reproduces.
+LightVolume linear_volume(int nx, int ny, int nz, glm::dvec3 world_min, glm::dvec3 cell_m, double scale) {
+  LightVolume v;
+  v.size[0] = nx;
+  v.size[1] = ny;
+  v.size[2] = nz;
+  v.world_min = world_min;
+  v.cell_m = cell_m;
+  v.fluence_rgb.resize(3 * v.cells());
+  v.flux_xyz.resize(3 * v.cells());
+  v.quadrupole.resize(5 * v.cells());
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const glm::dvec3 p = world_min + cell_m * (glm::dvec3(i, j, k) + 0.5);
+        const std::size_t n = index(v, i, j, k);
+        for (int c = 0; c < 3; ++c) {
+          v.fluence_rgb[3 * n + c] = static_cast<float>(scale * (10.0 + c + 0.5 * p.x - 0.25 * p.y + 0.125 * p.z));
+          v.flux_xyz[3 * n + c] = static_cast<float>(scale * (1.0 - c + 0.25 * p.x + 0.5 * p.z));
+        }
+        for (int e = 0; e < 5; ++e) v.quadrupole[5 * n + e] = static_cast<float>(scale * (e - 2.0 + 0.1 * p.y - 0.2 * p.z));
+      }
+  return v;
+}
+
+// Keyframe k's volume mixed towards keyframe k + 1's, which lies on another grid (shifted and
+// coarser, covering a's cell centres): linear fields come out as (1 - t) a + t b exactly (to float
+// rounding), t = 0 gives a itself, and the grid is a's.
+TEST(LightVolume, MixBlendsTowardsAVolumeOnAnotherGrid) {
+  const LightVolume a = linear_volume(6, 4, 3, glm::dvec3(0.0), glm::dvec3(2.0), 1.0);
+  const LightVolume b = linear_volume(5, 4, 8, glm::dvec3(-1.3, -0.7, -2.1), glm::dvec3(3.1, 3.1, 1.2), 3.0);  // centres span a's
+  const LightVolume same = mix_light_volumes(a, b, 0.0);
+  EXPECT_EQ(same.fluence_rgb, a.fluence_rgb);
+  EXPECT_EQ(same.quadrupole, a.quadrupole);
+  for (double t : {0.25, 1.0}) {
+    const LightVolume m = mix_light_volumes(a, b, t);
+    ASSERT_EQ(m.size[0], 6);
+    EXPECT_EQ(m.world_min, a.world_min);
+    EXPECT_EQ(m.cell_m, a.cell_m);
+    const double f = 1.0 - t + 3.0 * t;  // b is a's linear field times 3
+    for (std::size_t n = 0; n < a.cells(); ++n) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(m.fluence_rgb[3 * n + c], f * a.fluence_rgb[3 * n + c], 2e-4 * f * std::abs(a.fluence_rgb[3 * n + c]) + 1e-4) << n;
+        EXPECT_NEAR(m.flux_xyz[3 * n + c], f * a.flux_xyz[3 * n + c], 1e-4 * f * 10.0) << n;
+      }
+      for (int e = 0; e < 5; ++e) EXPECT_NEAR(m.quadrupole[5 * n + e], f * a.quadrupole[5 * n + e], 1e-4 * f * 10.0) << n;
+    }
+  }
+  // On the same grid the cells are lerped directly: the same numbers.
+  const LightVolume c = linear_volume(6, 4, 3, glm::dvec3(0.0), glm::dvec3(2.0), 3.0);
+  const LightVolume m = mix_light_volumes(a, c, 0.25);
+  for (std::size_t n = 0; n < a.fluence_rgb.size(); ++n) EXPECT_NEAR(m.fluence_rgb[n], 1.5 * a.fluence_rgb[n], 1e-5 * std::abs(a.fluence_rgb[n]));
+  for (std::size_t n = 0; n < a.quadrupole.size(); ++n) EXPECT_NEAR(m.quadrupole[n], 1.5 * a.quadrupole[n], 1e-5);
+  EXPECT_THROW(mix_light_volumes(a, b, 1.5), std::invalid_argument);
+  EXPECT_THROW(mix_light_volumes(a, b, std::nan("")), std::invalid_argument);
+  try {
+    mix_light_volumes(a, LightVolume{}, 0.5);
+    ADD_FAILURE() << "an empty volume b was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("volume b"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -72,6 +72,26 @@ TEST(RenderCli, BadInputIsAUsageError) {
   fs::remove_all(d);
 }
 
+// The image is always EXR and the preview always PNG: a name saying otherwise is refused before
+// anything is rendered or written (it once got EXR bytes under a .png name).
+TEST(RenderCli, OutputNamesMustSayWhatIsWritten) {
+  const fs::path d = temp_dir("names");
+  const struct {
+    std::string args, expect;
+  } cases[] = {{"-o " + (d / "x.png").string(), "must end in .exr"},
+               {"-o " + (d / "x").string(), "must end in .exr"},
+               {"-o " + (d / "x.exr").string() + " --preview " + (d / "p.jpg").string(), "must end in .png"}};
+  for (const auto& c : cases) {
+    const auto r = run_nimbus("render --scene open --method analytic --res 16x9 " + c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_TRUE(fs::is_empty(d)) << c.args;
+  }
+  const auto ok = run_nimbus("render --scene open --method analytic --res 16x9 -o " + (d / "UPPER.EXR").string());
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  fs::remove_all(d);
+}
+
 TEST(RenderCli, UnwritableOutputIsARuntimeError) {
   const auto r = run_nimbus("render --scene open --method analytic --res 16x9 -o /proc/nimbus/no/such/dir/x.exr");
   EXPECT_EQ(r.code, 1) << r.output;

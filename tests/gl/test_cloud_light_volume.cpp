@@ -34,7 +34,7 @@ LightVolume made_volume(bool zero) {
   LightVolume v;
   v.size[0] = v.size[1] = v.size[2] = 8;
   v.world_min = glm::dvec3(-0.6);
-  v.cell_m = 0.15;
+  v.cell_m = glm::dvec3(0.15);
   v.fluence_rgb.assign(v.cells() * 3, 0.0f);
   v.flux_xyz.assign(v.cells() * 3, 0.0f);
   v.quadrupole.assign(v.cells() * 5, 0.0f);
@@ -43,7 +43,7 @@ LightVolume made_volume(bool zero) {
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 8; ++i) {
         const std::size_t q = static_cast<std::size_t>(i + 8 * (j + 8 * k));
-        const double x = -0.6 + (i + 0.5) * v.cell_m;
+        const double x = -0.6 + (i + 0.5) * v.cell_m.x;
         const double phi = 2.0 + 3.0 * (x + 0.6);
         v.fluence_rgb[3 * q] = static_cast<float>(phi);
         v.fluence_rgb[3 * q + 1] = static_cast<float>(0.8 * phi);

@@ -52,6 +52,7 @@ json small_state() {
   return {{"sky", sky},
           {"camera", {{"eye", {-300, 300, 4200}}, {"look_at", {300, 1400, 0}}, {"fov", 60}}},
           {"time", {{"speed", 10.0}}},
+          {"optics", {{"ms_photons", 262144}}},  // a light volume of few photons: quick to build
           {"renderer", {{"slices", 64}, {"light_res", 128}, {"cloud_shadow_res", 128}, {"shafts", "raymarch:8"}}}};
 }
 

@@ -83,7 +83,7 @@ struct CloudRenderer::Impl {
   // The light volume (set_light_volume): fluence, flux and second moment side by side along x.
   GlTexture light_volume_tex;
   glm::dvec3 lv_world_min{0.0};
-  double lv_cell_m = 0.0;
+  glm::dvec3 lv_cell_m{0.0};
   glm::ivec3 lv_cells{0};
 
   const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume);
@@ -239,7 +239,8 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 void CloudRenderer::set_light_volume(const LightVolume& volume) {
   const std::size_t n = volume.cells();
   if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n ||
-      volume.quadrupole.size() != 5 * n || !(volume.cell_m > 0.0))
+      volume.quadrupole.size() != 5 * n ||
+      !(volume.cell_m.x > 0.0 && volume.cell_m.y > 0.0 && volume.cell_m.z > 0.0))
     throw std::invalid_argument("cloud renderer light volume: its sizes, cell and values do not agree");
   for (float x : volume.fluence_rgb)
     if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
@@ -278,6 +279,12 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
 }
 
 bool CloudRenderer::has_light_volume() const { return impl_->light_volume_tex.id() != 0; }
+
+void CloudRenderer::move_light_volume(const glm::dvec3& world_min) {
+  if (!has_light_volume()) throw std::logic_error("cloud renderer: no light volume to move");
+  if (!(std::isfinite(world_min.x) && std::isfinite(world_min.y) && std::isfinite(world_min.z))) throw std::invalid_argument("cloud renderer light volume: its corner is not finite");
+  impl_->lv_world_min = world_min;
+}
 
 CloudRenderer::~CloudRenderer() = default;
 
@@ -369,7 +376,7 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
   eye.set("u_world_to_light", to_float(lf.world_to_uv));
   if (light_volume) {
     eye.set("u_lv_world_min", to_float(s.lv_world_min));
-    eye.set("u_lv_cell_m", static_cast<float>(s.lv_cell_m));
+    eye.set("u_lv_cell_m", to_float(s.lv_cell_m));
     eye.set("u_lv_cells", glm::vec3(s.lv_cells));
   }
   eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace nimbus::render {
 
 LightVolumeSample sample_light_volume(const LightVolume& v, const glm::dvec3& world_m) {
   LightVolumeSample out;
-  if (v.cells() == 0 || !(v.cell_m > 0.0)) return out;
+  if (v.cells() == 0 || !(v.cell_m.x > 0.0 && v.cell_m.y > 0.0 && v.cell_m.z > 0.0)) return out;
   // Cell centres at (i + 0.5) cell_m from the corner.
   const glm::dvec3 u = (world_m - v.world_min) / v.cell_m - 0.5;
   int i0[3], i1[3];
@@ -38,6 +40,46 @@ LightVolumeSample sample_light_volume(const LightVolume& v, const glm::dvec3& wo
   Q[0][1] = Q[1][0] = q[2];
   Q[0][2] = Q[2][0] = q[3];
   Q[1][2] = Q[2][1] = q[4];
+  return out;
+}
+
+LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double t) {
+  if (!(t >= 0.0 && t <= 1.0)) throw std::invalid_argument("light volume mix: t must be in [0, 1], got " + std::to_string(t));
+  for (const LightVolume* v : {&a, &b}) {
+    const std::size_t n = v->cells();
+    if (n == 0 || !(v->cell_m.x > 0.0 && v->cell_m.y > 0.0 && v->cell_m.z > 0.0) || v->fluence_rgb.size() != 3 * n || v->flux_xyz.size() != 3 * n ||
+        v->quadrupole.size() != 5 * n)
+      throw std::invalid_argument(std::string("light volume mix: volume ") + (v == &a ? "a" : "b") +
+                                  " is empty or its arrays do not match its size");
+  }
+  LightVolume out = a;
+  if (t == 0.0) return out;
+  const double s = 1.0 - t;
+  if (a.size[0] == b.size[0] && a.size[1] == b.size[1] && a.size[2] == b.size[2] && a.world_min == b.world_min &&
+      a.cell_m == b.cell_m) {
+    // The same grid: b's cell centres are a's, where the interpolation returns b's cells.
+    auto lerp = [&](std::vector<float>& o, const std::vector<float>& x, const std::vector<float>& y) {
+      for (std::size_t i = 0; i < o.size(); ++i) o[i] = static_cast<float>(s * x[i] + t * y[i]);
+    };
+    lerp(out.fluence_rgb, a.fluence_rgb, b.fluence_rgb);
+    lerp(out.flux_xyz, a.flux_xyz, b.flux_xyz);
+    lerp(out.quadrupole, a.quadrupole, b.quadrupole);
+    out.build_seconds = a.build_seconds + b.build_seconds;
+    return out;
+  }
+  for (int k = 0; k < a.size[2]; ++k)
+    for (int j = 0; j < a.size[1]; ++j)
+      for (int i = 0; i < a.size[0]; ++i) {
+        const std::size_t n = static_cast<std::size_t>(i) + static_cast<std::size_t>(a.size[0]) * (j + static_cast<std::size_t>(a.size[1]) * k);
+        const LightVolumeSample x = sample_light_volume(b, a.world_min + a.cell_m * (glm::dvec3(i, j, k) + 0.5));
+        for (int c = 0; c < 3; ++c) {
+          out.fluence_rgb[3 * n + c] = static_cast<float>(s * a.fluence_rgb[3 * n + c] + t * x.fluence[c]);
+          out.flux_xyz[3 * n + c] = static_cast<float>(s * a.flux_xyz[3 * n + c] + t * x.flux[c]);
+        }
+        const double q[5] = {x.quadrupole[0][0], x.quadrupole[1][1], x.quadrupole[0][1], x.quadrupole[0][2], x.quadrupole[1][2]};
+        for (int e = 0; e < 5; ++e) out.quadrupole[5 * n + e] = static_cast<float>(s * a.quadrupole[5 * n + e] + t * q[e]);
+      }
+  out.build_seconds = a.build_seconds + b.build_seconds;
   return out;
 }
 

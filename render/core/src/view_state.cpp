@@ -63,6 +63,13 @@ void validate(const ViewState& s) {
     bad(std::string("view state optics: ") + e.what());
   }
   if (s.multiple_octaves < 0 || s.multiple_octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
+  try {
+    parse_multiple_scattering_method(s.multiple_method);
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("view state optics.ms_method: ") + e.what());
+  }
+  if (s.ms_grid < 4 || s.ms_grid > 192) bad("view state optics.ms_grid: must be in [4, 192] cells");
+  if (s.ms_photons < 1024 || s.ms_photons > (std::int64_t{1} << 26)) bad("view state optics.ms_photons: must be in [1024, 67108864]");
   if (s.slices < 8 || s.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
   if (s.light_res < 32 || s.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
   if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192) bad("view state renderer.cloud_shadow_res: must be in [16, 8192]");
@@ -113,7 +120,14 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
             bad(okey + ": " + e.what());
           }
         } else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
-        else bad(okey + ": unknown key (known: extinction, albedo, phase, multiple)");
+        else if (ok == "ms_method") {
+          if (!ov.is_string()) bad(okey + " must be light-volume or octaves");
+          s.multiple_method = ov.get<std::string>();
+        } else if (ok == "ms_grid") s.ms_grid = integer(ov, okey);
+        else if (ok == "ms_photons") {
+          if (!ov.is_number_integer()) bad(okey + " must be an integer");
+          s.ms_photons = ov.get<std::int64_t>();
+        } else bad(okey + ": unknown key (known: extinction, albedo, phase, multiple, ms_method, ms_grid, ms_photons)");
       });
     } else if (k == "renderer") {
       members(v, key, [&](const std::string& rk, const json& rv, const std::string& rkey) {
@@ -151,7 +165,10 @@ json view_state_to_json(const ViewState& s) {
            {{"extinction", s.extinction_per_m},
             {"albedo", to_json(s.albedo)},
             {"phase", to_string(s.phase)},
-            {"multiple", s.multiple_octaves}}},
+            {"multiple", s.multiple_octaves},
+            {"ms_method", s.multiple_method},
+            {"ms_grid", s.ms_grid},
+            {"ms_photons", s.ms_photons}}},
           {"renderer",
            {{"slices", s.slices},
             {"light_res", s.light_res},

@@ -123,17 +123,35 @@ void FrameRenderer::set_settings(const FrameSettings& settings) {
   if (!same_shafts) shaft_renderer_.reset();
 }
 
+void FrameRenderer::set_light_volume(const LightVolume& volume) {
+  if (!cloud_renderer_) throw std::logic_error("frame renderer: a light volume needs the Slices method and its clouds set first");
+  cloud_renderer_->set_light_volume(volume);
+  light_volume_given_ = true;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s (given)",
+                volume.size[0], volume.size[1], volume.size[2], volume.cell_m.x, volume.cell_m.y, volume.cell_m.z, static_cast<long long>(volume.photons),
+                static_cast<unsigned long long>(volume.seed), volume.build_seconds);
+  light_volume_description_ = buf;
+}
+
+void FrameRenderer::move_light_volume(const glm::dvec3& world_min) {
+  if (!cloud_renderer_) throw std::logic_error("frame renderer: no light volume to move (no clouds set)");
+  cloud_renderer_->move_light_volume(world_min);
+}
+
+bool FrameRenderer::has_light_volume() const { return cloud_renderer_ && cloud_renderer_->has_light_volume(); }
+
 double FrameRenderer::update_light_volume() {
   const MultipleScattering& ms = settings_.slices.multiple;
-  if (ms.method != MultipleScatteringMethod::LightVolume) return 0.0;
+  if (ms.method != MultipleScatteringMethod::LightVolume || light_volume_given_) return 0.0;
   if (!light_volume_stale_ && cloud_renderer_->has_light_volume() && ms.light_volume == light_volume_built_) return 0.0;
   const LightVolume v = build_light_volume(cloud_renderer_->clouds(), light_, ms.light_volume);
   cloud_renderer_->set_light_volume(v);
   light_volume_stale_ = false;
   light_volume_built_ = ms.light_volume;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s", v.size[0],
-                v.size[1], v.size[2], v.cell_m, static_cast<long long>(v.photons), static_cast<unsigned long long>(v.seed),
+  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s", v.size[0],
+                v.size[1], v.size[2], v.cell_m.x, v.cell_m.y, v.cell_m.z, static_cast<long long>(v.photons), static_cast<unsigned long long>(v.seed),
                 v.build_seconds);
   light_volume_description_ = buf;
   return 1000.0 * v.build_seconds;
@@ -153,8 +171,8 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
     st.device = "CPU (double precision, path traced)";
   } else {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
-    const bool had = cloud_renderer_->has_light_volume() && !light_volume_stale_ &&
-                     settings_.slices.multiple.light_volume == light_volume_built_;
+    const bool had = cloud_renderer_->has_light_volume() &&
+                     (light_volume_given_ || (!light_volume_stale_ && settings_.slices.multiple.light_volume == light_volume_built_));
     st.light_volume_build_ms = update_light_volume();
     st.light_volume_rebuilt = settings_.slices.multiple.method == MultipleScatteringMethod::LightVolume && !had;
     char buf[256];

@@ -23,6 +23,9 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   fs.slices.frame = 0;
   fs.slices.ambient = true;
   fs.slices.multiple.octaves = s.multiple_octaves;
+  fs.slices.multiple.method = parse_multiple_scattering_method(s.multiple_method);
+  fs.slices.multiple.light_volume.resolution = s.ms_grid;
+  fs.slices.multiple.light_volume.photons = s.ms_photons;
   fs.shafts = parse_shaft_method(s.shafts);
   fs.cloud_shadow_res = s.cloud_shadow_res;
   return fs;
@@ -107,6 +110,8 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
     frame_ = std::make_unique<FrameRenderer>(state_scene(s.scene, d), light_of(d), frame_settings(s, q));
     pair_.reset();
     drawn_.reset();
+    shown_a_.reset();
+    shown_b_.reset();
   } else if (a.sky.sun_elevation_deg != s.sky.sun_elevation_deg || a.sky.sun_azimuth_deg != s.sky.sun_azimuth_deg) {
     const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
     frame_->set_light(light_of(d));
@@ -115,6 +120,54 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
   frame_->set_optics(optics(s));
   frame_->set_settings(frame_settings(s, q));
   applied_ = s;
+}
+
+bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blend, bool wait) {
+  if (!volumes_ || volumes_->keyframes() != keyframes_) volumes_ = std::make_unique<KeyframeLightVolumes>(keyframes_);
+  // The volumes follow the newest sky; while an edited sky's keyframes are made, the old
+  // clouds keep the volume last shown.
+  shown_current_ = false;
+  if (drawn_ != keyframes_) return shown_a_ != nullptr;
+  if (const std::string e = volumes_->error(); !e.empty()) throw std::runtime_error(e);
+  const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
+  KeyframeLight light;
+  light.direction_to_sun = glm::normalize(d.sun.direction_to_sun);
+  light.extinction_per_m = s.extinction_per_m;
+  light.albedo = s.albedo;
+  light.phase = s.phase;
+  light.settings.resolution = s.ms_grid;
+  light.settings.photons = s.ms_photons;
+  volumes_->request(light, k, s.speed >= 0.0 ? 1 : -1);
+  std::shared_ptr<const LightVolume> a, b;
+  if (wait) {
+    keyframes_->wait(k + 2);  // keyframe k + 1's volume is that of the pair (k + 1, k + 2)
+    a = volumes_->wait(light, k);
+    b = volumes_->wait(light, k + 1);
+  } else {
+    a = volumes_->get(light, k);
+    b = volumes_->get(light, k + 1);
+  }
+  if (!a) return shown_a_ != nullptr;  // the last one shown, if any, until this one is made
+  const bool both = b != nullptr;
+  if (!both) {
+    b = a;  // the pair's first end alone until its second is made
+    blend = 0.0;
+  }
+  // A new mix when the volumes change, or the blend by more than a 64th (exactly, when waiting:
+  // the frame must be the state's).
+  const double step = wait ? 0.0 : 1.0 / 64.0;
+  if (a != shown_a_ || b != shown_b_ || std::abs(blend - shown_blend_) > step) {
+    // Keyframe k + 1's volume read on k's grid once per pair; each new blend is then a lerp.
+    if (a != shown_a_ || b != shown_b_) b_on_a_ = std::make_shared<const LightVolume>(mix_light_volumes(*a, *b, 1.0));
+    const LightVolume mixed = mix_light_volumes(*a, *b_on_a_, blend);
+    frame_->set_light_volume(mixed);
+    shown_a_ = a;
+    shown_b_ = b;
+    shown_blend_ = blend;
+    shown_min_ = mixed.world_min;
+  }
+  shown_current_ = both;
+  return true;
 }
 
 Image SkyRenderer::render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
@@ -152,7 +205,20 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
     k = *pair_;
   }
   drawn_blend_ = blend;
-  frame_->set_motion(drawn_->motion(state.sky_time_s, state.sky.wind_m_s, blend));
+  const std::vector<CloudMotion> motion = drawn_->motion(state.sky_time_s, state.sky.wind_m_s, blend);
+  frame_->set_motion(motion);
+  if (state.multiple_method == "light-volume") {
+    const auto start = std::chrono::steady_clock::now();
+    if (update_light_volume(state, k, blend, wait)) {
+      frame_->move_light_volume(shown_min_ + (motion.empty() ? glm::dvec3(0.0) : motion.front().offset_m));
+      fi.multiple = shown_current_ ? "light volume" : "light volume (stale)";
+    } else {
+      FrameSettings fs = frame_->settings();  // the octaves stand in until the first volume is made
+      fs.slices.multiple.method = MultipleScatteringMethod::Octaves;
+      frame_->set_settings(fs);
+    }
+    fi.light_volume_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
   const double scale = std::clamp(state.render_scale * quality.render_scale, 0.01, 1.0);
   const int w = std::max(1, static_cast<int>(std::lround(width * scale)));
   const int h = std::max(1, static_cast<int>(std::lround(height * scale)));

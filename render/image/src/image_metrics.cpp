@@ -90,4 +90,34 @@ ImageError compare_images(const Image& test, const Image& reference, const Error
   return e;
 }
 
+double noise_corrected_rel_rmse(const Image& test, const Image& reference, const std::vector<float>& reference_std_error,
+                                const ErrorMask& mask) {
+  const std::size_t n = reference.rgba.size() / 4;
+  if (reference_std_error.size() != 3 * n) {
+    throw std::invalid_argument("reference standard error: expected 3 values per pixel (" + std::to_string(3 * n) +
+                                "), got " + std::to_string(reference_std_error.size()));
+  }
+  compare_images(test, reference, mask);  // the same checks, sizes and values
+  const std::vector<std::uint8_t> lit = lit_pixels(reference, mask);
+  double sum_sq_err = 0.0, sum_sq_ref = 0.0, sum_var = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double s = reference_std_error[3 * p + c];
+      if (!(s >= 0.0 && std::isfinite(s))) {
+        throw std::invalid_argument("reference standard error: pixel (" + std::to_string(p % reference.width) + ", " +
+                                    std::to_string(p / reference.width) + ") channel " + "RGB"[c] +
+                                    " is negative or not finite");
+      }
+      if (!lit[p]) continue;
+      const double d = double(test.rgba[4 * p + c]) - reference.rgba[4 * p + c];
+      sum_sq_err += d * d;
+      sum_sq_ref += double(reference.rgba[4 * p + c]) * reference.rgba[4 * p + c];
+      sum_var += s * s;
+    }
+  }
+  // The reference's signal must dominate its noise for the ratio to mean anything.
+  const double signal = std::max(sum_sq_ref - sum_var, 1e-3 * sum_sq_ref);
+  return std::sqrt(std::max(0.0, sum_sq_err - sum_var) / signal);
+}
+
 }  // namespace nimbus::render

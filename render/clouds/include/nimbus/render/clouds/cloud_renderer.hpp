@@ -65,6 +65,10 @@ class CloudRenderer {
   // when its sizes and values do not agree or a value is not finite.
   void set_light_volume(const LightVolume& volume);
   bool has_light_volume() const;
+  // Moves the uploaded light volume's corner (world metres), with no upload: the clouds' wind
+  // drift carries their scattered light along. Throws std::logic_error before set_light_volume and
+  // std::invalid_argument for a non-finite corner.
+  void move_light_volume(const glm::dvec3& world_min);
 
   // The clouds as they are drawn (moved).
   const std::vector<CloudVolume>& clouds() const;

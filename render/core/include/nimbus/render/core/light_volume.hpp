@@ -23,7 +23,7 @@ namespace nimbus::render {
 struct LightVolume {
   int size[3] = {0, 0, 0};        // cells per axis
   glm::dvec3 world_min{0.0};      // the grid's corner, metres
-  double cell_m = 0.0;            // cube cells, metres per side
+  glm::dvec3 cell_m{0.0};         // a cell's sides, metres per axis (the builder makes cubes)
   // Per cell, x fastest: fluence of once-or-more scattered light per unit irradiance, RGB
   // (dimensionless: W m^-2 per W m^-2), and the net flux per unit irradiance (xyz, world axes,
   // the channels' mean).
@@ -49,6 +49,12 @@ struct LightVolumeSample {
 // The cells' trilinear interpolation at a world point, cell values at cell centres, clamped to
 // the edge cells outside (as the GL texture with GL_CLAMP_TO_EDGE samples it).
 LightVolumeSample sample_light_volume(const LightVolume& volume, const glm::dvec3& world_m);
+
+// (1 - t) a + t b on a's grid, b read at a's cell centres by sample_light_volume (so b may lie
+// on another grid: the volumes of two keyframes of an evolving sky, each built over its own box).
+// t in [0, 1]; both volumes non-empty, else std::invalid_argument naming which. The animated sky
+// draws keyframe k's volume blended towards k + 1's as its density blends (sky_renderer.hpp).
+LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double t);
 
 // Legendre coefficients of the dual-lobe phase (p_0 = 1): p_l = w g_forward^l + (1 - w) g_back^l.
 double phase_legendre(const DualLobePhase& phase, int l);

@@ -4,6 +4,7 @@
 // `nimbus render --view-state FILE` renders it offline through the same pipeline. JSON; every
 // key is documented in docs/viewer.md.
 #pragma once
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -33,7 +34,13 @@ struct ViewState {
   double extinction_per_m = 0.04;
   glm::dvec3 albedo{0.99};
   DualLobePhase phase{0.7, -0.25, 0.8};
+  // Multiple scattering: "light-volume" (the photon-traced light volume, built per keyframe in
+  // the background: keyframe_light_volumes.hpp) or "octaves" (multiple_octaves of them, 0: single
+  // scattering; also drawn while the first light volume is being built).
+  std::string multiple_method = "light-volume";
   int multiple_octaves = 2;   // [0, 3]
+  int ms_grid = 48;                  // light volume cells along the clouds' longest axis, [4, 192]
+  std::int64_t ms_photons = 1 << 21;  // light volume photons, [1024, 1 << 26]
   // Renderer at full quality (the viewer's adaptive quality lowers slices and scale in motion).
   int slices = 128;           // [8, 1024]
   int light_res = 256;        // [32, 4096]

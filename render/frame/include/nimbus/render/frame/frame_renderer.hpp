@@ -84,6 +84,15 @@ class FrameRenderer {
   // format cannot change (std::invalid_argument); new shaft settings rebuild the scene's renderer.
   void set_settings(const FrameSettings& settings);
 
+  // A light volume made elsewhere (the animated sky builds one per keyframe in the background,
+  // sky_renderer.hpp): from now on the Slices method draws it, as given, and builds none of its
+  // own; move_light_volume shifts its corner with no upload (the wind's drift). Throws
+  // std::logic_error for a method other than Slices or before set_clouds, and std::invalid_argument
+  // for a bad volume (CloudRenderer::set_light_volume).
+  void set_light_volume(const LightVolume& volume);
+  void move_light_volume(const glm::dvec3& world_min);
+  bool has_light_volume() const;
+
   // Moves the sun (the scene's too): its shadow maps (and a light volume, if the direction
   // changed) are rebuilt at the next frame.
   void set_light(const CloudLight& light);
@@ -112,6 +121,7 @@ class FrameRenderer {
   // The light volume is rebuilt when the clouds, their motion or optics, the light's direction or
   // the light-volume settings change, and only then.
   bool light_volume_stale_ = true;
+  bool light_volume_given_ = false;  // set_light_volume: never build one here
   LightVolumeSettings light_volume_built_;
   std::string light_volume_description_;
   double update_light_volume();  // ms spent building, 0 if reused

@@ -1,7 +1,10 @@
 // The animated sky through the frame pipeline: a view state (render/core/view_state.hpp) in, a
 // frame out. It keeps the sky's keyframes (made on a background thread), uploads a keyframe pair
 // when the evolution clock crosses into it, and otherwise only moves the clouds (wind drift,
-// keyframe blend) and the sun. `nimbus view`, its scripted runs, `nimbus render --view-state` and
+// keyframe blend) and the sun. The light volume (the default multiple scattering) is built per
+// keyframe in the background (keyframe_light_volumes.hpp), mixed as the density blends
+// (mix_light_volumes) and shifted with the wind; while a new sun's or pair's volumes are made,
+// the last one stays on screen, and before the first, the octaves stand in. `nimbus view`, its scripted runs, `nimbus render --view-state` and
 // `nimbus bench view` all draw through it, so a screenshot and an offline render of the same
 // state are the same frame.
 #pragma once
@@ -14,6 +17,7 @@
 #include "nimbus/render/core/sky_keyframes.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
+#include "nimbus/render/frame/keyframe_light_volumes.hpp"
 
 namespace nimbus::render {
 
@@ -32,6 +36,11 @@ struct SkyFrameInfo {
   int width = 0, height = 0;      // pixels rendered
   int slices = 0;
   double upload_ms = 0.0;         // CPU time making and uploading the pair
+  // Multiple scattering drawn: "light volume" (this frame's pair and sun), "light volume (stale)"
+  // (an earlier one's, while this one's is built), or "octaves" (asked for, or standing in before
+  // the first light volume is made).
+  std::string multiple = "octaves";
+  double light_volume_ms = 0.0;   // CPU time mixing and uploading a light volume this frame
 };
 
 // The camera a state describes, at a size (near and far planes fitted to the clouds).
@@ -58,11 +67,15 @@ class SkyRenderer {
   // The clouds as last drawn (moved); empty before the first frame.
   const std::vector<CloudVolume>& clouds() const;
   SkyKeyframes& keyframes() { return *keyframes_; }
+  // The light volumes' builder (null before the light-volume method was first asked for).
+  const KeyframeLightVolumes* light_volumes() const { return volumes_.get(); }
   std::shared_ptr<SkyKeyframes> shared_keyframes() const { return keyframes_; }
 
  private:
   void apply(const ViewState& state, const FrameQuality& quality);
   CloudOptics optics(const ViewState& state) const;
+  // Chooses, mixes and uploads this frame's light volume; false when there is none to draw yet.
+  bool update_light_volume(const ViewState& state, int64_t k, double blend, bool wait);
 
   std::shared_ptr<SkyKeyframes> keyframes_;  // the state's sky
   std::shared_ptr<SkyKeyframes> drawn_;      // whose pair is uploaded: an edited sky's old clouds
@@ -71,6 +84,14 @@ class SkyRenderer {
   std::optional<ViewState> applied_;  // what the renderer was last set up for
   std::optional<int64_t> pair_;       // the keyframe pair uploaded (of drawn_)
   double drawn_blend_ = 0.0;
+  // The light volume: built per keyframe of keyframes_; the one uploaded is keyframe shown_k_'s
+  // mixed towards shown_k_ + 1's by shown_blend_, under shown_light_, its corner (no wind) shown_min_.
+  std::unique_ptr<KeyframeLightVolumes> volumes_;
+  std::shared_ptr<const LightVolume> shown_a_, shown_b_;
+  std::shared_ptr<const LightVolume> b_on_a_;  // shown_b_ read on shown_a_'s grid
+  double shown_blend_ = -1.0;
+  glm::dvec3 shown_min_{0.0};
+  bool shown_current_ = false;
 };
 
 }  // namespace nimbus::render

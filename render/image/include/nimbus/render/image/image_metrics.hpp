@@ -46,4 +46,15 @@ std::vector<std::uint8_t> lit_pixels(const Image& reference, const ErrorMask& ma
 // it), or the reference has no lit pixel.
 ImageError compare_images(const Image& test, const Image& reference, const ErrorMask& mask = {});
 
+// compare_images' rel_rmse with a noisy reference's own variance taken out. A Monte Carlo
+// reference r = mu + e, with E[e] = 0 and Var e = s^2 (s: its standard error per pixel and
+// channel, e.g. PathTracedImage::std_error), has E[(t - r)^2] = (t - mu)^2 + s^2 and
+// E[r^2] = mu^2 + s^2, so over the lit pixels' R, G, B
+//   sqrt(max(0, sum (t - r)^2 - sum s^2) / (sum r^2 - sum s^2))
+// estimates the error against the converged reference mu: the part of the RMSE that more
+// samples in the reference would not remove. Same throws as compare_images, and
+// std::invalid_argument when `reference_std_error` is not 3 per pixel, negative or not finite.
+double noise_corrected_rel_rmse(const Image& test, const Image& reference, const std::vector<float>& reference_std_error,
+                                const ErrorMask& mask = {});
+
 }  // namespace nimbus::render

@@ -1,0 +1,84 @@
+// The light volumes (light_volume.hpp) of an animated sky's keyframes, built on a background
+// thread so that a render loop never waits on the photon tracer (seconds per volume). Keyframe
+// j's volume is that of SkyKeyframes::pair(j) at blend 0: its own density, on the box of j and
+// j + 1, at its sky position without the wind (the wind moves the clouds and their light as one:
+// the sky renderer shifts the volume). Every volume is for one light (KeyframeLight); asking under
+// a new one drops the old one's volumes, and a build under an old light is discarded when done.
+#pragma once
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/light_volume.hpp"
+#include "nimbus/render/core/sky_keyframes.hpp"
+
+namespace nimbus::render {
+
+// What a keyframe's volume depends on besides its density.
+struct KeyframeLight {
+  glm::dvec3 direction_to_sun{0.0, 1.0, 0.0};  // unit
+  double extinction_per_m = 0.04;
+  glm::dvec3 albedo{0.99};
+  DualLobePhase phase;
+  LightVolumeSettings settings;
+  bool operator==(const KeyframeLight& o) const {
+    return direction_to_sun == o.direction_to_sun && extinction_per_m == o.extinction_per_m && albedo == o.albedo &&
+           phase.g_forward == o.phase.g_forward && phase.g_back == o.phase.g_back &&
+           phase.forward_weight == o.phase.forward_weight && settings == o.settings;
+  }
+};
+
+class KeyframeLightVolumes {
+ public:
+  explicit KeyframeLightVolumes(std::shared_ptr<SkyKeyframes> keyframes);
+  ~KeyframeLightVolumes();  // stops the worker after the volume it is building
+  KeyframeLightVolumes(const KeyframeLightVolumes&) = delete;
+  KeyframeLightVolumes& operator=(const KeyframeLightVolumes&) = delete;
+
+  const std::shared_ptr<SkyKeyframes>& keyframes() const { return keyframes_; }
+
+  // Wants the volumes of keyframes k and k + 1, then k + 2 (k - 1 when `direction` < 0), under
+  // `light`; a volume is built once its keyframe pair is made, so a render loop asks every
+  // frame. Never blocks.
+  void request(const KeyframeLight& light, int64_t k, int direction = 1);
+  // Keyframe j's volume under `light`, or null while it is not made.
+  std::shared_ptr<const LightVolume> get(const KeyframeLight& light, int64_t j) const;
+  // Blocks until it is made. Keyframes j and j + 1 must be made (std::logic_error otherwise);
+  // rethrows the worker's error (std::runtime_error).
+  std::shared_ptr<const LightVolume> wait(const KeyframeLight& light, int64_t j);
+  std::string error() const;
+
+  struct Stats {
+    int64_t volumes_made = 0;
+    double seconds_total = 0;  // building, all volumes
+    double seconds_last = 0;
+    bool busy = false;
+  };
+  Stats stats() const;
+
+ private:
+  void run();
+  bool buildable(int64_t j) const;  // its keyframe pair is made
+
+  std::shared_ptr<SkyKeyframes> keyframes_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, made_;
+  KeyframeLight light_;
+  bool has_light_ = false;
+  std::map<int64_t, std::shared_ptr<const LightVolume>> volumes_;  // under light_
+  std::vector<int64_t> wanted_;
+  std::string error_;
+  Stats stats_;
+  bool stop_ = false;
+  std::thread worker_;
+};
+
+}  // namespace nimbus::render

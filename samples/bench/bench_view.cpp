@@ -166,10 +166,14 @@ int run_bench_view(const BenchViewArgs& a) {
       Path path;
       bool adaptive;
       const char* name;
+      bool octaves = false;  // the octaves instead of the light volume: what the volume costs
     };
-    for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, true, "orbit"},
-                           Row{Path::TimeLapse, true, "time-lapse"}}) {
-      viewer::Viewer v(start, options);
+    for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
+                           Row{Path::Orbit, true, "orbit"}, Row{Path::TimeLapse, true, "time-lapse"}}) {
+      if (row.octaves && start.multiple_method == "octaves") continue;
+      render::ViewState state = start;
+      if (row.octaves) state.multiple_method = "octaves";
+      viewer::Viewer v(state, options);
       v.adaptive().budget_ms = a.budget_ms;
       v.draw(w, h, 0.0);  // the first pair and every program, before timing
       const PathResult r = run_path(v, row.path, w, h, a.frames, row.adaptive, a.error_every);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/view_state.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -72,4 +73,21 @@ TEST(Daylight, SkyIrradianceOnSurfaces) {
 }
 
 }  // namespace
+// The viewer asks for the daylight every frame: the same sun must give the same tables, not a
+// rebuild (a sky view and aerial perspective per frame once cost ~200 ms: the tables keep the
+// direction normalised again, an ulp off the caller's; and validating a view state built the sky
+// scene, whose own sun evicted the viewer's).
+TEST(Daylight, TheSameSunReusesItsTables) {
+  const Daylight a = daylight(35.0, 135.0);
+  const Daylight b = daylight(35.0, 135.0);
+  EXPECT_EQ(a.tables.get(), b.tables.get());
+  const glm::dvec3 odd = glm::normalize(glm::dvec3(0.3, 0.7, -0.2)) * 3.0;  // not unit: normalised on use
+  EXPECT_EQ(daylight(odd).tables.get(), daylight(odd).tables.get());
+  ViewState s = default_view_state();
+  s.scene = "sky";
+  const Daylight before = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
+  validate(s);
+  EXPECT_EQ(daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg).tables.get(), before.tables.get());
+}
+
 }  // namespace nimbus::render

@@ -31,6 +31,9 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   s.paused = true;
   s.phase = DualLobePhase{0.6, -0.3, 0.7};
   s.multiple_octaves = 3;
+  s.multiple_method = "octaves";
+  s.ms_grid = 64;
+  s.ms_photons = 123456;
   s.shafts = "analytic";
   s.render_scale = 0.5;
   s.exposure_stops = -1.5;
@@ -42,6 +45,15 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   EXPECT_EQ(t.paused, true);
   EXPECT_EQ(t.jitter, false);
   EXPECT_EQ(t.phase.g_back, -0.3);
+  EXPECT_EQ(t.multiple_method, "octaves");
+  EXPECT_EQ(t.ms_grid, 64);
+  EXPECT_EQ(t.ms_photons, 123456);
+  // A state saved before the light volume reached the viewer gets its defaults.
+  json old = j;
+  for (const char* k : {"ms_method", "ms_grid", "ms_photons"}) old["optics"].erase(k);
+  const ViewState u = view_state_from_json(old, "old state");
+  EXPECT_EQ(u.multiple_method, "light-volume");
+  EXPECT_EQ(u.ms_photons, ViewState{}.ms_photons);
 }
 
 TEST(ViewState, FileRoundTripAndErrors) {
@@ -74,6 +86,18 @@ TEST(ViewState, BadContentsNameTheKey) {
   j = good;
   j["optics"]["phase"] = "dual:2,0,1";
   EXPECT_NE(error_of(j).find("optics.phase"), std::string::npos) << error_of(j);
+  j = good;
+  j["optics"]["ms_method"] = "diffusion";
+  EXPECT_NE(error_of(j).find("optics.ms_method"), std::string::npos) << error_of(j);
+  j = good;
+  j["optics"]["ms_grid"] = 2;
+  EXPECT_NE(error_of(j).find("optics.ms_grid"), std::string::npos) << error_of(j);
+  j = good;
+  j["optics"]["ms_photons"] = 1.5e6;
+  EXPECT_NE(error_of(j).find("optics.ms_photons"), std::string::npos) << error_of(j);
+  j = good;
+  j["optics"]["ms_photons"] = std::int64_t{1} << 40;
+  EXPECT_NE(error_of(j).find("optics.ms_photons"), std::string::npos) << error_of(j);
   j = good;
   j["time"]["speed"] = -1;
   EXPECT_NE(error_of(j).find("time.speed"), std::string::npos);

@@ -17,7 +17,10 @@ std::shared_ptr<const AtmosphereTables> tables_for(const glm::dvec3& direction_t
   static std::mutex mutex;
   static std::shared_ptr<const AtmosphereTables> last;
   std::lock_guard<std::mutex> lock(mutex);
-  if (last && last->view.direction_to_sun == direction_to_sun && last->view.altitude_m == viewer_altitude_m) return last;
+  // The tables keep the direction normalised again, which may move it by an ulp: compare with
+  // that (an exact compare with the caller's missed every time, a rebuild per viewer frame).
+  if (last && last->view.direction_to_sun == glm::normalize(direction_to_sun) && last->view.altitude_m == viewer_altitude_m)
+    return last;
   AtmosphereView view;
   view.altitude_m = viewer_altitude_m;
   view.direction_to_sun = direction_to_sun;

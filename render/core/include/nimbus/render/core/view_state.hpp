@@ -40,7 +40,9 @@ struct ViewState {
   std::string multiple_method = "light-volume";
   int multiple_octaves = 2;   // [0, 3]
   int ms_grid = 48;                  // light volume cells along the clouds' longest axis, [4, 192]
-  std::int64_t ms_photons = 1 << 21;  // light volume photons, [1024, 1 << 26]
+  // Light volume photons, [1024, 1 << 26]: 2^19, a quarter of `nimbus render`'s, so a keyframe's
+  // volume is made in about half a second on 2 cores (docs/viewer.md; 0.4-0.5 points more error).
+  std::int64_t ms_photons = 1 << 19;
   // Renderer at full quality (the viewer's adaptive quality lowers slices and scale in motion).
   int slices = 128;           // [8, 1024]
   int light_res = 256;        // [32, 4096]

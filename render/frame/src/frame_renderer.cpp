@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "nimbus/render/clouds/cloud_shadow.hpp"
@@ -123,15 +124,24 @@ void FrameRenderer::set_settings(const FrameSettings& settings) {
   if (!same_shafts) shaft_renderer_.reset();
 }
 
+namespace {
+
+// The image metadata's "light_volume": its grid, photons, seed and build time.
+std::string describe_light_volume(const LightVolume& v) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s",
+                v.size[0], v.size[1], v.size[2], v.cell_m.x, v.cell_m.y, v.cell_m.z, static_cast<long long>(v.photons),
+                static_cast<unsigned long long>(v.seed), v.build_seconds);
+  return buf;
+}
+
+}  // namespace
+
 void FrameRenderer::set_light_volume(const LightVolume& volume) {
   if (!cloud_renderer_) throw std::logic_error("frame renderer: a light volume needs the Slices method and its clouds set first");
   cloud_renderer_->set_light_volume(volume);
   light_volume_given_ = true;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s (given)",
-                volume.size[0], volume.size[1], volume.size[2], volume.cell_m.x, volume.cell_m.y, volume.cell_m.z, static_cast<long long>(volume.photons),
-                static_cast<unsigned long long>(volume.seed), volume.build_seconds);
-  light_volume_description_ = buf;
+  light_volume_description_ = describe_light_volume(volume) + " (given)";
 }
 
 void FrameRenderer::move_light_volume(const glm::dvec3& world_min) {
@@ -149,11 +159,7 @@ double FrameRenderer::update_light_volume() {
   cloud_renderer_->set_light_volume(v);
   light_volume_stale_ = false;
   light_volume_built_ = ms.light_volume;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, built on the CPU in %.3f s", v.size[0],
-                v.size[1], v.size[2], v.cell_m.x, v.cell_m.y, v.cell_m.z, static_cast<long long>(v.photons), static_cast<unsigned long long>(v.seed),
-                v.build_seconds);
-  light_volume_description_ = buf;
+  light_volume_description_ = describe_light_volume(v);
   return 1000.0 * v.build_seconds;
 }
 

@@ -28,16 +28,20 @@ KeyframeLightVolumes::~KeyframeLightVolumes() {
   worker_.join();
 }
 
+bool KeyframeLightVolumes::use(const KeyframeLight& light) {
+  if (has_light_ && light_ == light) return false;
+  light_ = light;
+  has_light_ = true;
+  volumes_.clear();
+  return true;
+}
+
 bool KeyframeLightVolumes::buildable(int64_t j) const { return keyframes_->ready(j) && keyframes_->ready(j + 1); }
 
 void KeyframeLightVolumes::request(const KeyframeLight& light, int64_t k, int direction) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!has_light_ || !(light_ == light)) {
-      light_ = light;
-      has_light_ = true;
-      volumes_.clear();
-    }
+    use(light);
     wanted_ = {k, k + 1, direction < 0 ? k - 1 : k + 2};
     while (volumes_.size() > kKeep) {
       // Drop the volume farthest from the pair drawn.
@@ -62,12 +66,7 @@ std::shared_ptr<const LightVolume> KeyframeLightVolumes::wait(const KeyframeLigh
     throw std::logic_error("keyframe light volume " + std::to_string(j) + ": keyframes " + std::to_string(j) + " and " +
                            std::to_string(j + 1) + " are not both made");
   std::unique_lock<std::mutex> lock(mutex_);
-  if (!has_light_ || !(light_ == light)) {
-    light_ = light;
-    has_light_ = true;
-    volumes_.clear();
-    wanted_.clear();
-  }
+  if (use(light)) wanted_.clear();
   if (std::find(wanted_.begin(), wanted_.end(), j) == wanted_.end()) wanted_.insert(wanted_.begin(), j);
   wake_.notify_all();
   made_.wait(lock, [&] { return !error_.empty() || (light_ == light && volumes_.count(j) > 0); });

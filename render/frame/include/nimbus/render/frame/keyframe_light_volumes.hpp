@@ -67,6 +67,7 @@ class KeyframeLightVolumes {
  private:
   void run();
   bool buildable(int64_t j) const;  // its keyframe pair is made
+  bool use(const KeyframeLight& light);  // under mutex_: a new light drops the old volumes (true)
 
   std::shared_ptr<SkyKeyframes> keyframes_;
   mutable std::mutex mutex_;

@@ -16,6 +16,7 @@
 // The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
 #include "lib/camera_ray.glsl"
 #include "lib/cloud_density.glsl"
+#include "lib/cloud_phase.glsl"
 #ifndef UNDERLAY
 #define UNDERLAY 0
 #endif
@@ -49,7 +50,6 @@ uniform float u_fog_sigma_t;         // per metre
 layout(location = 1) out vec4 o_distance;
 #endif
 layout(location = 0) out vec4 o_color;
-#include "lib/cloud_phase.glsl"
 
 void main() {
   vec3 q = v_world - camera.eye;

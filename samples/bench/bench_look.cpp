@@ -32,14 +32,16 @@ struct BenchLookArgs {
   int slices = 128;
   std::string ms_grid = "48";       // light-volume rows: cells along the longest axis
   std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
+  std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
+  std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
   std::string plot;
 };
 
-std::vector<int> parse_ints(const std::string& flag, const std::string& text, int hi = 1 << 20) {
+std::vector<int> parse_ints(const std::string& flag, const std::string& text, int hi = 1 << 20, int lo = 1) {
   std::vector<int> v;
   std::stringstream ss(text);
   std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, 1, hi, flag));
+  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, lo, hi, flag));
   if (v.empty()) throw UsageError(flag + ": give at least one number");
   return v;
 }
@@ -51,9 +53,25 @@ struct Octaves {
   bool light_volume = false;
   int grid = 0;
   int photons = 0;
+  int lobes = 2;
 };
 
+// An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
+// the base (2 m above the ground at least), the base's centre 40 degrees up toward -z (the side
+// view's direction). The layer fills the frame, where the side view of a thin sheet is a few rows.
+render::Camera view_from_below(render::Camera cam, const std::vector<render::CloudVolume>& clouds) {
+  glm::dvec3 lo, hi;
+  render::cloud_bounds(clouds, lo, hi);
+  const glm::dvec3 target(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z));
+  const double eye_y = std::max(2.0, lo.y - 1000.0);
+  const double rise = 40.0 * M_PI / 180.0;
+  cam.eye = glm::dvec3(target.x, eye_y, target.z + (target.y - eye_y) / std::tan(rise));
+  cam.look_at = target;
+  return render::fit_far_plane(cam, clouds);
+}
+
 int run_bench_look(const BenchLookArgs& a) {
+  if (a.view != "side" && a.view != "below") throw UsageError("--view: expected side or below, got '" + a.view + "'");
   const auto [w, h] = parse_resolution("--res", a.res);
   const std::vector<int> spps = parse_ints("--spp", a.spp);
   if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
@@ -82,11 +100,14 @@ int run_bench_look(const BenchLookArgs& a) {
   for (int grid : parse_ints("--ms-grid", a.ms_grid)) {
     if (grid < 4 || grid > 192) throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(grid));
     for (int photons : parse_ints("--ms-photons", a.ms_photons, 1 << 28))
-      methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons", 0, 0.5,
-                         0.5, true, grid, photons});
+      for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0)) {
+        methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
+                               (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders"),
+                           0, 0.5, 0.5, true, grid, photons, lobes});
+      }
   }
-  std::printf("# nimbus bench look: %s, %dx%d, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
-              w, h, gl->renderer().c_str());
+  std::printf("# nimbus bench look: %s, %dx%d, seen from %s, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
+              w, h, a.view == "below" ? "below" : "the side", gl->renderer().c_str());
   std::printf("# reference: the path tracer at %d samples per pixel (its own noise in its row); error: relative RMSE over\n"
               "#   covered pixels against it (compare_images), which includes the reference's noise; less ref. noise: the same\n"
               "#   with the reference's own variance taken out (noise_corrected_rel_rmse), the error against a converged\n"
@@ -106,7 +127,7 @@ int run_bench_look(const BenchLookArgs& a) {
       cam.width = w;
       cam.height = h;
       cam.fov_deg = 44.8;
-      cam = render::frame_clouds(cam, clouds, false);
+      cam = a.view == "below" ? view_from_below(cam, clouds) : render::frame_clouds(cam, clouds, false);
       render::CloudLight light;
       light.direction_to_light = l.to_sun;
       render::PathTracerSettings ps;
@@ -139,6 +160,7 @@ int run_bench_look(const BenchLookArgs& a) {
           fs.slices.multiple.method = render::MultipleScatteringMethod::LightVolume;
           fs.slices.multiple.light_volume.resolution = methods[m].grid;
           fs.slices.multiple.light_volume.photons = methods[m].photons;
+          fs.slices.multiple.light_volume.lobe_orders = methods[m].lobes;
         }
         render::FrameRenderer fr(std::nullopt, light, fs);
         fr.set_clouds(clouds);
@@ -187,6 +209,10 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ms-grid", a->ms_grid, "Comma-separated light-volume resolutions (cells along the longest axis)")
       ->capture_default_str();
   cmd->add_option("--ms-photons", a->ms_photons, "Comma-separated light-volume photon counts")->capture_default_str();
+  cmd->add_option("--ms-lobes", a->ms_lobes, "Comma-separated light-volume lobe orders, 0 to 2 (0: harmonics alone)")
+      ->capture_default_str();
+  cmd->add_option("--view", a->view, "side: the whole cloud framed level with it; below: looking up at its base from 1 km under it")
+      ->capture_default_str();
   cmd->add_option("--plot", a->plot, "Write an SVG plot of time against error here");
   cmd->callback([&action, a] { action = [a] { return run_bench_look(*a); }; });
 }

@@ -116,6 +116,8 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
                   "the default) or octaves (the default when --multiple N > 0 is given alone)");
   cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis, 4-192")->capture_default_str();
   cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
+  cmd->add_option("--ms-lobes", a.ms_lobes, "Light volume: scattering orders kept as lobes about the sun, 0-2 (0: harmonics alone)")
+      ->capture_default_str();
   cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
@@ -163,6 +165,8 @@ static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& 
     throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
   ms.light_volume.resolution = a.ms_grid;
   ms.light_volume.photons = a.ms_photons;
+  if (a.ms_lobes < 0 || a.ms_lobes > 2) throw UsageError("--ms-lobes: must be in [0, 2], got " + std::to_string(a.ms_lobes));
+  ms.light_volume.lobe_orders = a.ms_lobes;
   ms.light_volume.seed = a.ms_seed;
   auto check = [](double v, bool ok, const char* flag, const char* range) {
     if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));

@@ -33,6 +33,7 @@ struct CloudRenderArgs {
   std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves
   int ms_grid = 48;                  // light volume: cells along the clouds' longest axis
   int64_t ms_photons = 1 << 21;      // light volume: photons from the sun
+  int ms_lobes = 2;                  // light volume: scattering orders kept as lobes, [0, 2]
   uint64_t ms_seed = 1;              // light volume
   double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;

@@ -84,6 +84,7 @@ struct CloudRenderer::Impl {
   GlTexture light_volume_tex;
   glm::dvec3 lv_world_min{0.0};
   glm::dvec3 lv_cell_m{0.0};
+  glm::dvec3 lv_light_dir{0.0, -1.0, 0.0};
   glm::ivec3 lv_cells{0};
 
   const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume);
@@ -239,7 +240,9 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 void CloudRenderer::set_light_volume(const LightVolume& volume) {
   const std::size_t n = volume.cells();
   if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n ||
-      volume.quadrupole.size() != 5 * n ||
+      volume.quadrupole.size() != 5 * n || (!volume.lobes.empty() && volume.lobes.size() != 4 * n) ||
+      (!volume.gradient.empty() && volume.gradient.size() != 4 * n) ||
+      !(glm::length(volume.light_direction) > 0.5) ||
       !(volume.cell_m.x > 0.0 && volume.cell_m.y > 0.0 && volume.cell_m.z > 0.0))
     throw std::invalid_argument("cloud renderer light volume: its sizes, cell and values do not agree");
   for (float x : volume.fluence_rgb)
@@ -248,19 +251,31 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
     if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
   for (float x : volume.quadrupole)
     if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  for (const std::vector<float>* values : {&volume.lobes, &volume.gradient})
+    for (float x : *values)
+      if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
   Impl& s = *impl_;
   const int nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
-  // Three sections along x (lib/cloud_light_volume.glsl): (fluence RGB, Q xx), (flux xyz, Q yy),
-  // (Q xy, xz, yz, 0).
-  std::vector<float> texels(static_cast<std::size_t>(3 * nx) * ny * nz * 4, 0.0f);
+  // Five sections along x (lib/cloud_light_volume.glsl): (fluence RGB, Q xx), (flux xyz, Q yy),
+  // (Q xy, xz, yz, h), (gradient xyz, 0), (f_1, mu_1, f_2, mu_2).
+  constexpr int kSections = 5;
+  std::vector<float> texels(static_cast<std::size_t>(kSections * nx) * ny * nz * 4, 0.0f);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const std::size_t src = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
-        const std::size_t row = static_cast<std::size_t>(3 * nx) * (j + static_cast<std::size_t>(ny) * k);
+        const std::size_t row = static_cast<std::size_t>(kSections * nx) * (j + static_cast<std::size_t>(ny) * k);
         float* a = &texels[4 * (row + i)];
         float* b = &texels[4 * (row + nx + i)];
         float* c = &texels[4 * (row + 2 * nx + i)];
+        float* d = &texels[4 * (row + 3 * nx + i)];
+        float* e4 = &texels[4 * (row + 4 * nx + i)];
+        if (!volume.gradient.empty()) {
+          for (int e = 0; e < 3; ++e) d[e] = volume.gradient[4 * src + e];
+          c[3] = volume.gradient[4 * src + 3];
+        }
+        if (!volume.lobes.empty())
+          for (int e = 0; e < 4; ++e) e4[e] = volume.lobes[4 * src + e];
         const float* q = &volume.quadrupole[5 * src];
         for (int e = 0; e < 3; ++e) {
           a[e] = volume.fluence_rgb[3 * src + e];
@@ -270,11 +285,12 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
         a[3] = q[0];
         b[3] = q[1];
       }
-  s.light_volume_tex = make_texture_3d(GL_RGBA32F, 3 * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
-  glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, 3 * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
+  s.light_volume_tex = make_texture_3d(GL_RGBA32F, kSections * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+  glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, kSections * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
   check_gl("uploading the light volume");
   s.lv_world_min = volume.world_min;
   s.lv_cell_m = volume.cell_m;
+  s.lv_light_dir = glm::normalize(volume.light_direction);
   s.lv_cells = glm::ivec3(nx, ny, nz);
 }
 
@@ -378,6 +394,7 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
     eye.set("u_lv_world_min", to_float(s.lv_world_min));
     eye.set("u_lv_cell_m", to_float(s.lv_cell_m));
     eye.set("u_lv_cells", glm::vec3(s.lv_cells));
+    eye.set("u_lv_light_dir", to_float(s.lv_light_dir));
   }
   eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
   // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the

@@ -21,7 +21,12 @@ using namespace traced;
 namespace {
 
 constexpr std::size_t kMaxBytes = std::size_t{2} << 30;  // 2 GiB
-constexpr int kTallies = 11;                             // fluence RGB, flux xyz, Q xx yy xy xz yz
+// Fluence RGB, flux xyz, Q xx yy xy xz yz; then per lobe order k = 1, 2: its fluence and its
+// flux along the sun's direction (channels' means).
+// Then the first moment of position about the cell's centre, in cells, xyz (eq. MS-4's fit).
+constexpr int kTallies = 18;
+constexpr int kLobeTally = 11;
+constexpr int kMomentTally = 15;
 constexpr int kSubsamples = 4;                           // per cell axis, for the covered fraction
 
 // The brick majorant of `m` at a world point (0 outside its bricks).
@@ -76,16 +81,23 @@ LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const Ligh
   if (!(longest > 0.0) || !std::isfinite(longest))
     throw std::invalid_argument("light volume clouds: their bounds are empty or not finite");
   LightVolume v;
-  // Cube cells. (Finer cells across a thin sheet, resolution / 4 at least, were measured worse
-  // on the stratus preset: 22-27 % against the path tracer where cubes give 5-14 %, brighter by
-  // 5-9 %; docs/clouds.md.)
+  // Cube cells, but at least kMinAcross across a thin axis: the eye sees the first mean free
+  // path under a layer's base, and 3 cells across the 500 m stratus sheet left it 63 % too bright
+  // from below, 8 cells (with eq. MS-4's fits) 5 % (docs/clouds.md).
+  constexpr int kMinAcross = 8;
   const double cube = longest / settings.resolution;
   v.world_min = lo;
   v.cell_m = glm::dvec3(cube);
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) {
     v.size[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / cube - 1e-9)), 1, settings.resolution);
+    if (v.size[a] < kMinAcross) {
+      v.size[a] = std::min(kMinAcross, settings.resolution);
+      v.cell_m[a] = extent[a] / v.size[a];
+    }
+  }
   v.photons = settings.photons;
   v.seed = settings.seed;
+  v.lobe_orders = settings.lobe_orders;
   return v;
 }
 
@@ -201,6 +213,14 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
             add(k + 8, mean * d.x * d.y);
             add(k + 9, mean * d.x * d.z);
             add(k + 10, mean * d.y * d.z);
+            const glm::dvec3 off = (p - v.world_min) / cell - glm::floor((p - v.world_min) / cell) - 0.5;
+            add(k + kMomentTally + 0, mean * off.x);
+            add(k + kMomentTally + 1, mean * off.y);
+            add(k + kMomentTally + 2, mean * off.z);
+            if (bounce <= settings.lobe_orders) {  // the flight after scattering `bounce` times
+              add(k + kLobeTally + 2 * (bounce - 1), mean);
+              add(k + kLobeTally + 2 * (bounce - 1) + 1, mean * glm::dot(d, l));
+            }
           }
           if (c.medium < 0) break;  // escaped
         }
@@ -208,20 +228,33 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
     });
   });
 
-  // The part of each cell where tentative collisions can happen (some brick's majorant > 0).
+  // The part of each cell where tentative collisions can happen (some brick's majorant > 0),
+  // its centroid about the cell's centre and its variance per axis, in cells.
   std::vector<double> covered(n_cells, 0.0);
+  std::vector<glm::dvec3> centroid(n_cells, glm::dvec3(0.0)), spread(n_cells, glm::dvec3(0.0));
   arena.execute([&] {
     tbb::parallel_for(0, nz, [&](int k) {
       for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
           int hits = 0;
+          glm::dvec3 sum(0.0), sum_sq(0.0);
           for (int s = 0; s < kSubsamples * kSubsamples * kSubsamples; ++s) {
             const glm::dvec3 f((s % kSubsamples + 0.5) / kSubsamples, ((s / kSubsamples) % kSubsamples + 0.5) / kSubsamples,
                                (s / (kSubsamples * kSubsamples) + 0.5) / kSubsamples);
-            if (total_majorant(media, v.world_min + cell * (glm::dvec3(i, j, k) + f)) > 0.0) ++hits;
+            if (total_majorant(media, v.world_min + cell * (glm::dvec3(i, j, k) + f)) > 0.0) {
+              ++hits;
+              sum += f - 0.5;
+              sum_sq += (f - 0.5) * (f - 0.5);
+            }
           }
-          covered[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k)] =
-              static_cast<double>(hits) / (kSubsamples * kSubsamples * kSubsamples);
+          const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+          covered[q] = static_cast<double>(hits) / (kSubsamples * kSubsamples * kSubsamples);
+          if (hits > 0) {
+            centroid[q] = sum / static_cast<double>(hits);
+            // Each subsample stands for a cube 1 / kSubsamples wide: its own variance adds.
+            spread[q] = sum_sq / static_cast<double>(hits) - centroid[q] * centroid[q] +
+                        1.0 / (12.0 * kSubsamples * kSubsamples);
+          }
         }
     });
   });
@@ -309,12 +342,32 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           for_neighbourhood(i, j, k, [&](std::size_t r) {
             if (!known[r]) return;
             phi += (before[r * kTallies] + before[r * kTallies + 1] + before[r * kTallies + 2]) / 3.0;  // F, Q: the channels' mean
-            for (int c = 3; c < kTallies; ++c) sum[c] += before[r * kTallies + c];
+            for (int c = 3; c < kMomentTally; ++c) sum[c] += before[r * kTallies + c];
           });
           const double own = (before[q * kTallies] + before[q * kTallies + 1] + before[q * kTallies + 2]) / 3.0;
-          for (int c = 3; c < kTallies; ++c) value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
+          for (int c = 3; c < kMomentTally; ++c) value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
         }
   }
+  // Eq. MS-4's fit where a cell has its own photons (not pooled): with phi(u) = phi_bar + g . (u - ubar)
+  // over the covered part, the first moment about the centre M = phi_bar ubar + diag(spread) g,
+  // so g = (M - phi_bar ubar) / spread per axis; limited so that the fit stays >= 0 over the cell.
+  std::vector<float> fit(n_cells * 4, 0.0f);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t q = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+        if (!(covered[q] >= kPoolBelow)) continue;
+        const double phi = (value[q * kTallies] + value[q * kTallies + 1] + value[q * kTallies + 2]) / 3.0;
+        if (!(phi > 0.0)) continue;
+        glm::dvec3 g(0.0);
+        for (int a = 0; a < 3; ++a)
+          if (spread[q][a] > 1e-3) g[a] = (value[q * kTallies + kMomentTally + a] - phi * centroid[q][a]) / spread[q][a];
+        const double reach = glm::dot(glm::abs(g), 0.5 + glm::abs(centroid[q]));
+        if (reach > phi) g *= phi / reach;
+        const glm::dvec3 ubar = glm::dvec3(i, j, k) + 0.5 + centroid[q];
+        for (int a = 0; a < 3; ++a) fit[4 * q + a] = static_cast<float>(g[a]);
+        fit[4 * q + 3] = static_cast<float>(glm::dot(g, ubar));
+      }
   // Cells no flight can cross hold no cloud, but the trilinear lookup of a neighbour reads them:
   // they take the mean of their known face neighbours, ring by ring (two rings).
   for (int ring = 0; ring < 2; ++ring) {
@@ -326,16 +379,20 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           if (known[q]) continue;
           const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
           int count = 0;
-          double sum[kTallies] = {};
+          double sum[kTallies] = {}, fit_sum[4] = {};
           for (const auto& b : nb) {
             if (b[0] < 0 || b[0] >= nx || b[1] < 0 || b[1] >= ny || b[2] < 0 || b[2] >= nz) continue;
             const std::size_t r = static_cast<std::size_t>(b[0]) + static_cast<std::size_t>(nx) * (b[1] + static_cast<std::size_t>(ny) * b[2]);
             if (!known[r]) continue;
             ++count;
             for (int c = 0; c < kTallies; ++c) sum[c] += value[r * kTallies + c];
+            for (int c = 0; c < 4; ++c) fit_sum[c] += fit[4 * r + c];
           }
           if (count == 0) continue;
+          // The mean of the neighbours' fits too (eq. MS-4 is linear in them): the lookups
+          // between an edge cell and this one follow the edge cell's fit, not a constant.
           for (int c = 0; c < kTallies; ++c) value[q * kTallies + c] = static_cast<float>(sum[c] / count);
+          for (int c = 0; c < 4; ++c) fit[4 * q + c] = static_cast<float>(fit_sum[c] / count);
           next[q] = 1;
         }
     known.swap(next);
@@ -343,12 +400,26 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   v.fluence_rgb.resize(n_cells * 3);
   v.flux_xyz.resize(n_cells * 3);
   v.quadrupole.resize(n_cells * 5);
+  v.lobes.assign(n_cells * 4, 0.0f);
+  v.gradient = std::move(fit);
+  v.light_direction = l;
   for (std::size_t q = 0; q < n_cells; ++q) {
     for (int c = 0; c < 3; ++c) {
       v.fluence_rgb[3 * q + c] = value[q * kTallies + c];
       v.flux_xyz[3 * q + c] = value[q * kTallies + 3 + c];
     }
     for (int c = 0; c < 5; ++c) v.quadrupole[5 * q + c] = value[q * kTallies + 6 + c];
+    // Eq. MS-3's lobes: f_k = phi_k / phi, mu_k = (phi_k mean cosine to the sun) / phi_k.
+    const double phi = (value[q * kTallies] + value[q * kTallies + 1] + value[q * kTallies + 2]) / 3.0;
+    double room = 1.0;
+    for (int o = 0; o < 2; ++o) {
+      const double phi_k = value[q * kTallies + kLobeTally + 2 * o], along = value[q * kTallies + kLobeTally + 2 * o + 1];
+      if (!(phi > 0.0 && phi_k > 0.0)) continue;
+      const double f = std::min(phi_k / phi, room);
+      room -= f;
+      v.lobes[4 * q + 2 * o] = static_cast<float>(f);
+      v.lobes[4 * q + 2 * o + 1] = static_cast<float>(std::clamp(along / phi_k, -0.95, 0.95));
+    }
   }
   v.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return v;

@@ -40,6 +40,9 @@ struct LightVolumeSettings {
   std::int64_t photons = 1 << 21;  // photons launched from the sun, [1, 1 << 28]
   std::uint64_t seed = 1;          // the same seed gives the same volume, whatever the threads
   int threads = 0;                 // 0 = all cores
+  // Scattering orders 1..lobe_orders kept as Henyey-Greenstein lobes about the sun's direction
+  // (light_volume.hpp, eq. MS-3) beside the l <= 2 harmonics; [0, 2], 0 = harmonics alone.
+  int lobe_orders = 2;
   bool operator==(const LightVolumeSettings&) const = default;
 };
 

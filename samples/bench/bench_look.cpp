@@ -33,6 +33,9 @@ struct BenchLookArgs {
   std::string ms_grid = "48";       // light-volume rows: cells along the longest axis
   std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
   std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
+  std::string ms_fits = "1";           // light-volume rows: 1 with eq. MS-4's fits, 0 without
+  std::string lighting = "front-lit,back-lit";          // which lightings to run
+  std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
   std::string plot;
 };
@@ -54,6 +57,7 @@ struct Octaves {
   int grid = 0;
   int photons = 0;
   int lobes = 2;
+  bool fits = true;
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -72,6 +76,21 @@ render::Camera view_from_below(render::Camera cam, const std::vector<render::Clo
 
 int run_bench_look(const BenchLookArgs& a) {
   if (a.view != "side" && a.view != "below") throw UsageError("--view: expected side or below, got '" + a.view + "'");
+  // Every item of --lighting and --phases names a case (a prefix of its name).
+  auto check_items = [](const std::string& flag, const std::string& list, const std::vector<std::string>& names) {
+    std::stringstream ss(list);
+    std::string item;
+    int items = 0;
+    while (std::getline(ss, item, ',')) {
+      bool found = false;
+      for (const std::string& n : names) found = found || (!item.empty() && n.rfind(item, 0) == 0);
+      if (!found) throw UsageError(flag + ": '" + item + "' names none of its cases");
+      ++items;
+    }
+    if (items == 0) throw UsageError(flag + ": give at least one case");
+  };
+  check_items("--lighting", a.lighting, {"front-lit", "back-lit"});
+  check_items("--phases", a.phases, {"isotropic", "hg:0.7", "dual:0.7,-0.25,0.8"});
   const auto [w, h] = parse_resolution("--res", a.res);
   const std::vector<int> spps = parse_ints("--spp", a.spp);
   if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
@@ -100,11 +119,12 @@ int run_bench_look(const BenchLookArgs& a) {
   for (int grid : parse_ints("--ms-grid", a.ms_grid)) {
     if (grid < 4 || grid > 192) throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(grid));
     for (int photons : parse_ints("--ms-photons", a.ms_photons, 1 << 28))
-      for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0)) {
-        methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
-                               (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders"),
-                           0, 0.5, 0.5, true, grid, photons, lobes});
-      }
+      for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0))
+        for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
+          methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
+                                 (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
+                                 (fits ? "" : ", no fits"),
+                             0, 0.5, 0.5, true, grid, photons, lobes, fits != 0});
   }
   std::printf("# nimbus bench look: %s, %dx%d, seen from %s, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
               w, h, a.view == "below" ? "below" : "the side", gl->renderer().c_str());
@@ -118,8 +138,16 @@ int run_bench_look(const BenchLookArgs& a) {
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|\n");
   std::vector<render::PlotSeries> series(methods.size());
   for (std::size_t m = 0; m < methods.size(); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
+  auto chosen = [](const std::string& list, const std::string& name) {
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ','))
+      if (!item.empty() && name.rfind(item, 0) == 0) return true;
+    return false;
+  };
   for (const Lighting& l : lights)
     for (const PhaseCase& p : phases) {
+      if (!chosen(a.lighting, l.name) || !chosen(a.phases, p.name)) continue;
       render::CloudOptics optics;
       optics.phase = p.phase;
       const std::vector<render::CloudVolume> clouds = {render::generate_preset_cloud(preset, std::nullopt, 0.0, optics)};
@@ -161,6 +189,7 @@ int run_bench_look(const BenchLookArgs& a) {
           fs.slices.multiple.light_volume.resolution = methods[m].grid;
           fs.slices.multiple.light_volume.photons = methods[m].photons;
           fs.slices.multiple.light_volume.lobe_orders = methods[m].lobes;
+          fs.slices.multiple.light_volume.fits = methods[m].fits;
         }
         render::FrameRenderer fr(std::nullopt, light, fs);
         fr.set_clouds(clouds);
@@ -210,6 +239,11 @@ void add_bench_look(CLI::App& bench, Action& action) {
       ->capture_default_str();
   cmd->add_option("--ms-photons", a->ms_photons, "Comma-separated light-volume photon counts")->capture_default_str();
   cmd->add_option("--ms-lobes", a->ms_lobes, "Comma-separated light-volume lobe orders, 0 to 2 (0: harmonics alone)")
+      ->capture_default_str();
+  cmd->add_option("--ms-fits", a->ms_fits, "Comma-separated: 1 light volume with its linear fits in each cell, 0 without")
+      ->capture_default_str();
+  cmd->add_option("--lighting", a->lighting, "Comma-separated lightings to run: front-lit, back-lit")->capture_default_str();
+  cmd->add_option("--phases", a->phases, "Comma-separated phases to run: isotropic, hg, dual (names or their prefixes)")
       ->capture_default_str();
   cmd->add_option("--view", a->view, "side: the whole cloud framed level with it; below: looking up at its base from 1 km under it")
       ->capture_default_str();

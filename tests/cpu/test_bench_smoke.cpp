@@ -79,6 +79,25 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
   EXPECT_EQ(r.output.find("nan"), std::string::npos);
   EXPECT_EQ(run("bench look --spp 0").code, 2);
   EXPECT_EQ(run("bench look --preset nothing").code, 2);
+  EXPECT_EQ(run("bench look --view above").code, 2);
+  EXPECT_EQ(run("bench look --ms-lobes 3").code, 2);
+  EXPECT_EQ(run("bench look --phases mie").code, 2);
+  EXPECT_EQ(run("bench look --lighting side-lit").code, 2);
+}
+
+// `nimbus bench look --view below --lighting back-lit --phases hg`: only the chosen case runs,
+// with a row per light-volume variant asked for (lobes and fits on and off), all finite.
+TEST(BenchLook, ChosenCasesSeenFromBelow) {
+  const Result r = run("bench look --preset stratus --view below --res 32x24 --ref-spp 8 --spp 2 --slices 24 --ms-photons 4096 "
+                       "--ms-lobes 0,2 --ms-fits 0,1 --lighting back-lit --phases hg");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("seen from below"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("| back-lit | hg:0.7 | slicer, light volume 48 cells, 4096 photons, 2 lobe orders |"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("no lobes, no fits"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("| front-lit |"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("| back-lit | isotropic |"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("nan"), std::string::npos);
 }
 
 }  // namespace

@@ -134,6 +134,7 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
       {kSteam + "--ms-grid 3", "--ms-grid"},
       {kSteam + "--ms-grid 193", "--ms-grid"},
       {kSteam + "--ms-photons 0", "--ms-photons"},
+      {kSteam + "--ms-lobes 3", "--ms-lobes"},
       {kSteam + "--ms-occlusion 0", "--ms-occlusion"},
       {kSteam + "--frames 5-2", "--frames"},
       {kSteam + "--sun 0,0,0", "--sun"},

@@ -401,7 +401,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   v.flux_xyz.resize(n_cells * 3);
   v.quadrupole.resize(n_cells * 5);
   v.lobes.assign(n_cells * 4, 0.0f);
-  v.gradient = std::move(fit);
+  if (settings.fits) v.gradient = std::move(fit);
   v.light_direction = l;
   for (std::size_t q = 0; q < n_cells; ++q) {
     for (int c = 0; c < 3; ++c) {

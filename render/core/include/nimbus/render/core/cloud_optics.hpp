@@ -43,6 +43,8 @@ struct LightVolumeSettings {
   // Scattering orders 1..lobe_orders kept as Henyey-Greenstein lobes about the sun's direction
   // (light_volume.hpp, eq. MS-3) beside the l <= 2 harmonics; [0, 2], 0 = harmonics alone.
   int lobe_orders = 2;
+  // Linear fits of the fluence inside each cell (light_volume.hpp, eq. MS-4); false: cell means.
+  bool fits = true;
   bool operator==(const LightVolumeSettings&) const = default;
 };
 

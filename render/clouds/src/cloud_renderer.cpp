@@ -238,22 +238,8 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 }
 
 void CloudRenderer::set_light_volume(const LightVolume& volume) {
-  const std::size_t n = volume.cells();
-  if (n == 0 || volume.fluence_rgb.size() != 3 * n || volume.flux_xyz.size() != 3 * n ||
-      volume.quadrupole.size() != 5 * n || (!volume.lobes.empty() && volume.lobes.size() != 4 * n) ||
-      (!volume.gradient.empty() && volume.gradient.size() != 4 * n) ||
-      !(glm::length(volume.light_direction) > 0.5) ||
-      !(volume.cell_m.x > 0.0 && volume.cell_m.y > 0.0 && volume.cell_m.z > 0.0))
-    throw std::invalid_argument("cloud renderer light volume: its sizes, cell and values do not agree");
-  for (float x : volume.fluence_rgb)
-    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
-  for (float x : volume.flux_xyz)
-    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
-  for (float x : volume.quadrupole)
-    if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
-  for (const std::vector<float>* values : {&volume.lobes, &volume.gradient})
-    for (float x : *values)
-      if (!std::isfinite(x)) throw std::invalid_argument("cloud renderer light volume: a value is not finite");
+  if (!light_volume_is_consistent(volume) || !(glm::length(volume.light_direction) > 0.5))
+    throw std::invalid_argument("cloud renderer light volume: its sizes, cell, light direction and values do not agree");
   Impl& s = *impl_;
   const int nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
   // Five sections along x (lib/cloud_light_volume.glsl): (fluence RGB, Q xx), (flux xyz, Q yy),
@@ -285,7 +271,9 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
         a[3] = q[0];
         b[3] = q[1];
       }
-  s.light_volume_tex = make_texture_3d(GL_RGBA32F, kSections * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+  // Each blend of the animated sky uploads a volume of the same grid: keep the texture's storage.
+  if (s.light_volume_tex.id() == 0 || s.lv_cells != glm::ivec3(nx, ny, nz))
+    s.light_volume_tex = make_texture_3d(GL_RGBA32F, kSections * nx, ny, nz, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
   glTextureSubImage3D(s.light_volume_tex.id(), 0, 0, 0, 0, kSections * nx, ny, nz, GL_RGBA, GL_FLOAT, texels.data());
   check_gl("uploading the light volume");
   s.lv_world_min = volume.world_min;

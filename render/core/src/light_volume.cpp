@@ -9,6 +9,18 @@
 
 namespace nimbus::render {
 
+bool light_volume_is_consistent(const LightVolume& v) {
+  const std::size_t n = v.cells();
+  if (n == 0 || !(v.cell_m.x > 0.0 && v.cell_m.y > 0.0 && v.cell_m.z > 0.0) || v.fluence_rgb.size() != 3 * n ||
+      v.flux_xyz.size() != 3 * n || v.quadrupole.size() != 5 * n || (!v.lobes.empty() && v.lobes.size() != 4 * n) ||
+      (!v.gradient.empty() && v.gradient.size() != 4 * n))
+    return false;
+  for (const std::vector<float>* values : {&v.fluence_rgb, &v.flux_xyz, &v.quadrupole, &v.lobes, &v.gradient})
+    for (float x : *values)
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+
 LightVolumeSample sample_light_volume(const LightVolume& v, const glm::dvec3& world_m) {
   LightVolumeSample out;
   if (v.cells() == 0 || !(v.cell_m.x > 0.0 && v.cell_m.y > 0.0 && v.cell_m.z > 0.0)) return out;
@@ -52,14 +64,10 @@ LightVolumeSample sample_light_volume(const LightVolume& v, const glm::dvec3& wo
 
 LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double t) {
   if (!(t >= 0.0 && t <= 1.0)) throw std::invalid_argument("light volume mix: t must be in [0, 1], got " + std::to_string(t));
-  for (const LightVolume* v : {&a, &b}) {
-    const std::size_t n = v->cells();
-    if (n == 0 || !(v->cell_m.x > 0.0 && v->cell_m.y > 0.0 && v->cell_m.z > 0.0) || v->fluence_rgb.size() != 3 * n || v->flux_xyz.size() != 3 * n ||
-        v->quadrupole.size() != 5 * n || (!v->lobes.empty() && v->lobes.size() != 4 * n) ||
-        (!v->gradient.empty() && v->gradient.size() != 4 * n))
+  for (const LightVolume* v : {&a, &b})
+    if (!light_volume_is_consistent(*v))
       throw std::invalid_argument(std::string("light volume mix: volume ") + (v == &a ? "a" : "b") +
-                                  " is empty or its arrays do not match its size");
-  }
+                                  " is empty, its arrays do not match its size or a value is not finite");
   LightVolume out = a;
   if (t == 0.0) return out;
   const double s = 1.0 - t;
@@ -72,15 +80,12 @@ LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double
     lerp(out.fluence_rgb, a.fluence_rgb, b.fluence_rgb);
     lerp(out.flux_xyz, a.flux_xyz, b.flux_xyz);
     lerp(out.quadrupole, a.quadrupole, b.quadrupole);
-    if (!a.lobes.empty() || !b.lobes.empty()) {
-      const std::vector<float> none(4 * a.cells(), 0.0f);
-      out.lobes = none;
-      lerp(out.lobes, a.lobes.empty() ? none : a.lobes, b.lobes.empty() ? none : b.lobes);
-    }
-    if (!a.gradient.empty() || !b.gradient.empty()) {  // eq. MS-4 is linear in (g, h)
-      const std::vector<float> none(4 * a.cells(), 0.0f);
-      out.gradient = none;
-      lerp(out.gradient, a.gradient.empty() ? none : a.gradient, b.gradient.empty() ? none : b.gradient);
+    // The lobes and the fits (eq. MS-4 is linear in (g, h)); an empty array reads as zeros.
+    const std::vector<float> none(4 * a.cells(), 0.0f);
+    for (auto member : {&LightVolume::lobes, &LightVolume::gradient}) {
+      if ((a.*member).empty() && (b.*member).empty()) continue;
+      out.*member = none;
+      lerp(out.*member, (a.*member).empty() ? none : a.*member, (b.*member).empty() ? none : b.*member);
     }
     out.build_seconds = a.build_seconds + b.build_seconds;
     return out;

@@ -77,6 +77,10 @@ struct LightVolumeSample {
   double fit_offset = 0.0;     // eq. MS-4: sum w_c g_c . u - sum w_c h_c, to add to the mean fluence
 };
 
+// Whether the volume's arrays match its size (lobes and fits may be empty), its cells are
+// positive and every value is finite: what mixing and uploading a volume require.
+bool light_volume_is_consistent(const LightVolume& volume);
+
 // The cells' trilinear interpolation at a world point, cell values at cell centres, clamped to
 // the edge cells outside (as the GL texture with GL_CLAMP_TO_EDGE samples it).
 LightVolumeSample sample_light_volume(const LightVolume& volume, const glm::dvec3& world_m);

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
+#include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/image/svg_plot.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"
@@ -38,6 +41,7 @@ struct BenchLookArgs {
   std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
   std::string plot;
+  std::string images;  // when set: every case's reference, its standard error and each method's image, as EXR
 };
 
 std::vector<int> parse_ints(const std::string& flag, const std::string& text, int hi = 1 << 20, int lo = 1) {
@@ -74,6 +78,30 @@ render::Camera view_from_below(render::Camera cam, const std::vector<render::Clo
   return render::fit_far_plane(cam, clouds);
 }
 
+// A file-name part from a case or method name: lower-case letters, digits and '.', the rest '-'.
+std::string slug(const std::string& name) {
+  std::string s;
+  for (char c : name) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.';
+    const char out = keep ? c : (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : '-';
+    if (out != '-' || (!s.empty() && s.back() != '-')) s += out;
+  }
+  while (!s.empty() && s.back() == '-') s.pop_back();
+  return s;
+}
+
+// The reference's per-pixel standard error as an image (RGB; alpha 1), for --images.
+render::Image std_error_image(const render::PathTracedImage& ref) {
+  render::Image img(ref.image.width, ref.image.height);
+  for (std::size_t p = 0; p < static_cast<std::size_t>(img.width) * img.height; ++p) {
+    for (int c = 0; c < 3; ++c) img.rgba[4 * p + c] = ref.std_error[3 * p + c];
+    img.rgba[4 * p + 3] = 1.0f;
+  }
+  img.metadata = ref.image.metadata;
+  img.metadata["contents"] = "per-pixel standard error of the reference's mean, RGB";
+  return img;
+}
+
 int run_bench_look(const BenchLookArgs& a) {
   if (a.view != "side" && a.view != "below") throw UsageError("--view: expected side or below, got '" + a.view + "'");
   // Every item of --lighting and --phases names a case (a prefix of its name).
@@ -100,6 +128,12 @@ int run_bench_look(const BenchLookArgs& a) {
     preset = render::load_preset_cloud(a.preset);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--preset: ") + e.what());
+  }
+  if (!a.images.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.images, ec);
+    if (ec || !std::filesystem::is_directory(a.images))
+      throw std::runtime_error("--images: cannot make the directory '" + a.images + "'" + (ec ? ": " + ec.message() : ""));
   }
   const auto gl = render::GlContext::create_headless();
   struct Lighting {
@@ -163,6 +197,11 @@ int run_bench_look(const BenchLookArgs& a) {
       const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
       std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | 0 | %.4f | |\n", l.name, p.name, a.ref_spp,
                   1000.0 * ref.seconds, ref.mean_relative_error);
+      const std::filesystem::path case_stem = std::filesystem::path(a.images) / (slug(l.name) + "_" + slug(p.name));
+      if (!a.images.empty()) {
+        render::write_exr(case_stem.string() + "_reference.exr", ref.image);
+        render::write_exr(case_stem.string() + "_reference-std-error.exr", std_error_image(ref));
+      }
       render::PlotSeries traced;  // one line per case: error against time as samples grow
       traced.name = std::string("path tracer, ") + l.name + ", " + p.name;
       for (int spp : spps) {
@@ -201,6 +240,10 @@ int run_bench_look(const BenchLookArgs& a) {
           render::FrameStats st;
           img = fr.render(cam, &st);
           best = std::min(best, st.clouds.total_ms);
+        }
+        if (!a.images.empty()) {
+          img.metadata["bench_method"] = methods[m].name;
+          render::write_exr(case_stem.string() + "_" + slug(methods[m].name) + ".exr", img);
         }
         const render::ImageError e = render::compare_images(img, ref.image);
         char build[32] = "";
@@ -248,6 +291,9 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--view", a->view, "side: the whole cloud framed level with it; below: looking up at its base from 1 km under it")
       ->capture_default_str();
   cmd->add_option("--plot", a->plot, "Write an SVG plot of time against error here");
+  cmd->add_option("--images", a->images,
+                  "Write each case's reference, its standard error and every method's image here as EXR "
+                  "(<lighting>_<phase>_<method>.exr), to see where the error lies");
   cmd->callback([&action, a] { action = [a] { return run_bench_look(*a); }; });
 }
 

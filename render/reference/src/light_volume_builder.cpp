@@ -213,7 +213,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
             const glm::dvec3 p = o + t * d;
             // The bricks reach up to 7 voxels past a cloud's support, where only null collisions
             // happen; the grid covers the support alone, and a point beyond it is no cell's track
-            // (clamped into the edge cells it made the stratus sheet's top layer 4x too bright).
+            // (clamped into the edge cells it made the stratus sheet's top layer 5.5x too bright).
             if (!inside_grid(p)) continue;
             const double m = total_majorant(media, p);
             if (!(m > 0.0)) continue;

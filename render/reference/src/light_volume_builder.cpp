@@ -129,20 +129,6 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   for (TracedCloud& m : media)
     for (double& b : m.majorant)
       if (b > 0.0) b = std::max(b, 1.0 / shortest);
-  auto cell_of = [&](const glm::dvec3& x) {
-    const glm::dvec3 u = (x - v.world_min) / cell;
-    const int i = std::clamp(static_cast<int>(std::floor(u.x)), 0, nx - 1);
-    const int j = std::clamp(static_cast<int>(std::floor(u.y)), 0, ny - 1);
-    const int k = std::clamp(static_cast<int>(std::floor(u.z)), 0, nz - 1);
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
-  };
-
-  const glm::dvec3 grid_max = v.world_max();
-  auto inside_grid = [&](const glm::dvec3& x) {
-    return x.x >= v.world_min.x && x.y >= v.world_min.y && x.z >= v.world_min.z && x.x < grid_max.x &&
-           x.y < grid_max.y && x.z < grid_max.z;
-  };
-
   // The launch rectangle: perpendicular to the light, covering the grid's box seen from the sun.
   const glm::dvec3 l = -glm::normalize(light.direction_to_light);  // propagation
   const glm::dvec3 a = std::abs(l.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -211,13 +197,18 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           for (double t : points) {
             if (t > c.t) continue;
             const glm::dvec3 p = o + t * d;
+            const glm::dvec3 u = (p - v.world_min) / cell;  // in cells
+            const glm::dvec3 ijk = glm::floor(u);
             // The bricks reach up to 7 voxels past a cloud's support, where only null collisions
             // happen; the grid covers the support alone, and a point beyond it is no cell's track
             // (clamped into the edge cells it made the stratus sheet's top layer 5.5x too bright).
-            if (!inside_grid(p)) continue;
+            if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < nx && ijk.y < ny && ijk.z < nz)) continue;
             const double m = total_majorant(media, p);
             if (!(m > 0.0)) continue;
-            const std::size_t k = cell_of(p) * kTallies;
+            const std::size_t k =
+                (static_cast<std::size_t>(ijk.x) + static_cast<std::size_t>(nx) * (static_cast<std::size_t>(ijk.y) +
+                                                                                  static_cast<std::size_t>(ny) * static_cast<std::size_t>(ijk.z))) *
+                kTallies;
             const glm::dvec3 wt = weight / m;
             add(k + 0, wt.x);
             add(k + 1, wt.y);
@@ -232,7 +223,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
             add(k + 8, mean * d.x * d.y);
             add(k + 9, mean * d.x * d.z);
             add(k + 10, mean * d.y * d.z);
-            const glm::dvec3 off = (p - v.world_min) / cell - glm::floor((p - v.world_min) / cell) - 0.5;
+            const glm::dvec3 off = u - ijk - 0.5;
             add(k + kMomentTally + 0, mean * off.x);
             add(k + kMomentTally + 1, mean * off.y);
             add(k + kMomentTally + 2, mean * off.z);

@@ -126,6 +126,7 @@ SlabRT discrete_ordinates(double tau, double albedo, const DualLobePhase& phase,
 // upward (R) and downward (T), with their standard errors.
 struct SlabMC {
   double R, T, se_R, se_T;
+  double max_weight = 0.0;  // the heaviest photon that left
 };
 SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, double mu0, int photons,
                         int roulette_after) {
@@ -134,12 +135,13 @@ SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, d
   const glm::dvec3 start(0.5 * n, layers + 4.0, 0.5 * n);
   const glm::dvec3 dir(std::sqrt(1.0 - mu0 * mu0), -mu0, 0.0);
   const PhotonTracer tracer(clouds);
-  double r = 0, r2 = 0, t = 0, t2 = 0;
+  double r = 0, r2 = 0, t = 0, t2 = 0, heaviest = 0;
   for (int p = 0; p < photons; ++p) {
     const PhotonExit e = tracer.trace(start - 3.0 * dir * (1.0 / mu0), dir, 7, static_cast<uint64_t>(p), 100000,
                                       roulette_after);
     if (!e.escaped) continue;
     const double v = e.weight.x;
+    heaviest = std::max(heaviest, v);
     if (e.direction.y > 0.0) {
       r += v;
       r2 += v * v;
@@ -149,7 +151,7 @@ SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, d
     }
   }
   const double N = photons;
-  return {r / N, t / N, std::sqrt((r2 / N - (r / N) * (r / N)) / N), std::sqrt((t2 / N - (t / N) * (t / N)) / N)};
+  return {r / N, t / N, std::sqrt((r2 / N - (r / N) * (r / N)) / N), std::sqrt((t2 / N - (t / N) * (t / N)) / N), heaviest};
 }
 
 TEST(CloudPathTracer, DiscreteOrdinatesConserveEnergyAndMatchThinSlabs) {
@@ -170,6 +172,25 @@ TEST(CloudPathTracer, ConservativeSlabReflectsAndTransmitsAllTheFlux) {
       const double se = std::hypot(mc.se_R, mc.se_T);
       EXPECT_NEAR(mc.R + mc.T, 1.0, 4.0 * se + 1e-3) << "tau " << tau << " g " << phase.g_forward;
     }
+}
+
+// Russian roulette keeps every weight at most 1 (survival probability = the weight, pbrt-v4's
+// rule). With survival capped at 0.95, as it once was, each scattering at albedo 0.99 raised a
+// survivor's weight 4 %: in a thick slab a photon that diffused 200 scatterings came out weighing
+// thousands, the fireflies of the congestus reference. Optical thickness 30, roulette from the
+// first scattering: the heaviest photon out weighs at most 1, and the flux still matches the
+// discrete ordinates. Measured (4000 photons): the heaviest 1.000, R 0.7658 +- 0.0067 against
+// the DOM's 0.7737; with the cap the heaviest weighed 22.0 and no transmitted photon came out
+// (T 0 against 0.0023: the typical path too light, the rare one too heavy).
+TEST(CloudPathTracer, RouletteNeverMakesAPhotonHeavierThanOne) {
+  const DualLobePhase iso{};
+  const SlabRT dom = discrete_ordinates(30.0, 0.99, iso, 0.8);
+  const SlabMC mc = slab_monte_carlo(30.0, 0.99, iso, 0.8, 4000, 1);
+  std::printf("[ thick slab ] R %.4f +- %.4f (DOM %.4f), T %.4f +- %.4f (DOM %.4f), heaviest photon out %.3f\n", mc.R,
+              mc.se_R, dom.R, mc.T, mc.se_T, dom.T, mc.max_weight);
+  EXPECT_LE(mc.max_weight, 1.0 + 1e-12);
+  EXPECT_NEAR(mc.R, dom.R, 4.0 * mc.se_R + 0.005);
+  EXPECT_NEAR(mc.T, dom.T, 4.0 * mc.se_T + 0.005);
 }
 
 TEST(CloudPathTracer, SlabReflectanceAndTransmittanceMatchDiscreteOrdinates) {

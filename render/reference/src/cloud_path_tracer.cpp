@@ -64,13 +64,11 @@ PhotonExit PhotonTracer::trace(const glm::dvec3& origin, const glm::dvec3& dir, 
     o += c.t * d;
     out.weight *= cloud.optics.albedo;
     if (bounce + 1 >= roulette_after) {
-      const double q = std::min(0.95, std::max({out.weight.x, out.weight.y, out.weight.z}));
-      if (rng.uniform() >= q) {
+      if (!survives_roulette(out.weight, rng)) {
         out.bounces = bounce + 1;
         out.weight = glm::dvec3(0.0);
         return out;
       }
-      out.weight /= q;
     }
     d = sample_phase(cloud.optics.phase, d, rng);
   }
@@ -113,9 +111,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
         const double T_sun = transmittance(media, o, to_light, rng);
         if (T_sun > 0.0) L += beta * light.irradiance_w_m2 * (cloud_phase_value(cloud.optics.phase, glm::dot(to_light, d)) * T_sun);
         if (bounce + 1 >= settings.roulette_after) {
-          const double q = std::min(0.95, std::max({beta.x, beta.y, beta.z}));
-          if (rng.uniform() >= q) break;
-          beta /= q;
+          if (!survives_roulette(beta, rng)) break;
         }
         d = sample_phase(cloud.optics.phase, d, rng);
       }

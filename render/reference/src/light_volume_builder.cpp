@@ -176,11 +176,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
           const CloudVolume& hit = *media[static_cast<std::size_t>(c.medium)].cloud;
           o += c.t * d;
           weight *= hit.optics.albedo;
-          if (bounce >= 16) {  // Russian roulette, as the path tracer (unbiased)
-            const double q = std::min(0.95, std::max({weight.x, weight.y, weight.z}));
-            if (rng.uniform() >= q) break;
-            weight /= q;
-          }
+          if (bounce >= 16 && !survives_roulette(weight, rng)) break;  // as the path tracer
           if (!(std::max({weight.x, weight.y, weight.z}) > 0.0)) break;
           d = sample_phase(hit.optics.phase, d, rng);
           // The next flight, every cloud's tentative collisions recorded; the nearest real one ends it.

@@ -2,6 +2,7 @@
 // path-traced reference of the same model (issue 12), and what each costs, front- and back-lit,
 // isotropic, HG 0.7 and the default dual lobe; with the path tracer's own time and noise at
 // several sample counts. Clouds alone over black, the sun at irradiance 3, no ambient.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,7 @@
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/image/svg_plot.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"
+#include "nimbus/render/reference/light_volume_builder.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -37,6 +39,7 @@ struct BenchLookArgs {
   std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
   std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
   std::string ms_fits = "1";           // light-volume rows: 1 with eq. MS-4's fits, 0 without
+  std::string ms_refine = "1000";      // light-volume rows: photons per cell face for finer cells, 0 the grid exactly
   std::string lighting = "front-lit,back-lit";          // which lightings to run
   std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
@@ -62,6 +65,7 @@ struct Octaves {
   int photons = 0;
   int lobes = 2;
   bool fits = true;
+  int refine = 1000;  // LightVolumeSettings::photons_per_cell
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -155,10 +159,14 @@ int run_bench_look(const BenchLookArgs& a) {
     for (int photons : parse_ints("--ms-photons", a.ms_photons, 1 << 28))
       for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0))
         for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
-          methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
-                                 (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
-                                 (fits ? "" : ", no fits"),
-                             0, 0.5, 0.5, true, grid, photons, lobes, fits != 0});
+          for (int refine : parse_ints("--ms-refine", a.ms_refine, 1000000000, 0))
+            methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
+                                   (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
+                                   (fits ? "" : ", no fits") +
+                                   (refine == 1000 ? ""
+                                    : refine == 0  ? ", exact grid"
+                                                   : ", finer to " + std::to_string(refine) + " photons a cell"),
+                               0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine});
   }
   std::printf("# nimbus bench look: %s, %dx%d, seen from %s, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
               w, h, a.view == "below" ? "below" : "the side", gl->renderer().c_str());
@@ -168,8 +176,8 @@ int run_bench_look(const BenchLookArgs& a) {
               "#   reference; slicer: %d slices,\n"
               "#   light 256^2, GPU ms of its passes\n\n",
               a.ref_spp, a.slices);
-  std::printf("| lighting | phase | method | ms | rel. RMSE | less ref. noise | bias | noise (mean rel. std. error) | light volume build, CPU ms |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| lighting | phase | method | ms | rel. RMSE | less ref. noise | bias | noise (mean rel. std. error) | light volume build, CPU ms | cells used |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---|\n");
   std::vector<render::PlotSeries> series(methods.size());
   for (std::size_t m = 0; m < methods.size(); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
   auto chosen = [](const std::string& list, const std::string& name) {
@@ -195,7 +203,7 @@ int run_bench_look(const BenchLookArgs& a) {
       render::PathTracerSettings ps;
       ps.samples_per_pixel = a.ref_spp;
       const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
-      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | 0 | %.4f | |\n", l.name, p.name, a.ref_spp,
+      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | 0 | %.4f | | |\n", l.name, p.name, a.ref_spp,
                   1000.0 * ref.seconds, ref.mean_relative_error);
       const std::filesystem::path case_stem = std::filesystem::path(a.images) / (slug(l.name) + "_" + slug(p.name));
       if (!a.images.empty()) {
@@ -210,7 +218,7 @@ int run_bench_look(const BenchLookArgs& a) {
         const render::PathTracedImage pt = render::render_cloud_path_traced(clouds, cam, light, ps);
         const render::ImageError e = render::compare_images(pt.image, ref.image);
         const double clean = render::noise_corrected_rel_rmse(pt.image, ref.image, ref.std_error);
-        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %.4f | %+.4f | %.4f | |\n", l.name, p.name, spp,
+        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %.4f | %+.4f | %.4f | | |\n", l.name, p.name, spp,
                     1000.0 * pt.seconds, e.rel_rmse, clean, e.mean_bias, pt.mean_relative_error);
         traced.x.push_back(1000.0 * pt.seconds);
         traced.y.push_back(e.rel_rmse);
@@ -229,6 +237,7 @@ int run_bench_look(const BenchLookArgs& a) {
           fs.slices.multiple.light_volume.photons = methods[m].photons;
           fs.slices.multiple.light_volume.lobe_orders = methods[m].lobes;
           fs.slices.multiple.light_volume.fits = methods[m].fits;
+          fs.slices.multiple.light_volume.photons_per_cell = methods[m].refine;
         }
         render::FrameRenderer fr(std::nullopt, light, fs);
         fr.set_clouds(clouds);
@@ -246,11 +255,16 @@ int run_bench_look(const BenchLookArgs& a) {
           render::write_exr(case_stem.string() + "_" + slug(methods[m].name) + ".exr", img);
         }
         const render::ImageError e = render::compare_images(img, ref.image);
-        char build[32] = "";
-        if (methods[m].light_volume) std::snprintf(build, sizeof build, "%.0f", first.light_volume_build_ms);
+        char build[32] = "", used[64] = "";
+        if (methods[m].light_volume) {
+          std::snprintf(build, sizeof build, "%.0f", first.light_volume_build_ms);
+          const render::LightVolume g = render::light_volume_grid(clouds, fs.slices.multiple.light_volume);
+          std::snprintf(used, sizeof used, "%dx%dx%d, %.0f m", g.size[0], g.size[1], g.size[2],
+                        std::max({g.cell_m.x, g.cell_m.y, g.cell_m.z}));
+        }
         const double clean = render::noise_corrected_rel_rmse(img, ref.image, ref.std_error);
-        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %.4f | %+.4f | | %s |\n", l.name, p.name, methods[m].name.c_str(),
-                    best, e.rel_rmse, clean, e.mean_bias, build);
+        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %.4f | %+.4f | | %s | %s |\n", l.name, p.name,
+                    methods[m].name.c_str(), best, e.rel_rmse, clean, e.mean_bias, build, used);
         series[m].x.push_back(best);
         series[m].y.push_back(e.rel_rmse);
       }
@@ -284,6 +298,10 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ms-lobes", a->ms_lobes, "Comma-separated light-volume lobe orders, 0 to 2 (0: harmonics alone)")
       ->capture_default_str();
   cmd->add_option("--ms-fits", a->ms_fits, "Comma-separated: 1 light volume with its linear fits in each cell, 0 without")
+      ->capture_default_str();
+  cmd->add_option("--ms-refine", a->ms_refine,
+                  "Comma-separated photons per cell face down to which the light volume takes finer cells than --ms-grid "
+                  "(0: --ms-grid exactly)")
       ->capture_default_str();
   cmd->add_option("--lighting", a->lighting, "Comma-separated lightings to run: front-lit, back-lit")->capture_default_str();
   cmd->add_option("--phases", a->phases, "Comma-separated phases to run: isotropic, hg, dual (names or their prefixes)")

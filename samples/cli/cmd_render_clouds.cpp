@@ -114,7 +114,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--ms-method", a.ms_method,
                   "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
                   "the default) or octaves (the default when --multiple N > 0 is given alone)");
-  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis, 4-192")->capture_default_str();
+  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis at least, 4-192 (finer where its photons allow: about 1000 a cell)")->capture_default_str();
   cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
   cmd->add_option("--ms-lobes", a.ms_lobes, "Light volume: scattering orders kept as lobes about the sun, 0-2 (0: harmonics alone)")
       ->capture_default_str();

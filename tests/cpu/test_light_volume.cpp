@@ -349,6 +349,47 @@ TEST(LightVolume, RefusesBadSettingsNamingThem) {
   EXPECT_TRUE(grid.fluence_rgb.empty());
 }
 
+// The grid refines where the photons allow (LightVolumeSettings::photons_per_cell): cells of
+// side c over the box's largest face A get about N c^2 / A photons; never finer than a voxel
+// nor 128 cells along the longest axis; never coarser than `resolution`; 0 keeps it exactly.
+TEST(LightVolume, FinerCellsWhereThePhotonsAllow) {
+  const std::vector<CloudVolume> clouds = small_slab(0.9);
+  glm::dvec3 lo, hi;
+  cloud_bounds(clouds, lo, hi);
+  const glm::dvec3 e = hi - lo;
+  const double face = std::max({e.x * e.y, e.y * e.z, e.x * e.z}), longest = std::max({e.x, e.y, e.z});
+  LightVolumeSettings s = small_settings();  // 16 cells, 2^14 photons: about 160 a 3 m cell, too few to refine
+  EXPECT_EQ(std::max({light_volume_grid(clouds, s).size[0], light_volume_grid(clouds, s).size[2]}), 16);
+  s.photons = 1 << 20;
+  const LightVolume g = light_volume_grid(clouds, s);
+  std::printf("[ grid ] 2^20 photons over %.0f m^2: cells %.3f m, %dx%dx%d\n", face, g.cell_m.x, g.size[0], g.size[1], g.size[2]);
+  EXPECT_NEAR(static_cast<double>(s.photons) * g.cell_m.x * g.cell_m.x / face, 1000.0, 1.0);
+  EXPECT_GT(g.size[0], 16);
+  EXPECT_EQ(g.size[0], static_cast<int>(std::ceil(e.x / g.cell_m.x - 1e-9)));
+  s.photons = 1 << 26;  // the budget would allow 0.2 m: a voxel (1 m) is the finest
+  EXPECT_NEAR(light_volume_grid(clouds, s).cell_m.x, 1.0, 1e-9);
+  s.photons_per_cell = 0.0;
+  EXPECT_NEAR(light_volume_grid(clouds, s).cell_m.x, longest / 16, 1e-9);
+  s.resolution = 64;  // finer than the budget's: the resolution stands
+  s.photons = 1 << 14;
+  s.photons_per_cell = 1000.0;
+  EXPECT_NEAR(light_volume_grid(clouds, s).cell_m.x, longest / 64, 1e-9);
+  // A 321 m slab of 1 m voxels under 2^28 photons: 128 cells along it, not 321.
+  const std::vector<CloudVolume> wide = {slab(2.0, 4, 320, DualLobePhase{}, 0.9)};
+  s.resolution = 48;
+  s.photons = std::int64_t{1} << 28;
+  EXPECT_EQ(light_volume_grid(wide, s).size[0], 128);
+  for (double bad : {-1.0, std::nan(""), 2e9}) {
+    s.photons_per_cell = bad;
+    try {
+      light_volume_grid(clouds, s);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const std::invalid_argument& err) {
+      EXPECT_NE(std::string(err.what()).find("photons per cell"), std::string::npos) << err.what();
+    }
+  }
+}
+
 // A 2x1x1 volume by hand: cell values at cell centres, clamped beyond them.
 LightVolume two_cells() {
   LightVolume v;

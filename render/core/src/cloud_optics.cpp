@@ -61,6 +61,9 @@ void validate(const LightVolumeSettings& s) {
           "light volume resolution must be in [4, 192] cells, got " + std::to_string(s.resolution));
   require(s.photons >= 1 && s.photons <= (std::int64_t{1} << 28),
           "light volume photons must be in [1, 268435456], got " + std::to_string(s.photons));
+  require(std::isfinite(s.photons_per_cell) && s.photons_per_cell >= 0.0 && s.photons_per_cell <= 1e9,
+          "light volume photons per cell must be in [0, 1e9] (0: the resolution exactly), got " +
+              std::to_string(s.photons_per_cell));
   require(s.lobe_orders >= 0 && s.lobe_orders <= 2,
           "light volume lobe orders must be in [0, 2], got " + std::to_string(s.lobe_orders));
   require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");

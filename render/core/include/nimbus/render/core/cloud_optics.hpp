@@ -36,7 +36,11 @@ struct CloudLight {
 // How the light volume (light_volume.hpp) is built: photons from the sun through the clouds
 // (render/reference light_volume_builder.hpp), tallied on a grid of cube cells over the clouds' box.
 struct LightVolumeSettings {
-  int resolution = 48;             // cells along the box's longest axis, [4, 192] (the others in proportion)
+  int resolution = 48;             // cells along the box's longest axis at least, [4, 192] (the others in proportion)
+  // Finer cells where the photons allow (light_volume_grid): as narrow as leaves each cell's face
+  // about this many photons launched over the box's largest face, but no finer than the clouds'
+  // voxels nor 128 along the longest axis. 0 keeps `resolution` exactly. [0, 1e9]
+  double photons_per_cell = 1000.0;
   std::int64_t photons = 1 << 21;  // photons launched from the sun, [1, 1 << 28]
   std::uint64_t seed = 1;          // the same seed gives the same volume, whatever the threads
   int threads = 0;                 // 0 = all cores

@@ -16,7 +16,8 @@
 namespace nimbus::render {
 
 // The grid the volume gets for these clouds and settings: cube cells, `resolution` along the
-// union box's longest axis. std::invalid_argument for an empty list or bad settings.
+// union box's longest axis, or finer where the photons allow (settings.photons_per_cell); at
+// least 8 cells across a thin axis. std::invalid_argument for an empty list or bad settings.
 LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const LightVolumeSettings& settings);
 
 // Bytes that building that grid takes (the tallies and the result), for a refusal before

@@ -91,11 +91,11 @@ LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const Ligh
   // through it) against its size (its mean smears the steep gradient of the light inside a sunlit
   // surface, which the eye sees the first mean free path of). The photons launched per unit area
   // set the first: cells of side c over the box's largest face A get about N c^2 / A photons each.
-  // Measured (docs/clouds.md, bench look): 1000 a cell face keeps the 22 m cells of
+  // Measured (docs/clouds.md, bench look, 2^21 photons): 1000 a cell face keeps the 22 m cells of
   // cumulus-mediocris and the 208 m cells of the 10 km stratus sheet, where finer ones were worse
-  // (photon noise), and refines the 64 m cells of the 3 km congestus tower, which smeared its
-  // sunlit limb (HG 0.7: 10.6 % -> ... %). No finer than the clouds' voxels (no detail below them)
-  // nor 128 cells along the longest axis (memory).
+  // (photon noise), and refines the 64 m cells of the 3 km congestus tower to 50 m: they smeared
+  // its sunlit limb (HG 0.7, front- and back-lit: 10.6 and 10.0 % -> 8.7 and 8.7 %). No finer
+  // than the clouds' voxels (no detail below them) nor 128 cells along the longest axis (memory).
   if (settings.photons_per_cell > 0.0) {
     const double face = std::max({extent.x * extent.y, extent.y * extent.z, extent.x * extent.z});
     double voxel = kInf;

@@ -29,6 +29,9 @@
 namespace nimbus::cli {
 namespace {
 
+// The light volume's own default, unnamed in the rows' labels.
+const int kDefaultRefine = static_cast<int>(render::LightVolumeSettings{}.photons_per_cell);
+
 struct BenchLookArgs {
   std::string preset = "cumulus-mediocris";
   std::string res = "120x90";
@@ -39,7 +42,8 @@ struct BenchLookArgs {
   std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
   std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
   std::string ms_fits = "1";           // light-volume rows: 1 with eq. MS-4's fits, 0 without
-  std::string ms_refine = "1000";      // light-volume rows: photons per cell face for finer cells, 0 the grid exactly
+  // light-volume rows: photons per cell face for finer cells, 0 the grid exactly
+  std::string ms_refine = std::to_string(kDefaultRefine);
   std::string lighting = "front-lit,back-lit";          // which lightings to run
   std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
@@ -65,7 +69,7 @@ struct Octaves {
   int photons = 0;
   int lobes = 2;
   bool fits = true;
-  int refine = 1000;  // LightVolumeSettings::photons_per_cell
+  int refine = kDefaultRefine;  // LightVolumeSettings::photons_per_cell
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -163,7 +167,7 @@ int run_bench_look(const BenchLookArgs& a) {
             methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
                                    (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
                                    (fits ? "" : ", no fits") +
-                                   (refine == 1000 ? ""
+                                   (refine == kDefaultRefine ? ""
                                     : refine == 0  ? ", exact grid"
                                                    : ", finer to " + std::to_string(refine) + " photons a cell"),
                                0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine});

@@ -29,6 +29,39 @@ std::size_t index(const LightVolume& v, int i, int j, int k) {
   return static_cast<std::size_t>(i) + static_cast<std::size_t>(v.size[0]) * (j + static_cast<std::size_t>(v.size[1]) * k);
 }
 
+// A discrete-ordinates profile (per level, lit face first) at height y in a slab of `layers` unit
+// voxels of optical thickness tau: full density over voxel centres 0 .. layers - 1, the density
+// ramping to 0 over the voxel above (half a voxel of optical depth).
+double dom_at(const std::vector<double>& profile, double tau, int layers, double y) {
+  const double t = tau / layers * (layers - 0.5 - y);
+  const double x = t / tau * (profile.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(x), profile.size() - 2);
+  return profile[i] + (x - i) * (profile[i + 1] - profile[i]);
+}
+
+// The profile's mean over heights [y0, y1) (32 midpoints), heights clamped into [lo, hi].
+double dom_mean(const std::vector<double>& profile, double tau, int layers, double y0, double y1, double lo = -1e300,
+                double hi = 1e300) {
+  double sum = 0.0;
+  for (int q = 0; q < 32; ++q) sum += dom_at(profile, tau, layers, std::clamp(y0 + (q + 0.5) / 32.0 * (y1 - y0), lo, hi));
+  return sum / 32.0;
+}
+
+// Layer j of cells over the central columns (away from a slab's sides): their mean fluence and
+// the largest cell over that mean.
+struct LayerFluence {
+  double mean = 0.0, largest = 0.0;
+};
+LayerFluence central_layer(const LightVolume& v, int j) {
+  std::vector<double> vals;
+  for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
+    for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i) vals.push_back(v.fluence_rgb[3 * index(v, i, j, k)]);
+  LayerFluence f;
+  for (double x : vals) f.mean += x / vals.size();
+  for (double x : vals) f.largest = std::max(f.largest, f.mean > 0.0 ? x / f.mean : 0.0);
+  return f;
+}
+
 CloudLight overhead_sun() {
   CloudLight l;
   l.direction_to_light = glm::dvec3(0.0, 1.0, 0.0);  // the beam travels down, -y, at mu0 = 1
@@ -56,27 +89,14 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
     s.photons = 1 << 18;
     const LightVolume v = build_light_volume(clouds, overhead_sun(), s);
     const test::SlabSolution dom = test::solve_slab(c.tau, c.albedo, c.phase, 1.0);
-    const double sigma = c.tau / layers;
-    // The DOM's fluence at height y inside the full-density part (voxel centres 0 .. layers - 1;
-    // the density ramps to 0 over the voxel above, half a voxel of optical depth).
-    auto dom_at = [&](double y, const std::vector<double>& profile) {
-      const double t = sigma * (layers - 0.5 - y);
-      const double x = t / c.tau * (profile.size() - 1);
-      const std::size_t i = std::min(static_cast<std::size_t>(x), profile.size() - 2);
-      return profile[i] + (x - i) * (profile[i + 1] - profile[i]);
-    };
     int compared = 0;
     for (int j = 0; j < v.size[1]; ++j) {
       const double y0 = v.world_min.y + j * v.cell_m.y, y1 = y0 + v.cell_m.y;
       if (y0 < 0.0 || y1 > layers - 1.0) continue;  // cells wholly in the uniform part
       // The cell's mean of the DOM profile, and of the central columns (away from the slab's sides).
-      double phi_dom = 0.0, flux_dom = 0.0, q_dom = 0.0;
-      for (int q = 0; q < 32; ++q) {
-        const double y = y0 + (q + 0.5) / 32.0 * v.cell_m.y;
-        phi_dom += dom_at(y, dom.fluence) / 32.0;
-        flux_dom += dom_at(y, dom.flux_down) / 32.0;
-        q_dom += dom_at(y, dom.second) / 32.0;
-      }
+      const double phi_dom = dom_mean(dom.fluence, c.tau, layers, y0, y1);
+      const double flux_dom = dom_mean(dom.flux_down, c.tau, layers, y0, y1);
+      const double q_dom = dom_mean(dom.second, c.tau, layers, y0, y1);
       double phi = 0.0, flux_y = 0.0, q_yy = 0.0;
       int cells = 0;
       for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
@@ -109,8 +129,9 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
             ++n_read;
           }
         fitted /= n_read;
-        std::printf("  at y %.2f: fitted fluence %.4f (DOM %.4f)\n", y, fitted, dom_at(y, dom.fluence));
-        EXPECT_NEAR(fitted, dom_at(y, dom.fluence), 0.04 * dom_at(y, dom.fluence)) << "y " << y;
+        const double expected = dom_at(dom.fluence, c.tau, layers, y);
+        std::printf("  at y %.2f: fitted fluence %.4f (DOM %.4f)\n", y, fitted, expected);
+        EXPECT_NEAR(fitted, expected, 0.04 * expected) << "y " << y;
       }
       // Eq. MS-3's lobes: fractions that add to at most 1, mean cosines in range; with HG 0.7 the
       // first order is more forward than the second (g^n in an unbounded medium).
@@ -142,14 +163,8 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
     // fluence over the cell (held at the face's value in the ramp).
     for (int j : {0, v.size[1] - 1}) {
       const double y0 = v.world_min.y + j * v.cell_m.y;
-      double phi_dom = 0.0;
-      for (int q = 0; q < 32; ++q)
-        phi_dom += dom_at(std::clamp(y0 + (q + 0.5) / 32.0 * v.cell_m.y, -0.5, layers - 0.5), dom.fluence) / 32.0;
-      double phi = 0.0;
-      int cells = 0;
-      for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
-        for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i, ++cells) phi += v.fluence_rgb[3 * index(v, i, j, k)];
-      phi /= cells;
+      const double phi_dom = dom_mean(dom.fluence, c.tau, layers, y0, y0 + v.cell_m.y, -0.5, layers - 0.5);
+      const double phi = central_layer(v, j).mean;
       std::printf("tau %g albedo %g g %g: face cell y [%.1f, %.1f]: fluence %.4f (DOM %.4f)\n", c.tau, c.albedo,
                   c.phase.g_forward, y0, y0 + v.cell_m.y, phi, phi_dom);
       EXPECT_NEAR(phi, phi_dom, 0.06 * phi_dom) << "cell y " << y0;
@@ -180,23 +195,12 @@ TEST(LightVolume, ThickSlabHasNoHeavyPhotons) {
   for (int j = 0; j < v.size[1]; ++j) {
     const double y0 = v.world_min.y + j * v.cell_m.y, y1 = y0 + v.cell_m.y;
     if (y0 < 0.0 || y1 > layers - 1.0) continue;
-    double phi_dom = 0.0;
-    for (int q = 0; q < 32; ++q) {
-      const double t = (tau / layers) * (layers - 0.5 - (y0 + (q + 0.5) / 32.0 * v.cell_m.y));
-      const double x = t / tau * (dom.fluence.size() - 1);
-      const std::size_t i = std::min(static_cast<std::size_t>(x), dom.fluence.size() - 2);
-      phi_dom += (dom.fluence[i] + (x - i) * (dom.fluence[i + 1] - dom.fluence[i])) / 32.0;
-    }
-    std::vector<double> vals;
-    for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
-      for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i) vals.push_back(v.fluence_rgb[3 * index(v, i, j, k)]);
-    double mean = 0.0, top = 0.0;
-    for (double x : vals) mean += x / vals.size();
-    for (double x : vals) top = std::max(top, x / mean);
+    const double phi_dom = dom_mean(dom.fluence, tau, layers, y0, y1);
+    const LayerFluence f = central_layer(v, j);
     std::printf("thick slab: cells y [%.2f, %.2f]: fluence %.4f (DOM %.4f), largest cell %.2fx the layer's mean\n", y0, y1,
-                mean, phi_dom, top);
-    worst_cell = std::max(worst_cell, top);
-    worst_layer = std::max(worst_layer, std::abs(mean / phi_dom - 1.0));
+                f.mean, phi_dom, f.largest);
+    worst_cell = std::max(worst_cell, f.largest);
+    worst_layer = std::max(worst_layer, std::abs(f.mean / phi_dom - 1.0));
   }
   std::printf("[ thick slab ] worst layer %.1f %% off the DOM, worst cell %.2fx its layer\n", 100.0 * worst_layer, worst_cell);
   EXPECT_LT(worst_layer, 0.12);
@@ -233,14 +237,9 @@ TEST(LightVolume, ThinCloudHoldsTheLightAroundIt) {
   auto layer = [&](double y0, double* worst) {
     const int j = static_cast<int>(std::lround((y0 - v.world_min.y) / v.cell_m.y));
     EXPECT_NEAR(v.world_min.y + j * v.cell_m.y, y0, 1e-9);
-    std::vector<double> vals;
-    for (int k = v.size[2] * 3 / 10; k < v.size[2] * 7 / 10; ++k)
-      for (int i = v.size[0] * 3 / 10; i < v.size[0] * 7 / 10; ++i) vals.push_back(v.fluence_rgb[3 * index(v, i, j, k)]);
-    double mean = 0.0;
-    for (double x : vals) mean += x / vals.size();
-    *worst = 0.0;
-    for (double x : vals) *worst = std::max(*worst, mean > 0.0 ? x / mean : 0.0);
-    return mean;
+    const LayerFluence f = central_layer(v, j);
+    *worst = f.largest;
+    return f.mean;
   };
   double worst_clear = 0.0, worst_haze = 0.0;
   const double clear = layer(20.0, &worst_clear);
@@ -359,7 +358,8 @@ TEST(LightVolume, FinerCellsWhereThePhotonsAllow) {
   const glm::dvec3 e = hi - lo;
   const double face = std::max({e.x * e.y, e.y * e.z, e.x * e.z}), longest = std::max({e.x, e.y, e.z});
   LightVolumeSettings s = small_settings();  // 16 cells, 2^14 photons: about 160 a 3 m cell, too few to refine
-  EXPECT_EQ(std::max({light_volume_grid(clouds, s).size[0], light_volume_grid(clouds, s).size[2]}), 16);
+  const LightVolume coarse = light_volume_grid(clouds, s);
+  EXPECT_EQ(std::max(coarse.size[0], coarse.size[2]), 16);
   s.photons = 1 << 20;
   const LightVolume g = light_volume_grid(clouds, s);
   std::printf("[ grid ] 2^20 photons over %.0f m^2: cells %.3f m, %dx%dx%d\n", face, g.cell_m.x, g.size[0], g.size[1], g.size[2]);

@@ -27,8 +27,8 @@ constexpr std::size_t kMaxBytes = std::size_t{2} << 30;  // 2 GiB
 constexpr int kTallies = 18;
 constexpr int kLobeTally = 11;
 constexpr int kMomentTally = 15;
-constexpr int kSubsamples = 4;
-constexpr double kMaxRefined = 128.0;                    // cells along the longest axis, at most, when refining                           // per cell axis, for the covered fraction
+constexpr int kSubsamples = 4;                           // per cell axis, for the covered fraction
+constexpr double kMaxRefined = 128.0;                    // cells along the longest axis, at most, when refining
 
 // The brick majorant of `m` at a world point (0 outside its bricks).
 double majorant_at(const TracedCloud& m, const glm::dvec3& world) {
@@ -106,8 +106,8 @@ LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const Ligh
   }
   v.world_min = lo;
   v.cell_m = glm::dvec3(cube);
+  const int along = std::max(settings.resolution, static_cast<int>(std::ceil(longest / cube - 1e-9)));
   for (int a = 0; a < 3; ++a) {
-    const int along = std::max(settings.resolution, static_cast<int>(std::ceil(longest / cube - 1e-9)));
     v.size[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / cube - 1e-9)), 1, along);
     if (v.size[a] < kMinAcross) {
       v.size[a] = std::min(kMinAcross, along);

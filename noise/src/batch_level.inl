@@ -53,6 +53,7 @@ void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1
     case Kind::Value: return rows_of_kind<Bt, Kind::Value>(fd, g, r0, r1, out);
     case Kind::Gradient: return rows_of_kind<Bt, Kind::Gradient>(fd, g, r0, r1, out);
     case Kind::Wavelet: return rows_of_kind<Bt, Kind::Wavelet>(fd, g, r0, r1, out);
+    case Kind::Worley: return rows_of_kind<Bt, Kind::Worley>(fd, g, r0, r1, out);
   }
 }
 

@@ -133,6 +133,7 @@ NoiseField::NoiseField(const NoiseParams& p) : params_(p) {
     o.time = p.time.value_or(0.0) * ratio;
     o.amp = static_cast<float>(amp);
     o.seed = hash::octave_seed(p.seed, i);
+    o.cell_time = static_cast<float>(o.time - 8.0 * std::floor(o.time / 8.0));
     if (data_.animated) {
       // Value noise blends two time slices with the fade s of the time fraction; this factor
       // makes its variance independent of time (see kernels::value4). It is computed from the
@@ -207,6 +208,8 @@ double NoiseField::single_octave_sd() const {
         return std::sqrt(0.75 * (Wt * 3.0 * Bw * A * A + Dt * A * A * A)) * kGradientScale4;
       }
       return std::sqrt(2.0 * Bw * A * A) * kGradientScale3;
+    case Kind::Worley:  // the points are uniform in their cells at every time
+      return kWorleySdF1;
     case Kind::Wavelet: {
       if (params_.projected) return std::numeric_limits<double>::quiet_NaN();
       std::call_once(sd_once_, [this] {
@@ -240,6 +243,12 @@ double NoiseField::single_octave_sd() const {
       return std::sqrt(four ? 0.5 * wavelet_var_ : wavelet_var_);
     }
   }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double NoiseField::expected_mean() const {
+  if (params_.kind != Kind::Worley) return 0.0;
+  if (params_.fractal == Fractal::None || params_.fractal == Fractal::Fbm) return 1.0 - kWorleyMeanF1;
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -308,7 +317,7 @@ void octave_gradient(const detail::FieldData& fd, const detail::OctaveData& o, d
 }  // namespace
 
 NoiseGradient NoiseField::eval_gradient(double x, double y, double z) const {
-  if (params_.kind == Kind::Wavelet || data_.animated)
+  if (params_.kind == Kind::Wavelet || params_.kind == Kind::Worley || data_.animated)
     throw std::logic_error("analytic gradients exist for value and gradient noise, not animated");
   double acc[4] = {0, 0, 0, 0};
   for (int i = 0; i < data_.octaves; ++i) {
@@ -333,6 +342,25 @@ NoiseGradient NoiseField::eval_gradient(double x, double y, double z) const {
   const double inv = data_.inv_amp_sum;
   return {static_cast<float>(acc[0] * inv), static_cast<float>(acc[1] * inv),
           static_cast<float>(acc[2] * inv), static_cast<float>(acc[3] * inv)};
+}
+
+std::array<double, 3> worley_feature_point(const NoiseField& field, int octave, int64_t cx, int64_t cy,
+                                           int64_t cz) {
+  const detail::FieldData& fd = field.data();
+  if (fd.kind != Kind::Worley) throw std::invalid_argument("worley_feature_point: the field is not Worley noise");
+  if (octave < 0 || octave >= fd.octaves) throw std::invalid_argument("worley_feature_point: no such octave");
+  const detail::OctaveData& o = fd.oct[octave];
+  const int64_t c[3] = {cx, cy, cz};
+  const uint32_t prime[3] = {hash::kPrimeX, hash::kPrimeY, hash::kPrimeZ};
+  uint32_t h[3];
+  for (int a = 0; a < 3; ++a) {
+    int64_t w = c[a];
+    if (o.iperiod[a] > 0) w = ((w % o.iperiod[a]) + o.iperiod[a]) % o.iperiod[a];
+    h[a] = static_cast<uint32_t>(static_cast<uint64_t>(w)) * prime[a];
+  }
+  float p[3];
+  kernels::cell_point<B1>(h[0], h[1], h[2], o.seed, fd.animated, o.cell_time, p);
+  return {double(cx) + p[0], double(cy) + p[1], double(cz) + p[2]};
 }
 
 // ---- Single-octave helpers --------------------------------------------------------------

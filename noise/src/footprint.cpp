@@ -11,6 +11,7 @@ double band_top(Kind kind) {
     case Kind::Value: return 0.7;
     case Kind::Gradient: return 1.0;
     case Kind::Wavelet: return 0.5;
+    case Kind::Worley: return 1.0;  // one feature point per cell: most power near 1 cycle per cell
   }
   return 1.0;
 }

@@ -3,6 +3,7 @@
 //   value noise     sum over corners of  w(t) * v_corner          (quintic weights)
 //   gradient noise  sum over corners of  w(t) * (g_corner . d)    (Perlin 2002)
 //   wavelet noise   sum over 27 taps of  B2(x) B2(y) B2(z) * r    (Cook & DeRose 2005)
+//   Worley noise    1 - min over nearby cells of |p_cell - x|      (Worley 1996)
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -339,6 +340,141 @@ NIMBUS_INLINE typename B::F wavelet3(const detail::FieldData& fd, const detail::
 }
 
 
+// ---- Worley (cellular) noise ----------------------------------------------------------
+// One feature point per lattice cell, uniform in the cell and hashed from it (Worley 1996);
+// the noise is 1 - F1, F1 the distance to the nearest feature point in lattice units. F1 is
+// at most sqrt(3) (the sample's own cell holds a point), so 1 - F1 lies in [1 - sqrt(3), 1].
+// Animated: each coordinate of a point moves as a triangle wave tri(phase + v t) of speed
+// |v| in {0.5, 0.75, 1, 1.25} cells per time unit, with a uniform phase, so the points stay in
+// their cells, move continuously, and are uniform in the cell at every time.
+
+// One axis of a sample: the hashed coordinates of cells c-2 .. c+2 and the fraction t.
+template <class B>
+struct CellAxis {
+  typename B::U h[5];
+  typename B::F t;
+};
+
+template <class B>
+NIMBUS_INLINE CellAxis<B> cell_axis(typename B::D x, double period, int32_t iperiod, uint32_t prime) {
+  using D = typename B::D;
+  using I = typename B::I;
+  using U = typename B::U;
+  const D c = floor_exact(x);
+  CellAxis<B> a;
+  a.t = convert<typename B::F>(x - c);
+  if (period > 0.0) {  // cells c + k wrapped into [0, period); two steps each way cover period 1
+    const I c0 = bitcast<I>(low_bits<B>(mod_exact(c, period, 1.0 / period)));
+    const I p = splat<I>(iperiod);
+    for (int k = -2; k <= 2; ++k) {
+      I v = c0 + k;
+      v = select(v < 0, v + p, v);
+      v = select(v < 0, v + p, v);
+      v = select(v >= p, v - p, v);
+      v = select(v >= p, v - p, v);
+      a.h[k + 2] = bitcast<U>(v) * prime;
+    }
+  } else {
+    const U c0 = low_bits<B>(c);
+    for (int k = -2; k <= 2; ++k) a.h[k + 2] = (c0 + uint32_t(k)) * prime;
+  }
+  return a;
+}
+
+template <class B, class X>
+NIMBUS_INLINE CellAxis<B> cell_axis_any(X x, double period, int32_t iperiod, uint32_t prime) {
+  if constexpr (B::width > 1 && std::is_same_v<X, double>) {
+    const CellAxis<Batch<1>> a = cell_axis<Batch<1>>(x, period, iperiod, prime);
+    CellAxis<B> r;
+    for (int k = 0; k < 5; ++k) r.h[k] = splat<typename B::U>(a.h[k]);
+    r.t = splat<typename B::F>(a.t);
+    return r;
+  } else {
+    return cell_axis<B>(x, period, iperiod, prime);
+  }
+}
+
+// A 16-bit hash field as a coordinate in (0, 1).
+template <class B>
+NIMBUS_INLINE typename B::F unit16(typename B::U bits) {
+  using F = typename B::F;
+  return (convert<F>(bitcast<typename B::I>(bits & 0xffffu)) + 0.5f) * (1.0f / 65536.0f);
+}
+
+// Coordinate of a moving point: tri(2 u + v t), tri(s) = 1 - |1 - (s mod 2)|; `code` holds
+// the speed's 2 bits and its sign bit.
+template <class B>
+NIMBUS_INLINE typename B::F moving(typename B::F u, typename B::U code, float t) {
+  using F = typename B::F;
+  using I = typename B::I;
+  const F speed = (convert<F>(bitcast<I>(code & 3u)) + 2.0f) * 0.25f;
+  const F v = bitcast<F>(bitcast<typename B::U>(speed) ^ ((code & 4u) << 29));
+  const F s = 2.0f * u + v * t;
+  const F m = s - 2.0f * floor_small<F, I>(s * 0.5f);
+  return 1.0f - abs(1.0f - m);
+}
+
+// The feature point of the cell with hashed coordinates hx, hy, hz: its offset in the cell.
+template <class B>
+NIMBUS_INLINE void cell_point(typename B::U hx, typename B::U hy, typename B::U hz, uint32_t seed,
+                              bool animated, float time, typename B::F* p) {
+  using U = typename B::U;
+  const U h1 = hash::mix<U>(hx ^ hy ^ hz ^ seed);
+  const U h2 = hash::mix<U>(h1 ^ 0x9e3779b9u);
+  p[0] = unit16<B>(h1);
+  p[1] = unit16<B>(h1 >> 16);
+  p[2] = unit16<B>(h2);
+  if (animated) {
+    p[0] = moving<B>(p[0], h2 >> 16, time);
+    p[1] = moving<B>(p[1], h2 >> 19, time);
+    p[2] = moving<B>(p[2], h2 >> 22, time);
+  }
+}
+
+// Squared distance from the sample (fractions t) to the point of cell (dx, dy, dz).
+template <class B>
+NIMBUS_INLINE typename B::F cell_d2(const CellAxis<B>* a, int dx, int dy, int dz, uint32_t seed,
+                                    bool animated, float time) {
+  using F = typename B::F;
+  F p[3];
+  cell_point<B>(a[0].h[dx + 2], a[1].h[dy + 2], a[2].h[dz + 2], seed, animated, time, p);
+  const F px = p[0], py = p[1], pz = p[2];
+  const F ex = (float(dx) + px) - a[0].t;
+  const F ey = (float(dy) + py) - a[1].t;
+  const F ez = (float(dz) + pz) - a[2].t;
+  return ex * ex + ey * ey + ez * ez;
+}
+
+// 1 - F1. The 27 cells around the sample first; the 98 cells of the next shell only when some
+// lane's nearest point so far lies farther than that shell can begin (min over axes of
+// t + 1 and 2 - t, at least 1), which is rare. The minimum is exact, so searching the shell
+// for every lane of a batch gives each lane the bits the scalar path gives it.
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F worley3(const detail::OctaveData& o, bool animated, typename B::D X, DY Y,
+                                    DZ Z) {
+  using F = typename B::F;
+  const CellAxis<B> a[3] = {cell_axis<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
+                            cell_axis_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
+                            cell_axis_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ)};
+  F best = splat<F>(16.0f);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        best = simd::min(best, cell_d2<B>(a, dx, dy, dz, o.seed, animated, o.cell_time));
+  F shell = splat<F>(2.0f);
+  for (int k = 0; k < 3; ++k) shell = simd::min(shell, simd::min(a[k].t + 1.0f, 2.0f - a[k].t));
+  // The margin keeps lanes that skip the shell exact under rounding of the shell's distances.
+  if (simd::any(best > shell * shell * 0.9999f)) {
+    for (int dz = -2; dz <= 2; ++dz)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1) continue;
+          best = simd::min(best, cell_d2<B>(a, dx, dy, dz, o.seed, animated, o.cell_time));
+        }
+  }
+  return 1.0f - simd::sqrt(best);
+}
+
 // ---- One sample of the whole field -----------------------------------------------------
 
 // One octave at x (per lane) and y, z (per lane, or shared by all lanes as doubles).
@@ -363,6 +499,7 @@ NIMBUS_INLINE typename B::F octave_noise(const detail::FieldData& fd, const deta
     }
     return wavelet3<B>(fd, o, X, Y, Z);
   }
+  if (fd.kind == Kind::Worley) return worley3<B>(o, fd.animated, X, Y, Z);
   Axis<B> a[4] = {split<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
                   split_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
                   split_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ),
@@ -481,7 +618,9 @@ inline void prepare_row(const detail::FieldData& fd, double y, double z, double 
     const detail::OctaveData& o = fd.oct[i];
     RowOctave& r = rc.oct[i];
     const double Y = y * o.freq, Z = z * o.freq;
-    if (fd.kind != Kind::Wavelet) {
+    if (fd.kind == Kind::Worley) {
+      // Nothing to share: each sample searches its own cells.
+    } else if (fd.kind != Kind::Wavelet) {
       r.y = split<B1>(Y, o.period[1], o.iperiod[1], hash::kPrimeY);
       r.z = split<B1>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ);
       if (fd.animated) r.w = split<B1>(o.time, 0.0, 0, hash::kPrimeW);
@@ -507,7 +646,9 @@ NIMBUS_INLINE typename B::F field_row(const detail::FieldData& fd, typename B::D
   using F = typename B::F;
   using I = typename B::I;
   return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int i) NIMBUS_INLINE_LAMBDA -> F {
-    if constexpr (K != Kind::Wavelet) {
+    if constexpr (K == Kind::Worley) {
+      return worley3<B>(o, fd.animated, x * o.freq, rc.y * o.freq, rc.z * o.freq);
+    } else if constexpr (K != Kind::Wavelet) {
       using U = typename B::U;
       const RowOctave& r = rc.oct[i];
       Axis<B> a[4];

@@ -63,6 +63,7 @@ std::string_view to_string(Kind k) {
     case Kind::Value: return "value";
     case Kind::Gradient: return "gradient";
     case Kind::Wavelet: return "wavelet";
+    case Kind::Worley: return "worley";
   }
   return "?";
 }
@@ -78,7 +79,7 @@ std::string_view to_string(Fractal f) {
 }
 
 std::optional<Kind> parse_kind(std::string_view s) {
-  for (Kind k : {Kind::Value, Kind::Gradient, Kind::Wavelet})
+  for (Kind k : {Kind::Value, Kind::Gradient, Kind::Wavelet, Kind::Worley})
     if (s == to_string(k)) return k;
   return std::nullopt;
 }

@@ -230,6 +230,45 @@ NIMBUS_INLINE F gather(const float* table, I idx) {
   }
 }
 
+// Lane-wise minimum (a < b ? a : b; neither argument is ever NaN in the kernels).
+template <class F>
+NIMBUS_INLINE F min(F a, F b) {
+  return select(a < b, a, b);
+}
+
+// Lane-wise square root: IEEE sqrt is correctly rounded, so every width gives the same bits.
+template <class F>
+NIMBUS_INLINE F sqrt(F x) {
+  if constexpr (std::is_arithmetic_v<F>) {
+    return std::sqrt(x);
+  } else {
+    constexpr int n = sizeof(F) / sizeof(float);
+    F r;
+    for (int i = 0; i < n; ++i) r[i] = std::sqrt(x[i]);
+    return r;
+  }
+}
+
+// floor of floats with |x| < 2^31, exactly: truncate, then step down where that rounded up.
+template <class F, class I>
+NIMBUS_INLINE F floor_small(F x) {
+  const F t = convert<F>(convert<I>(x));
+  return select(t > x, t - 1.0f, t);
+}
+
+// Whether any lane of a comparison result is true.
+template <class M>
+NIMBUS_INLINE bool any(M m) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return m;
+  } else {
+    constexpr int n = sizeof(M) / sizeof(m[0]);
+    bool r = false;
+    for (int i = 0; i < n; ++i) r |= m[i] != 0;
+    return r;
+  }
+}
+
 template <class T>
 NIMBUS_INLINE auto lane(const T& v, int i) {
   if constexpr (std::is_arithmetic_v<T>) {

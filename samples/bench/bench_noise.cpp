@@ -25,6 +25,7 @@
 
 #include "cli/cli.hpp"
 #include "nimbus/noise/noise.hpp"
+#include "nimbus/noise/perlin_worley.hpp"
 
 #if NIMBUS_HAVE_LIBNOISE
 #include <libnoise/noise.h>
@@ -256,6 +257,41 @@ Row measure_nimbus(const std::string& name, const noise::NoiseParams& p, const n
   return row;
 }
 
+// Perlin-Worley: both fBm grids through the batch path, then the remap, timed together.
+Row measure_perlin_worley(const std::string& name, const noise::PerlinWorleyParams& p,
+                          const noise::GridSpec& grid, const std::vector<SimdLevel>& levels, int repeats) {
+  const noise::PerlinWorleyField field(p);
+  std::vector<float> w(size_t(grid.count()));
+  auto timed = [&](SimdLevel level, std::vector<float>& out) {
+    noise::BatchOptions opt;
+    opt.simd = level;
+    opt.parallel = false;
+    const int64_t inner = std::max<int64_t>(1, ((int64_t(1) << 16) + grid.count() - 1) / grid.count());
+    const double secs = best_of(repeats, thread_cpu_seconds, [&] {
+      for (int64_t i = 0; i < inner; ++i) {
+        noise::evaluate_grid(field.perlin(), grid, out, opt);
+        noise::evaluate_grid(field.worley(), grid, w, opt);
+        for (size_t k = 0; k < out.size(); ++k) out[k] = field.combine(out[k], w[k]);
+      }
+    });
+    return secs * 1e9 / double(grid.count() * inner);
+  };
+  Row row;
+  row.name = name;
+  std::vector<float> ref(size_t(grid.count())), out(size_t(grid.count()));
+  row.scalar_ns = timed(SimdLevel::Scalar, ref);
+  for (SimdLevel l : levels) {
+    std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
+    Cell c;
+    c.ns = timed(l, out);
+    c.diff = diff_cell(ref, out);
+    row.simd.push_back(c);
+  }
+  row.observed = range_cell(min_max(ref));
+  row.documented = "[0, 1]";
+  return row;
+}
+
 // An anchor evaluated point by point in the same order (x fastest) at the same coordinates.
 Row measure_anchor(const std::string& name, const std::string& documented, const noise::GridSpec& grid,
                    int repeats, const std::function<float(double, double, double)>& f) {
@@ -354,11 +390,13 @@ int run_bench_noise(BenchOptions o) {
   for (double spacing : {1.0 / 16.0, 1.37}) {
     const noise::GridSpec grid = cube(res, spacing);
     std::vector<Row> rows;
-    for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Wavelet}) {
+    for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Wavelet, Kind::Worley}) {
       const std::string k(noise::to_string(kind));
       rows.push_back(measure_nimbus("nimbus " + k + ", 1 octave", params(kind, 1), grid, levels, o.repeats));
       rows.push_back(measure_nimbus("nimbus " + k + ", 6-octave fBm", params(kind, 6), grid, levels, o.repeats));
     }
+    rows.push_back(measure_perlin_worley("nimbus perlin-worley, 4-octave gradient fBm remapped by 3-octave Worley fBm",
+                                         noise::PerlinWorleyParams{}, grid, levels, o.repeats));
     {
       noise::NoiseParams p = params(Kind::Wavelet, 1);
       p.projected = true;  // normal (0, 0, 1)

@@ -32,7 +32,7 @@ struct NoiseOptions {
 int run_noise(const NoiseOptions& o) {
   noise::NoiseParams p;
   const auto kind = noise::parse_kind(o.kind);
-  if (!kind) throw UsageError("--kind: unknown noise kind '" + o.kind + "' (value, gradient, wavelet)");
+  if (!kind) throw UsageError("--kind: unknown noise kind '" + o.kind + "' (value, gradient, wavelet, worley)");
   const auto fractal = noise::parse_fractal(o.fractal);
   if (!fractal)
     throw UsageError("--fractal: unknown fractal '" + o.fractal + "' (none, fbm, turbulence, ridged)");
@@ -132,7 +132,7 @@ int run_noise(const NoiseOptions& o) {
 void add_noise_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<NoiseOptions>();
   CLI::App* cmd = app.add_subcommand("noise", "Sample a noise field on the unit cube and write it as OpenVDB");
-  cmd->add_option("--kind", o->kind, "value, gradient or wavelet")->capture_default_str();
+  cmd->add_option("--kind", o->kind, "value, gradient, wavelet or worley")->capture_default_str();
   cmd->add_flag("--projected", o->projected, "wavelet: evaluate 3D noise projected onto z slices");
   cmd->add_option("--fractal", o->fractal, "none, fbm, turbulence or ridged")->capture_default_str();
   cmd->add_option("--octaves", o->octaves, "octaves of the fractal sum")->capture_default_str();

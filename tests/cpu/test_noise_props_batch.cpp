@@ -37,7 +37,7 @@ void PrintTo(const BatchCase& c, std::ostream* os) { *os << c.name; }
 std::vector<BatchCase> batch_cases() {
   std::vector<BatchCase> out;
   const std::pair<Kind, const char*> kinds[] = {
-      {Kind::Value, "Value"}, {Kind::Gradient, "Gradient"}, {Kind::Wavelet, "Wavelet"}};
+      {Kind::Value, "Value"}, {Kind::Gradient, "Gradient"}, {Kind::Wavelet, "Wavelet"}, {Kind::Worley, "Worley"}};
   for (auto [kind, kname] : kinds) {
     const std::string k = kname;
     NoiseParams p;

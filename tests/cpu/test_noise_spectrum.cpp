@@ -33,6 +33,7 @@ const char* name(Kind k) {
     case Kind::Value: return "value";
     case Kind::Gradient: return "gradient";
     case Kind::Wavelet: return "wavelet";
+    case Kind::Worley: return "worley";
   }
   return "?";
 }

@@ -83,8 +83,9 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
       disp_[a] = make_field(noise::Kind::Gradient, noise::Fractal::Fbm, 3, p.displacement_frequency,
                             2.0, 0.5, p.seed + 2 + a, p.evolution, time_, voxel_size);
   threshold_ = 1.0 - p.coverage;
+  mean_ = billow_->expected_mean();  // Worley noise is not centred
   inv_sd_ = 1.0 / billow_->expected_sd();
-  min_useful_coverage_ = threshold_ / (1.0 + p.billow * inv_sd_);
+  min_useful_coverage_ = threshold_ / (1.0 + p.billow * (1.0 - mean_) * inv_sd_);
 }
 
 int CloudModel::octaves_used() const { return billow_->data().octaves; }
@@ -108,7 +109,7 @@ double CloudModel::coverage_at(const glm::dvec3& q) const {
 }
 
 float CloudModel::finish(double s, float billow_noise, float detail, float furrow) const {
-  const double z = double(billow_noise) * inv_sd_;
+  const double z = (double(billow_noise) - mean_) * inv_sd_;
   const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail) -
                    params_.furrows * double(furrow);
   return gas_density(static_cast<float>(f), params_.gas);

@@ -114,7 +114,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
       for (size_t i = 0; i < v.size(); ++i) p.shapes.push_back(shape_from_json(v[i], key + "[" + std::to_string(i) + "]"));
     } else if (k == "noise") {
       const auto kind = v.is_string() ? noise::parse_kind(v.get<std::string>()) : std::nullopt;
-      if (!kind) bad(key + " must be value, gradient or wavelet");
+      if (!kind) bad(key + " must be value, gradient, wavelet or worley");
       p.noise = *kind;
     } else if (k == "octaves") {
       if (!v.is_number_integer()) bad(key + " must be an integer");

@@ -41,7 +41,9 @@ class NoiseField {
   // gradient set; wavelet: the tile's autocovariance against the B-spline kernel). NaN where
   // no prediction is documented (turbulence, ridged, projected).
   double expected_sd() const;
-  double expected_mean() const { return 0.0; }
+  // Mean predicted likewise: 0 for value, gradient and wavelet noise and their fBm, and
+  // 1 - kWorleyMeanF1 for Worley noise and its fBm (the amplitudes sum to 1).
+  double expected_mean() const;
 
   const WaveletTile* tile() const { return tile_.get(); }
   const detail::FieldData& data() const { return data_; }
@@ -55,6 +57,13 @@ class NoiseField {
   mutable std::once_flag sd_once_;
   mutable double wavelet_var_ = 0.0;
 };
+
+// Worley noise: where the feature point of lattice cell (cx, cy, cz) of `octave` lies, in that
+// octave's lattice units (the cell's corner plus the float offset the kernels use). For tests
+// and tools that check the nearest-point search by brute force. std::invalid_argument for a
+// field of another kind or an octave it does not have.
+std::array<double, 3> worley_feature_point(const NoiseField& field, int octave, int64_t cx, int64_t cy,
+                                           int64_t cz);
 
 // Single-octave helpers on the same kernels (lattice units, period 0).
 float value_noise(double x, double y, double z, uint32_t seed = 0);

@@ -4,13 +4,13 @@
 //
 //   q      = p - wind t + displacement * (fbm_x, fbm_y, fbm_z)(p - wind t)
 //   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
-//   z      = fbm(q) / sd(fbm)                                      unit variance
+//   z      = (fbm(q) - mean(fbm)) / sd(fbm)                        zero mean, unit variance
 //   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(q)
 //            - furrows * ridged(q)
 //   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
 // The noise modulates the coverage, so the density is exactly 0 outside the shapes and
-// continuous at their boundary; since |fbm| <= 1, f can be positive only where
-// s > (1 - coverage) / (1 + billow / sd(fbm)), and the noise is evaluated only there.
+// continuous at their boundary; since fbm <= 1, f can be positive only where
+// s > (1 - coverage) / (1 + billow (1 - mean) / sd(fbm)), and the noise is evaluated only there.
 // ridged = sum a_i (1 - |n_i|)^2 / sum a_i peaks sharply where the noise crosses zero (the
 // seed's cumulonimbus: turbulence "folded at the middle"), so subtracting it cuts deep, narrow
 // furrows between large smooth lumps; it is in [0, 1] and only lowers f, so the bound holds.
@@ -92,6 +92,7 @@ class CloudModel {
   CloudParams params_;
   double time_;
   double threshold_;            // 1 - coverage
+  double mean_;                 // mean(fbm): 0 but for Worley noise
   double inv_sd_;               // 1 / sd(fbm)
   double min_useful_coverage_;
   std::unique_ptr<noise::NoiseField> billow_, detail_, furrow_, disp_[3];

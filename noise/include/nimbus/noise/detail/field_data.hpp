@@ -10,6 +10,7 @@ struct OctaveData {
   double freq = 1.0;              // lattice cycles per input unit
   double time = 0.0;              // this octave's time coordinate (animated fields)
   float time_norm = 1.0f;         // animated value noise: variance normalisation at `time`
+  float cell_time = 0.0f;         // animated Worley noise: `time` modulo 8 (its points' period)
   float amp = 1.0f;               // amplitude in the fractal sum
   uint32_t seed = 0;              // lattice hash seed (value, gradient)
   double period[3] = {0, 0, 0};   // lattice period of this octave (0: none)

@@ -38,7 +38,8 @@ std::unique_ptr<noise::NoiseField> make_field(noise::Kind kind, noise::Fractal f
 }  // namespace
 
 void validate(const CloudParams& p) {
-  need(!p.shapes.empty(), "shapes: at least one shape is needed");
+  need(!p.shapes.empty() || p.field, "shapes: at least one shape (or a field) is needed");
+  if (p.field) validate(*p.field);
   for (size_t i = 0; i < p.shapes.size(); ++i) validate(p.shapes[i], "shapes[" + std::to_string(i) + "]");
   need(std::isfinite(p.base_altitude), "base_altitude must be finite (metres)");
   need(std::isfinite(p.base_softness) && p.base_softness > 0, "base_softness must be finite and > 0 (metres)");
@@ -59,6 +60,12 @@ void validate(const CloudParams& p) {
   need(std::isfinite(p.gas.exponent) && p.gas.exponent > 0 && p.gas.exponent <= 16, "exponent must be in (0, 16]");
   need(finite3(p.wind), "wind must be finite (metres per second)");
   need(std::isfinite(p.evolution), "evolution must be finite");
+  need(p.cauliflower >= 0 && p.cauliflower <= 1, "cauliflower must be in [0, 1]");
+  need(std::isfinite(p.cauliflower_frequency) && p.cauliflower_frequency > 0, "cauliflower_frequency must be finite and > 0");
+  need(std::isfinite(p.stretch) && p.stretch >= 1 && p.stretch <= 64, "stretch must be in [1, 64]");
+  need(!std::isnan(p.stretch_altitude), "stretch_altitude must be a number (metres)");
+  need(std::isfinite(p.shear.x) && std::isfinite(p.shear.y) && std::fabs(p.shear.x) <= 10 && std::fabs(p.shear.y) <= 10,
+       "shear must be finite and within [-10, 10] (metres per metre)");
   need(std::isfinite(p.temperature_base), "temperature_base must be finite (metres)");
   need(std::isfinite(p.temperature_height) && p.temperature_height >= 0,
        "temperature_height must be finite and >= 0 (metres; 0: no temperature grid)");
@@ -70,6 +77,24 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   need(std::isfinite(voxel_size) && voxel_size > 0, "voxel size must be finite and > 0 (metres)");
   need(std::isfinite(time_seconds), "time must be finite (seconds)");
   const CloudParams& p = params_;
+  shapes_ = p.shapes;
+  if (p.field) {
+    const std::vector<Shape> f = field_shapes(*p.field, p.base_altitude > -1e29 ? p.base_altitude : 0.0);
+    shapes_.insert(shapes_.end(), f.begin(), f.end());
+  }
+  index_ = std::make_unique<ShapeIndex>(shapes_);
+  shear_base_ = p.base_altitude > -1e29 ? p.base_altitude : 0.0;
+  const double wl = std::hypot(p.wind.x, p.wind.y);
+  if (wl > 0) fibre_dir_ = glm::dvec2(p.wind.x, p.wind.y) / wl;
+  if (p.cauliflower > 0) {
+    noise::PerlinWorleyParams pw;
+    pw.frequency = p.cauliflower_frequency;
+    pw.seed = p.seed + 7;
+    if (p.evolution != 0.0) pw.time = p.evolution * time_;
+    pw.perlin_octaves = noise::octaves_for_footprint(noise::perlin_part(pw), voxel_size).octaves;
+    pw.worley_octaves = noise::octaves_for_footprint(noise::worley_part(pw), voxel_size).octaves;
+    cauli_ = std::make_unique<noise::PerlinWorleyField>(pw);
+  }
   billow_ = make_field(p.noise, noise::Fractal::Fbm, p.octaves, p.frequency, p.lacunarity, p.gain,
                        p.seed, p.evolution, time_, voxel_size);
   if (p.erosion > 0)
@@ -90,8 +115,24 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
 
 int CloudModel::octaves_used() const { return billow_->data().octaves; }
 
-glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
+glm::dvec3 CloudModel::sheared(const glm::dvec3& p) const {
   glm::dvec3 q = p - params_.wind * time_;
+  q.x -= params_.shear.x * (q.z - shear_base_);
+  q.y -= params_.shear.y * (q.z - shear_base_);
+  return q;
+}
+
+glm::dvec3 CloudModel::noise_point(const glm::dvec3& q) const {
+  if (params_.stretch == 1.0) return q;
+  const double x = std::clamp((q.z - params_.stretch_altitude) / 200.0, 0.0, 1.0);
+  const double w = x * x * (3.0 - 2.0 * x);
+  const double squeeze = 1.0 - w * (1.0 - 1.0 / params_.stretch);  // 1 below, 1/stretch above
+  const double along = q.x * fibre_dir_.x + q.y * fibre_dir_.y;
+  return {q.x + (squeeze - 1.0) * along * fibre_dir_.x, q.y + (squeeze - 1.0) * along * fibre_dir_.y, q.z};
+}
+
+glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
+  glm::dvec3 q = sheared(p);
   if (disp_[0])
     q += params_.displacement * glm::dvec3(disp_[0]->eval(q.x, q.y, q.z), disp_[1]->eval(q.x, q.y, q.z),
                                            disp_[2]->eval(q.x, q.y, q.z));
@@ -100,7 +141,7 @@ glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
 
 double CloudModel::coverage_at(const glm::dvec3& q) const {
   double s = 0.0;
-  for (const Shape& shape : params_.shapes) s = std::max(s, shape_coverage(shape, q));
+  index_->visit(q, [&](uint32_t i) { s = std::max(s, shape_coverage(shapes_[i], q)); });
   if (s > 0.0 && q.z < params_.base_altitude + params_.base_softness) {
     const double x = std::clamp((q.z - params_.base_altitude) / params_.base_softness, 0.0, 1.0);
     s *= x * x * (3.0 - 2.0 * x);
@@ -108,10 +149,10 @@ double CloudModel::coverage_at(const glm::dvec3& q) const {
   return s;
 }
 
-float CloudModel::finish(double s, float billow_noise, float detail, float furrow) const {
+float CloudModel::finish(double s, float billow_noise, float detail, float furrow, float cauli) const {
   const double z = (double(billow_noise) - mean_) * inv_sd_;
   const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail) -
-                   params_.furrows * double(furrow);
+                   params_.furrows * double(furrow) - params_.cauliflower * (1.0 - double(cauli));
   return gas_density(static_cast<float>(f), params_.gas);
 }
 
@@ -119,24 +160,46 @@ float CloudModel::density(const glm::dvec3& p) const {
   const glm::dvec3 q = moved(p);
   const double s = coverage_at(q);
   if (!(s > min_useful_coverage_)) return 0.0f;
-  const float n = billow_->eval(q.x, q.y, q.z);
-  const float d = detail_ ? detail_->eval(q.x, q.y, q.z) : 0.0f;
-  const float r = furrow_ ? furrow_->eval(q.x, q.y, q.z) : 0.0f;
-  return finish(s, n, d, r);
+  const glm::dvec3 m = noise_point(q);
+  const float n = billow_->eval(m.x, m.y, m.z);
+  const float d = detail_ ? detail_->eval(m.x, m.y, m.z) : 0.0f;
+  const float r = furrow_ ? furrow_->eval(m.x, m.y, m.z) : 0.0f;
+  const float c = cauli_ ? cauli_->eval(m.x, m.y, m.z) : 1.0f;
+  return finish(s, n, d, r, c);
+}
+
+Aabb CloudModel::world_box(const Aabb& b) const {
+  // p = q0 + wind t + shear (q0.z - base): the lean spans the box's height.
+  const double z0 = b.lo.z - shear_base_, z1 = b.hi.z - shear_base_;
+  const glm::dvec3 lean_lo(std::min(params_.shear.x * z0, params_.shear.x * z1),
+                           std::min(params_.shear.y * z0, params_.shear.y * z1), 0.0);
+  const glm::dvec3 lean_hi(std::max(params_.shear.x * z0, params_.shear.x * z1),
+                           std::max(params_.shear.y * z0, params_.shear.y * z1), 0.0);
+  const glm::dvec3 shift = params_.wind * time_;
+  return {b.lo + lean_lo + shift, b.hi + lean_hi + shift};
 }
 
 Aabb CloudModel::bounds() const {
-  Aabb b;
-  for (const Shape& s : params_.shapes) b = b.united(shape_bounds(s));
+  return world_box(index_->bounds().expanded(params_.displacement));
+}
+
+bool CloudModel::may_touch(const Aabb& w) const {
+  // The world box in q0 coordinates (the inverse of world_box), grown by the displacement.
   const glm::dvec3 shift = params_.wind * time_;
-  return Aabb{b.lo + shift, b.hi + shift}.expanded(params_.displacement);
+  const double z0 = w.lo.z - shift.z - shear_base_, z1 = w.hi.z - shift.z - shear_base_;
+  const glm::dvec3 lean_lo(std::min(params_.shear.x * z0, params_.shear.x * z1),
+                           std::min(params_.shear.y * z0, params_.shear.y * z1), 0.0);
+  const glm::dvec3 lean_hi(std::max(params_.shear.x * z0, params_.shear.x * z1),
+                           std::max(params_.shear.y * z0, params_.shear.y * z1), 0.0);
+  const Aabb q{w.lo - shift - lean_hi, w.hi - shift - lean_lo};
+  return index_->any_overlaps(q.expanded(params_.displacement));
 }
 
 int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
   const noise::BatchOptions serial{std::nullopt, false};  // callers parallelise over blocks
   std::vector<std::array<double, 3>> q(n);
   for (size_t i = 0; i < n; ++i) {
-    const glm::dvec3 m = points[i] - params_.wind * time_;
+    const glm::dvec3 m = sheared(points[i]);
     q[i] = {m.x, m.y, m.z};
   }
   // A point farther than `displacement` from every shape cannot be displaced into one: its
@@ -147,7 +210,9 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     for (size_t i = 0; i < n; ++i) {
       const glm::dvec3 m(q[i][0], q[i][1], q[i][2]);
       bool is_far = true;
-      for (const Shape& s : params_.shapes) is_far = is_far && shape_distance_bound(s, m) > params_.displacement;
+      index_->visit(Aabb{m, m}.expanded(params_.displacement), [&](uint32_t k) {
+        is_far = is_far && shape_distance_bound(shapes_[k], m) > params_.displacement;
+      });
       far[i] = is_far;
       kept += !is_far;
     }
@@ -174,16 +239,18 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     if (far[i]) continue;
     s[i] = coverage_at({q[i][0], q[i][1], q[i][2]});
     if (s[i] > min_useful_coverage_) {
-      busy.push_back(q[i]);
+      const glm::dvec3 m = noise_point({q[i][0], q[i][1], q[i][2]});
+      busy.push_back({m.x, m.y, m.z});
       where.push_back(static_cast<uint32_t>(i));
     }
   }
   if (busy.empty()) return 0;
-  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f), nr(busy.size(), 0.0f);
+  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f), nr(busy.size(), 0.0f), nc(busy.size(), 1.0f);
   noise::evaluate_points(*billow_, busy, nb, serial);
   if (detail_) noise::evaluate_points(*detail_, busy, nd, serial);
   if (furrow_) noise::evaluate_points(*furrow_, busy, nr, serial);
-  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k], nr[k]);
+  if (cauli_) cauli_->evaluate_points(busy, nc, serial);
+  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k], nr[k], nc[k]);
   return static_cast<int64_t>(busy.size());
 }
 

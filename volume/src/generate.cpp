@@ -44,6 +44,11 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   for (int a = 0; a < 3; ++a) {
     lo[a] = to_index(b.lo[a], vs, false);
     hi[a] = to_index(b.hi[a], vs, true);
+    if (o.clip) {  // a sub-box: the same voxels as the whole grid has there
+      lo[a] = std::max<int64_t>(lo[a], o.clip->min()[a]);
+      hi[a] = std::min<int64_t>(hi[a], o.clip->max()[a]);
+    }
+    if (hi[a] < lo[a]) hi[a] = lo[a] - 1;  // nothing to do on this axis
     voxels *= hi[a] - lo[a] + 1;
   }
   // The upper bound of what the grid could hold must fit in memory.
@@ -55,16 +60,10 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     blo[a] = floor_div(lo[a], kLeaf);
     bn[a] = floor_div(hi[a], kLeaf) - blo[a] + 1;
   }
-  std::vector<Aabb> boxes;
-  const glm::dvec3 shift = params.wind * o.time;
-  for (const Shape& s : params.shapes) {
-    const Aabb sb = shape_bounds(s);
-    boxes.push_back(Aabb{sb.lo + shift, sb.hi + shift}.expanded(params.displacement));
-  }
 
   tbb::enumerable_thread_specific<std::vector<Leaf*>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
-  const int64_t blocks = bn[0] * bn[1] * bn[2];
+  const int64_t blocks = voxels > 0 ? bn[0] * bn[1] * bn[2] : 0;
   std::atomic<int64_t> done{0};
   const int64_t report_every = std::max<int64_t>(1, blocks / 100);
   tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
@@ -75,9 +74,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
       // Voxel centres of this block span [origin, origin + 7] * vs; skip it if no shape is near.
       const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs,
                      glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs};
-      bool near = false;
-      for (const Aabb& s : boxes) near |= s.overlaps(box.expanded(1e-9 * vs));
-      if (!near) return;
+      if (!model.may_touch(box.expanded(1e-9 * vs))) return;
     }
     glm::dvec3 p[kLeaf * kLeaf * kLeaf];
     float d[kLeaf * kLeaf * kLeaf];
@@ -97,6 +94,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     Leaf* leaf = nullptr;
     for (int i = 0; i < n; ++i) {
       if (!(d[i] >= kMinDensity)) continue;
+      if (o.clip && !o.clip->isInside(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
+                                                     origin.z() + i / (kLeaf * kLeaf))))
+        continue;
       if (!leaf) leaf = new Leaf(origin, 0.0f, false);
       leaf->setValueOn(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
                                       origin.z() + i / (kLeaf * kLeaf)),

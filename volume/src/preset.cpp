@@ -66,6 +66,11 @@ Shape shape_from_json(const json& j, const std::string& where) {
     else if (k == "falloff") s.falloff = number(v, key);
     else if (k == "weight") s.weight = number(v, key);
     else if (k == "fade_up") s.fade_up = number(v, key);
+    else if (k == "roughness") s.roughness = number(v, key);
+    else if (k == "roughness_seed") {
+      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      s.roughness_seed = v.get<uint32_t>();
+    }
     else bad(key + ": unknown key");
   }
   validate(s, where);
@@ -80,6 +85,10 @@ json shape_to_json(const Shape& s) {
             {"weight", s.weight}};
   if (s.kind == ShapeKind::Capsule) j["end"] = {s.end.x, s.end.y, s.end.z};
   if (s.fade_up > 0) j["fade_up"] = s.fade_up;
+  if (s.roughness > 0) {
+    j["roughness"] = s.roughness;
+    j["roughness_seed"] = s.roughness_seed;
+  }
   return j;
 }
 
@@ -104,6 +113,51 @@ json load_preset(std::string_view name) {
   bad("unknown preset '" + std::string(name) + "' (known: " + known + ")");
 }
 
+glm::dvec2 vec2(const json& j, const std::string& key) {
+  if (!j.is_array() || j.size() != 2) bad(key + " must be an array of 2 numbers");
+  return {number(j[0], key + "[0]"), number(j[1], key + "[1]")};
+}
+
+CloudFieldParams field_from_json(const json& j, const std::string& where) {
+  if (!j.is_object()) bad(where + " must be an object");
+  CloudFieldParams f;
+  for (const auto& [k, v] : j.items()) {
+    const std::string key = where + "." + k;
+    if (k == "center") f.center_m = vec2(v, key);
+    else if (k == "size") f.size_m = vec2(v, key);
+    else if (k == "coverage") f.coverage = number(v, key);
+    else if (k == "size_exponent") f.size_exponent = number(v, key);
+    else if (k == "min_diameter") f.min_diameter_m = number(v, key);
+    else if (k == "max_diameter") f.max_diameter_m = number(v, key);
+    else if (k == "depth_scale") f.depth_scale = number(v, key);
+    else if (k == "roughness") f.roughness = number(v, key);
+    else if (k == "seed") {
+      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      f.seed = v.get<uint32_t>();
+    } else if (k == "species") {
+      if (!v.is_object() || v.empty()) bad(key + " must be an object of species shares, e.g. {\"humilis\": 0.6}");
+      f.species.clear();
+      for (const auto& [name, share] : v.items()) {
+        SpeciesShare s;
+        if (!parse_species(name, &s.species)) bad(key + "." + name + ": unknown species (humilis, mediocris, congestus)");
+        s.share = number(share, key + "." + name);
+        f.species.push_back(s);
+      }
+    } else bad(key + ": unknown key");
+  }
+  validate(f, where);
+  return f;
+}
+
+json field_to_json(const CloudFieldParams& f) {
+  json species = json::object();
+  for (const SpeciesShare& s : f.species) species[to_string(s.species)] = s.share;
+  return {{"center", {f.center_m.x, f.center_m.y}}, {"size", {f.size_m.x, f.size_m.y}},
+          {"coverage", f.coverage}, {"size_exponent", f.size_exponent},
+          {"min_diameter", f.min_diameter_m}, {"max_diameter", f.max_diameter_m},
+          {"depth_scale", f.depth_scale}, {"roughness", f.roughness}, {"seed", f.seed}, {"species", species}};
+}
+
 CloudParams cloud_from_json(const json& c, const std::string& where) {
   if (!c.is_object()) bad(where + " must be an object");
   CloudParams p;
@@ -125,7 +179,13 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     } else if (k == "sine") {
       if (!v.is_boolean()) bad(key + " must be true or false");
       p.gas.sine = v.get<bool>();
-    } else if (k == "wind") p.wind = vec3(v, key);
+    } else if (k == "field") p.field = field_from_json(v, key);
+    else if (k == "shear") p.shear = vec2(v, key);
+    else if (k == "cauliflower") p.cauliflower = number(v, key);
+    else if (k == "cauliflower_frequency") p.cauliflower_frequency = number(v, key);
+    else if (k == "stretch") p.stretch = number(v, key);
+    else if (k == "stretch_altitude") p.stretch_altitude = number(v, key);
+    else if (k == "wind") p.wind = vec3(v, key);
     else if (k == "frequency") p.frequency = number(v, key);
     else if (k == "base_altitude") p.base_altitude = number(v, key);
     else if (k == "base_softness") p.base_softness = number(v, key);
@@ -157,7 +217,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
 json cloud_to_json(const CloudParams& p) {
   json shapes = json::array();
   for (const Shape& s : p.shapes) shapes.push_back(shape_to_json(s));
-  return {{"base_altitude", p.base_altitude},
+  json j = {{"base_altitude", p.base_altitude},
           {"base_softness", p.base_softness},
           {"noise", std::string(noise::to_string(p.noise))},
           {"frequency", p.frequency},
@@ -180,7 +240,14 @@ json cloud_to_json(const CloudParams& p) {
           {"seed", p.seed},
           {"temperature_base", p.temperature_base},
           {"temperature_height", p.temperature_height},
+          {"cauliflower", p.cauliflower},
+          {"cauliflower_frequency", p.cauliflower_frequency},
+          {"stretch", p.stretch},
+          {"stretch_altitude", p.stretch_altitude},
+          {"shear", {p.shear.x, p.shear.y}},
           {"shapes", shapes}};
+  if (p.field) j["field"] = field_to_json(*p.field);
+  return j;
 }
 
 void set_key(json& cloud, std::string_view key_eq_value) {

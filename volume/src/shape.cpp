@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <memory>
 #include <stdexcept>
+
+#include "nimbus/noise/field.hpp"
 
 namespace nimbus::volume {
 
@@ -43,7 +46,35 @@ double shape_distance(const Shape& s, const glm::dvec3& p) {
   return 2.0;
 }
 
-double shape_distance_bound(const Shape& s, const glm::dvec3& p) {
+namespace {
+
+const noise::NoiseField& roughness_noise() {
+  static const noise::NoiseField field = [] {
+    noise::NoiseParams n;
+    n.kind = noise::Kind::Gradient;
+    n.fractal = noise::Fractal::Fbm;
+    n.octaves = 8;
+    n.gain = kRoughnessGain;
+    return noise::NoiseField(n);
+  }();
+  return field;
+}
+
+// The noise in [-1, 1]: fBm over two of its standard deviations, clamped.
+double roughness_at(const Shape& s, const glm::dvec3& p) {
+  static const double inv = 0.5 / roughness_noise().expected_sd();
+  const double r = std::max(s.size.x, s.size.y);
+  const glm::dvec3 l = (p - s.center) * (kRoughnessFrequency / r);
+  const double o = double(s.roughness_seed % 4096u) * 37.0;  // lattice offset per seed
+  return std::clamp(double(roughness_noise().eval(l.x + o, l.y - o, l.z + 0.5 * o)) * inv, -1.0, 1.0);
+}
+
+}  // namespace
+
+double shape_distance_bound(const Shape& shape, const glm::dvec3& p) {
+  Shape s = shape;  // a rough outline reaches u = 1 + roughness: bound the shape grown by that factor
+  s.size *= 1.0 + s.roughness;
+  s.roughness = 0.0;
   const double u = shape_distance(s, p);
   if (!(u > 1.0)) return 0.0;
   switch (s.kind) {
@@ -63,7 +94,11 @@ double shape_distance_bound(const Shape& s, const glm::dvec3& p) {
 }
 
 double shape_coverage(const Shape& s, const glm::dvec3& p) {
-  const double u = shape_distance(s, p);
+  double u = shape_distance(s, p);
+  if (s.roughness > 0.0) {
+    if (!(u < 1.0 + s.roughness)) return 0.0;
+    if (u > 1.0 - s.falloff - s.roughness) u += s.roughness * roughness_at(s, p);  // only near the outline
+  }
   if (!(u < 1.0)) return 0.0;
   const double x = std::clamp((1.0 - u) / s.falloff, 0.0, 1.0);  // 0 at the boundary
   double c = s.weight * x * x * (3.0 - 2.0 * x);
@@ -75,7 +110,9 @@ double shape_coverage(const Shape& s, const glm::dvec3& p) {
   return c;
 }
 
-Aabb shape_bounds(const Shape& s) {
+Aabb shape_bounds(const Shape& shape) {
+  Shape s = shape;  // a rough outline reaches u = 1 + roughness: the shape grown by that factor
+  s.size *= 1.0 + s.roughness;
   switch (s.kind) {
     case ShapeKind::Ellipsoid:
     case ShapeKind::Slab: return {s.center - s.size, s.center + s.size};
@@ -100,6 +137,7 @@ void validate(const Shape& s, const std::string& where) {
   if (!(s.falloff > 0.0 && s.falloff <= 1.0)) throw std::invalid_argument(where + ".falloff must be in (0, 1]");
   if (!(s.weight >= 0.0 && s.weight <= 1.0)) throw std::invalid_argument(where + ".weight must be in [0, 1]");
   if (!(s.fade_up >= 0.0 && s.fade_up <= 16.0)) throw std::invalid_argument(where + ".fade_up must be in [0, 16]");
+  if (!(s.roughness >= 0.0 && s.roughness <= 1.0)) throw std::invalid_argument(where + ".roughness must be in [0, 1]");
 }
 
 }  // namespace nimbus::volume

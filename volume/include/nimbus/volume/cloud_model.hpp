@@ -2,11 +2,13 @@
 // wisps, and Ebert's gas function that turns the result into density (seed 004). Z is up,
 // units are metres and seconds.
 //
-//   q      = p - wind t + displacement * (fbm_x, fbm_y, fbm_z)(p - wind t)
+//   q0     = p - wind t - (shear_x, shear_y, 0) (z - base)          leaning with height
+//   q      = q0 + displacement * (fbm_x, fbm_y, fbm_z)(q0)
+//   n      = q squeezed by 1/stretch along the wind above stretch_altitude  (noise coordinates)
 //   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
 //   z      = (fbm(q) - mean(fbm)) / sd(fbm)                        zero mean, unit variance
-//   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(q)
-//            - furrows * ridged(q)
+//   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(n)
+//            - furrows * ridged(n) - cauliflower * (1 - perlin_worley(n))
 //   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
 // The noise modulates the coverage, so the density is exactly 0 outside the shapes and
 // continuous at their boundary; since fbm <= 1, f can be positive only where
@@ -20,14 +22,23 @@
 #include <memory>
 #include <vector>
 
+#include <optional>
+
+#include <glm/vec2.hpp>
+
 #include "nimbus/noise/field.hpp"
+#include "nimbus/noise/perlin_worley.hpp"
+#include "nimbus/volume/cloud_field.hpp"
 #include "nimbus/volume/gas.hpp"
 #include "nimbus/volume/shape.hpp"
+#include "nimbus/volume/shape_index.hpp"
 
 namespace nimbus::volume {
 
 struct CloudParams {
   std::vector<Shape> shapes;
+  // Many clouds (cloud_field.hpp): the field's shapes join `shapes`, on base_altitude.
+  std::optional<CloudFieldParams> field;
   // Cloud base: coverage rises from 0 at base_altitude to full at base_altitude +
   // base_softness (metres, along z), which flattens the base as convection does.
   double base_altitude = -1e30;
@@ -45,6 +56,18 @@ struct CloudParams {
   double furrow_frequency = 1.0 / 1500.0;  // cycles per metre; lumps are about half a cycle across
   double displacement = 0.0;         // metres: turbulent displacement of the coordinates
   double displacement_frequency = 1.0 / 800.0;  // cycles per metre
+  // Cauliflower billows: the gaps of Perlin-Worley noise (round Worley cells filled by Perlin
+  // fBm, noise/perlin_worley.hpp) carved from the surface, so it bulges in lumps on lumps. [0, 1]
+  double cauliflower = 0.0;
+  double cauliflower_frequency = 1.0 / 150.0;  // cycles per metre: lumps about 1/f across
+  // Fibres: the noise squeezed by 1/stretch along the wind's horizontal direction (x if there
+  // is no wind), so its features are stretch times longer along the wind; above
+  // stretch_altitude (metres), blended in over 200 m. stretch 1: none. [1, 64]
+  double stretch = 1.0;
+  double stretch_altitude = -1e30;
+  // Wind shear: metres of horizontal lean per metre above base_altitude (0 when the base is
+  // unset), x and y. Tops lean downwind.
+  glm::dvec2 shear{0.0};
   GasParams gas;
   glm::dvec3 wind{0.0};              // metres per second
   double evolution = 0.0;            // noise lattice units per second (boiling); 0: static
@@ -70,8 +93,13 @@ class CloudModel {
   // Density at a world point (scalar path).
   float density(const glm::dvec3& p) const;
 
-  // Where density can be non-zero (shapes, moved by the wind, grown by the displacement).
+  // Where density can be non-zero (shapes, moved by the wind and the shear, grown by the
+  // displacement).
   Aabb bounds() const;
+  // Whether any point of the world box may have non-zero density.
+  bool may_touch(const Aabb& world_box) const;
+  // Every shape: the explicit ones, then the field's.
+  const std::vector<Shape>& shapes() const { return shapes_; }
 
   // The coverage at or below which f cannot become positive whatever the noise.
   double min_useful_coverage() const { return min_useful_coverage_; }
@@ -85,11 +113,19 @@ class CloudModel {
   int64_t densities(const glm::dvec3* points, size_t n, float* out) const;
 
  private:
-  glm::dvec3 moved(const glm::dvec3& p) const;  // wind and displacement applied
+  glm::dvec3 sheared(const glm::dvec3& p) const;  // q0: wind and shear applied
+  glm::dvec3 moved(const glm::dvec3& p) const;    // q: and displacement
+  glm::dvec3 noise_point(const glm::dvec3& q) const;  // n: stretched
+  Aabb world_box(const Aabb& q0_box) const;
   double coverage_at(const glm::dvec3& q) const;
-  float finish(double s, float billow_noise, float detail, float furrow) const;
+  float finish(double s, float billow_noise, float detail, float furrow, float cauli) const;
 
   CloudParams params_;
+  std::vector<Shape> shapes_;
+  std::unique_ptr<ShapeIndex> index_;
+  double shear_base_ = 0.0;
+  glm::dvec2 fibre_dir_{1.0, 0.0};
+  std::unique_ptr<noise::PerlinWorleyField> cauli_;
   double time_;
   double threshold_;            // 1 - coverage
   double mean_;                 // mean(fbm): 0 but for Worley noise

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "nimbus/volume/cloud_model.hpp"
 
@@ -21,6 +22,9 @@ struct GenerateOptions {
   double time = 0.0;         // seconds
   bool sparse = true;        // false: evaluate every voxel of the bounds (the naive anchor)
   bool octave_limit = true;  // false: keep every octave, even those the voxels cannot resolve
+  // Only the voxels inside this index box (inclusive). Each voxel's value is a function of its
+  // world position alone, so the grid of a sub-box equals the whole grid's voxels there.
+  std::optional<openvdb::CoordBBox> clip;
   // Called now and then with the share of leaf blocks done, from any thread (the callee
   // serialises); may be empty.
   std::function<void(double)> progress;

@@ -32,7 +32,16 @@ struct Shape {
   // Altitude profile: coverage times ((top - z) / (top - bottom))^fade_up over the shape's
   // height (0: none). Steam and smoke thin out as they rise (seed 004, teacup).
   double fade_up = 0.0;
+  // Fractal outline: the normalised distance u is moved by up to +-roughness by gradient fBm
+  // in the shape's own units (lattice cycles per horizontal semi-axis: kRoughnessFrequency,
+  // gain kRoughnessGain, 8 octaves), so a small cloud is a scaled copy of a large one and every
+  // outline is fractal from the cloud's size down (research-viewer.md 5.2). [0, 1]; 0: smooth.
+  double roughness = 0.0;
+  uint32_t roughness_seed = 0;  // offsets the noise, so shapes differ
 };
+
+inline constexpr double kRoughnessFrequency = 1.5;
+inline constexpr double kRoughnessGain = 0.7;
 
 // A lower bound, in metres, of the distance from p to where the shape's coverage is non-zero
 // (0 when p may be inside, or when no cheap bound is known).

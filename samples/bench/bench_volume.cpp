@@ -1,6 +1,7 @@
 // `nimbus bench volume`: generation speed per preset beside its error, against the same field
 // evaluated naively at every voxel (the anchor), with the octave limit on and off; plus file
 // size and write time.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -24,6 +25,7 @@ struct BenchVolumeArgs {
   int naive_max = 128;         // naive anchors only up to this resolution (they are slow)
   std::string naive_always = "cumulus-mediocris";  // ... except for this preset
   bool quick = false;
+  bool field = true;           // the cumulus field section
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -66,6 +68,59 @@ std::string diff_text(const Diff& d) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3g / %.3g", d.max, d.rms);
   return buf;
+}
+
+double peak_rss_gb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / (1024.0 * 1024.0);  // kilobytes on Linux
+}
+
+// The cumulus field (issue 13): 10 x 10 km (2 x 2 km with --quick) at 20 m voxels, 3 km of
+// height, with time, active voxels, memory and file size; the anchor is the naive every-voxel
+// path on a 1 x 1 km column of the field, against the sparse path on the same column.
+void bench_field(bool quick, const std::filesystem::path& tmp) {
+  nlohmann::json doc = volume::load_preset("cumulus-field");
+  volume::CloudParams params = volume::cloud_from_json(doc.at("cloud"), "cumulus-field");
+  const double side = quick ? 2000.0 : 10000.0;
+  params.field->size_m = {side, side};
+  volume::GenerateOptions o;
+  o.voxel_size = 20.0;
+  volume::GenerateStats s;
+  const double rss0 = peak_rss_gb();
+  const auto grid = volume::generate_density(params, o, &s);
+  const double rss1 = peak_rss_gb();
+  const int64_t clouds = static_cast<int64_t>(volume::field_layout(*params.field).size());
+  volume::ExportInfo info;
+  info.preset = "cumulus-field";
+  volume::ExportOptions eo;
+  eo.half_float = true;
+  const auto path = tmp / "cumulus-field.half.vdb";
+  const auto t0 = std::chrono::steady_clock::now();
+  volume::write_volume_vdb(path, {grid}, info, eo);
+  const double write_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const volume::Aabb b = volume::CloudModel(params, o.voxel_size, 0.0).bounds();
+  std::printf("\n### Cloud field (cumulus-field, %g x %g km at 20 m)\n\n", side / 1000, side / 1000);
+  std::printf("| field | clouds | bounds (m) | bounds voxels | s (%u threads) | active voxels | grid memory MB | peak RSS GB (before -> after) | file MB (half) | write s |\n",
+              std::thread::hardware_concurrency());
+  std::printf("|---|---:|---|---:|---:|---:|---:|---|---:|---:|\n");
+  std::printf("| %g x %g km | %lld | %.0f x %.0f x %.0f | %lld | %.2f | %lld | %.1f | %.2f -> %.2f | %.1f | %.2f |\n", side / 1000,
+              side / 1000, static_cast<long long>(clouds), b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z,
+              static_cast<long long>(s.voxels_in_bounds), s.seconds, static_cast<long long>(s.active_voxels),
+              double(grid->memUsage()) / 1e6, rss0, rss1, double(std::filesystem::file_size(path)) / 1e6, write_s);
+  // Anchor: a 1 x 1 km column (50 x 50 voxels, every height) at the field's centre.
+  volume::GenerateOptions c = o;
+  c.clip = openvdb::CoordBBox({-25, -25, -1000000}, {24, 24, 1000000});
+  volume::GenerateStats sn, ss;
+  c.sparse = false;
+  const auto naive = volume::generate_density(params, c, &sn);
+  c.sparse = true;
+  const auto sparse = volume::generate_density(params, c, &ss);
+  std::printf("\n| 1 x 1 km column | bounds voxels | s | Mvoxels/s | error vs anchor (max / RMS) |\n|---|---:|---:|---:|---|\n");
+  std::printf("| naive (anchor) | %lld | %.3f | %.2f | anchor |\n", static_cast<long long>(sn.voxels_in_bounds), sn.seconds,
+              double(sn.voxels_in_bounds) / sn.seconds * 1e-6);
+  std::printf("| **sparse** (default) | %lld | %.3f | %.2f | %s |\n", static_cast<long long>(ss.voxels_in_bounds),
+              ss.seconds, double(ss.voxels_in_bounds) / ss.seconds * 1e-6, diff_text(difference(*sparse, *naive)).c_str());
 }
 
 int run_bench_volume(const BenchVolumeArgs& a) {
@@ -164,6 +219,7 @@ int run_bench_volume(const BenchVolumeArgs& a) {
     std::printf("| %s | %d | %lld | %ju | %.3f | %ju | %.3f | %.2f |\n", f.preset.c_str(), f.res,
                 static_cast<long long>(f.active), f.half_bytes, f.half_s, f.float_bytes, f.float_s,
                 f.active ? double(f.half_bytes) / double(f.active) : 0.0);
+  if (a.field) bench_field(a.quick, tmp);
   std::filesystem::remove_all(tmp);
   return 0;
 }
@@ -177,7 +233,8 @@ void add_bench_volume(CLI::App& bench, Action& action) {
   cmd->add_option("--res", a->res, "comma-separated resolutions (voxels across the largest extent)")->capture_default_str();
   cmd->add_option("--naive-max", a->naive_max, "run the slow naive anchor only up to this resolution")->capture_default_str();
   cmd->add_option("--naive-always", a->naive_always, "preset whose naive anchor runs at every resolution")->capture_default_str();
-  cmd->add_flag("--quick", a->quick, "resolution 48, two presets (smoke test)");
+  cmd->add_flag("--quick", a->quick, "resolution 48, two presets, a 2 x 2 km field (smoke test)");
+  cmd->add_flag("!--no-field", a->field, "skip the cumulus field section (10 x 10 km at 20 m)");
   cmd->callback([&action, a] { action = [a] { return run_bench_volume(*a); }; });
 }
 

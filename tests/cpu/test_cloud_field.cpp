@@ -206,9 +206,10 @@ TEST(CloudField, ShearLeansTheCloudByItsSlope) {
   EXPECT_GT(leaning.bounds().hi.x, upright.bounds().hi.x + 0.3 * (upright.bounds().hi.z - 1000.0));
 }
 
-TEST(CloudField, StretchDrawsFibresAlongTheWind) {
-  // A layer of billow noise: with stretch 6 along the wind (x), density changes over a step
-  // along x several times less than over the same step across (y).
+TEST(CloudField, StretchDrawsFibresAlongItsDirectionWhateverTheWind) {
+  // A layer of billow noise: with stretch 6 along x, density changes over a step along x
+  // several times less than over the same step across (y). The wind blows along y: the fibres
+  // follow stretch_direction, so a cloud keeps them when its drift is applied elsewhere.
   CloudParams p;
   Shape slab;
   slab.kind = ShapeKind::Slab;
@@ -217,7 +218,8 @@ TEST(CloudField, StretchDrawsFibresAlongTheWind) {
   p.shapes = {slab};
   p.coverage = 0.7;
   p.billow = 1.0;
-  p.wind = {20.0, 0.0, 0.0};
+  p.wind = {0.0, 20.0, 0.0};
+  p.stretch_direction = {3.0, 0.0};  // normalised on use
   auto roughness_ratio = [&](double stretch) {
     CloudParams q = p;
     q.stretch = stretch;
@@ -234,7 +236,7 @@ TEST(CloudField, StretchDrawsFibresAlongTheWind) {
     return across / along;
   };
   const double plain = roughness_ratio(1.0), fibred = roughness_ratio(6.0);
-  std::printf("density change across / along the wind: %.2f without stretch, %.2f with stretch 6\n", plain, fibred);
+  std::printf("density change across / along the fibres: %.2f without stretch, %.2f with stretch 6\n", plain, fibred);
   EXPECT_NEAR(plain, 1.0, 0.15);
   EXPECT_GT(fibred, 3.0);
 }

@@ -75,7 +75,7 @@ TEST(CloudRealism, CumulusAreasFollowTheObservedPowerLaw) {
 }
 
 TEST(CloudRealism, StratocumulusOpticalDepthSpectrumIsNearMinusFiveThirds) {
-  // The central 8 km of the 10 km layer, away from its faded edges.
+  // The central 8 km of the 10 km layer, away from its faded edges. The layer drifts along x.
   const Field f = measure("stratocumulus-field", 0.0, 160);
   for (MapAxis axis : {MapAxis::X, MapAxis::Y}) {
     const PowerLawFit s = spectrum_slope(f.tau, axis, 200.0, 5000.0);

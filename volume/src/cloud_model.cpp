@@ -64,6 +64,9 @@ void validate(const CloudParams& p) {
   need(std::isfinite(p.cauliflower_frequency) && p.cauliflower_frequency > 0, "cauliflower_frequency must be finite and > 0");
   need(std::isfinite(p.stretch) && p.stretch >= 1 && p.stretch <= 64, "stretch must be in [1, 64]");
   need(!std::isnan(p.stretch_altitude), "stretch_altitude must be a number (metres)");
+  need(std::isfinite(p.stretch_direction.x) && std::isfinite(p.stretch_direction.y) &&
+           std::hypot(p.stretch_direction.x, p.stretch_direction.y) > 1e-12,
+       "stretch_direction must be finite and non-zero (x, y)");
   need(std::isfinite(p.shear.x) && std::isfinite(p.shear.y) && std::fabs(p.shear.x) <= 10 && std::fabs(p.shear.y) <= 10,
        "shear must be finite and within [-10, 10] (metres per metre)");
   need(std::isfinite(p.temperature_base), "temperature_base must be finite (metres)");
@@ -84,8 +87,7 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   }
   index_ = std::make_unique<ShapeIndex>(shapes_);
   shear_base_ = p.base_altitude > -1e29 ? p.base_altitude : 0.0;
-  const double wl = std::hypot(p.wind.x, p.wind.y);
-  if (wl > 0) fibre_dir_ = glm::dvec2(p.wind.x, p.wind.y) / wl;
+  fibre_dir_ = p.stretch_direction / std::hypot(p.stretch_direction.x, p.stretch_direction.y);
   if (p.cauliflower > 0) {
     noise::PerlinWorleyParams pw;
     pw.frequency = p.cauliflower_frequency;

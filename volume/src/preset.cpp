@@ -185,6 +185,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "cauliflower_frequency") p.cauliflower_frequency = number(v, key);
     else if (k == "stretch") p.stretch = number(v, key);
     else if (k == "stretch_altitude") p.stretch_altitude = number(v, key);
+    else if (k == "stretch_direction") p.stretch_direction = vec2(v, key);
     else if (k == "wind") p.wind = vec3(v, key);
     else if (k == "frequency") p.frequency = number(v, key);
     else if (k == "base_altitude") p.base_altitude = number(v, key);
@@ -244,6 +245,7 @@ json cloud_to_json(const CloudParams& p) {
           {"cauliflower_frequency", p.cauliflower_frequency},
           {"stretch", p.stretch},
           {"stretch_altitude", p.stretch_altitude},
+          {"stretch_direction", {p.stretch_direction.x, p.stretch_direction.y}},
           {"shear", {p.shear.x, p.shear.y}},
           {"shapes", shapes}};
   if (p.field) j["field"] = field_to_json(*p.field);

@@ -4,7 +4,7 @@
 //
 //   q0     = p - wind t - (shear_x, shear_y, 0) (z - base)          leaning with height
 //   q      = q0 + displacement * (fbm_x, fbm_y, fbm_z)(q0)
-//   n      = q squeezed by 1/stretch along the wind above stretch_altitude  (noise coordinates)
+//   n      = q squeezed by 1/stretch along stretch_direction above stretch_altitude (noise)
 //   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
 //   z      = (fbm(q) - mean(fbm)) / sd(fbm)                        zero mean, unit variance
 //   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(n)
@@ -60,11 +60,14 @@ struct CloudParams {
   // fBm, noise/perlin_worley.hpp) carved from the surface, so it bulges in lumps on lumps. [0, 1]
   double cauliflower = 0.0;
   double cauliflower_frequency = 1.0 / 150.0;  // cycles per metre: lumps about 1/f across
-  // Fibres: the noise squeezed by 1/stretch along the wind's horizontal direction (x if there
-  // is no wind), so its features are stretch times longer along the wind; above
-  // stretch_altitude (metres), blended in over 200 m. stretch 1: none. [1, 64]
+  // Fibres: the noise squeezed by 1/stretch along stretch_direction (horizontal, x and y;
+  // normalised on use), so its features are stretch times longer that way (presets point it
+  // along their upper wind); above stretch_altitude (metres), blended in over 200 m. stretch 1:
+  // none. [1, 64]. A parameter rather than the wind, so that a cloud without drift (the wind
+  // applied at render time, as the viewer's sky does) keeps its fibres.
   double stretch = 1.0;
   double stretch_altitude = -1e30;
+  glm::dvec2 stretch_direction{1.0, 0.0};
   // Wind shear: metres of horizontal lean per metre above base_altitude (0 when the base is
   // unset), x and y. Tops lean downwind.
   glm::dvec2 shear{0.0};

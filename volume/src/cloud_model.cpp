@@ -170,15 +170,18 @@ float CloudModel::density(const glm::dvec3& p) const {
   return finish(s, n, d, r, c);
 }
 
+Aabb CloudModel::lean(double z_lo, double z_hi) const {
+  // shear (z - base) over z in [z_lo, z_hi]: its least and greatest horizontal offsets.
+  const double z0 = z_lo - shear_base_, z1 = z_hi - shear_base_;
+  const glm::dvec2 a = params_.shear * z0, b = params_.shear * z1;
+  return {glm::dvec3(std::min(a.x, b.x), std::min(a.y, b.y), 0.0), glm::dvec3(std::max(a.x, b.x), std::max(a.y, b.y), 0.0)};
+}
+
 Aabb CloudModel::world_box(const Aabb& b) const {
   // p = q0 + wind t + shear (q0.z - base): the lean spans the box's height.
-  const double z0 = b.lo.z - shear_base_, z1 = b.hi.z - shear_base_;
-  const glm::dvec3 lean_lo(std::min(params_.shear.x * z0, params_.shear.x * z1),
-                           std::min(params_.shear.y * z0, params_.shear.y * z1), 0.0);
-  const glm::dvec3 lean_hi(std::max(params_.shear.x * z0, params_.shear.x * z1),
-                           std::max(params_.shear.y * z0, params_.shear.y * z1), 0.0);
+  const Aabb l = lean(b.lo.z, b.hi.z);
   const glm::dvec3 shift = params_.wind * time_;
-  return {b.lo + lean_lo + shift, b.hi + lean_hi + shift};
+  return {b.lo + l.lo + shift, b.hi + l.hi + shift};
 }
 
 Aabb CloudModel::bounds() const {
@@ -188,12 +191,8 @@ Aabb CloudModel::bounds() const {
 bool CloudModel::may_touch(const Aabb& w) const {
   // The world box in q0 coordinates (the inverse of world_box), grown by the displacement.
   const glm::dvec3 shift = params_.wind * time_;
-  const double z0 = w.lo.z - shift.z - shear_base_, z1 = w.hi.z - shift.z - shear_base_;
-  const glm::dvec3 lean_lo(std::min(params_.shear.x * z0, params_.shear.x * z1),
-                           std::min(params_.shear.y * z0, params_.shear.y * z1), 0.0);
-  const glm::dvec3 lean_hi(std::max(params_.shear.x * z0, params_.shear.x * z1),
-                           std::max(params_.shear.y * z0, params_.shear.y * z1), 0.0);
-  const Aabb q{w.lo - shift - lean_hi, w.hi - shift - lean_lo};
+  const Aabb l = lean(w.lo.z - shift.z, w.hi.z - shift.z);
+  const Aabb q{w.lo - shift - l.hi, w.hi - shift - l.lo};
   return index_->any_overlaps(q.expanded(params_.displacement));
 }
 

@@ -120,6 +120,7 @@ class CloudModel {
   glm::dvec3 moved(const glm::dvec3& p) const;    // q: and displacement
   glm::dvec3 noise_point(const glm::dvec3& q) const;  // n: stretched
   Aabb world_box(const Aabb& q0_box) const;
+  Aabb lean(double z_lo, double z_hi) const;  // the shear's horizontal offsets over that height
   double coverage_at(const glm::dvec3& q) const;
   float finish(double s, float billow_noise, float detail, float furrow, float cauli) const;
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <memory>
 #include <stdexcept>
 
 #include "nimbus/noise/field.hpp"

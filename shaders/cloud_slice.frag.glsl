@@ -13,6 +13,10 @@
 // multiple-scattering octaves (0 = single scattering). MS_VOLUME 1: the light volume's
 // in-scattered radiance of scattered light (lib/cloud_light_volume.glsl) is added to the exact
 // single scattering at each sample.
+// LAMP 1: the light is a lamp (lib/cloud_lamp.glsl): per fragment its direction, its
+// irradiance (inverse square, spot cone) and the slab along its ray, d / dot(l, s); the light
+// buffer is its perspective view (u_world_to_light_clip). A sample on the lamp's near side of
+// the slices (the lamp among them) reads no shadow from the buffer, only its own slab's.
 // The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
 #include "lib/camera_ray.glsl"
 #include "lib/cloud_density.glsl"
@@ -26,8 +30,15 @@
 #ifndef MS_VOLUME
 #define MS_VOLUME 0
 #endif
+#ifndef LAMP
+#define LAMP 0
+#endif
 #if MS_VOLUME
 #include "lib/cloud_light_volume.glsl"
+#endif
+#if LAMP
+#include "lib/cloud_lamp.glsl"
+uniform mat4 u_world_to_light_clip;  // world -> the lamp's light-buffer clip coordinates
 #endif
 in vec3 v_world;
 in vec3 v_tc;
@@ -76,15 +87,27 @@ void main() {
   float rho = cloud_density(v_tc + k * (v_tc - cloud.tc_eye));
   // Toward the light: the slices before this one, plus this slab up to the sample.
   float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
+#if LAMP
+  vec3 x = v_world + k * q;
+  vec3 light_dir = lamp_propagation(x);
+  vec3 irradiance = lamp_irradiance(x, light_dir);
+  vec4 lc = u_world_to_light_clip * vec4(x, 1.0);
+  bool beyond = dot(x - u_lamp_position, u_slice_axis) > 0.0 && lc.w > 0.0;
+  float before = beyond ? texture(u_light, 0.5 + 0.5 * lc.xy / lc.w).r : 0.0;
+  float tau = before + own * cloud.sigma_t * rho * u_spacing_m / max(dot(light_dir, u_slice_axis), 1.0e-3);
+#else
+  vec3 light_dir = u_light_dir;
+  vec3 irradiance = u_irradiance;
   float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * cloud.sigma_t * rho * u_light_slab_m;
+#endif
   float od = cloud.sigma_t * rho * slab;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
-  float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(u_light_dir, q) * inv_len, tau);
+  float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(light_dir, q) * inv_len, tau);
 #if MS_VOLUME
   vec3 scattered = light_volume_inscatter(v_world + k * q, -q * inv_len);
-  vec3 color = cloud.albedo * (u_irradiance * (lit + scattered) + cloud.ambient) * alpha;  // (S / sigma_t) alpha
+  vec3 color = cloud.albedo * (irradiance * (lit + scattered) + cloud.ambient) * alpha;  // (S / sigma_t) alpha
 #else
-  vec3 color = cloud.albedo * (u_irradiance * lit + cloud.ambient) * alpha;  // (S / sigma_t) alpha
+  vec3 color = cloud.albedo * (irradiance * lit + cloud.ambient) * alpha;  // (S / sigma_t) alpha
 #endif
 #if UNDERLAY
   float t = max(t_plane + offset, 0.0);

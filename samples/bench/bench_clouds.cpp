@@ -3,7 +3,8 @@
 // volume, camera and light (front-lit and back-lit); its frame time is set beside its error
 // against the CPU single-scattering reference, with OpenVDB's vdb_render (defaults, -gain 0) on
 // the same VDB as the anchor measured in the same run; then the optional terms one at a time
-// (blur, ambient, multiple scattering, jitter) and the popping sweep through the branch switch.
+// (blur, ambient, multiple scattering, jitter), the popping sweep through the branch switch, and
+// the same for lamps (point lights near and far, two at once) and the steam under a lamp.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +17,9 @@
 
 #include "bench_clouds_scene.hpp"
 #include "cli/cli.hpp"
+#include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -46,7 +50,10 @@ struct BenchCloudsArgs {
   bool jitter = false;
   std::string format = "r16f";
   std::string vdb_render = "/usr/bin/vdb_render";
-  bool no_vdb_render = false, no_switches = false, no_sweep = false;
+  bool no_vdb_render = false, no_switches = false, no_sweep = false, no_sun = false, no_lamps = false;
+  std::string lamp_distances = "4,1.5,0.75";  // metres from the sphere's centre (its radius is 0.47)
+  std::string lamp_slices = "64,128,256";
+  double steam_voxel = 0.003;                 // the steam-under-a-lamp row's voxel, metres (0: skip the row)
   int switch_slices = 128, switch_light_res = 256;
   double sweep_half_deg = 10.0, sweep_step_deg = 0.5;
   std::string plot, out_dir, reference_dir;
@@ -138,15 +145,148 @@ Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const re
   return t;
 }
 
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::CloudLight>& lights,
+                   const render::CloudSliceSettings& s, int repeat) {
+  Timed t;
+  render::CloudFrameStats st;
+  t.image = r.render(cam, lights, s, nullptr, &st);  // warm-up: programs, buffers
+  t.best.total_ms = 1e300;
+  for (int i = 0; i < repeat; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    t.image = r.render(cam, lights, s, nullptr, &st);
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    t.best_wall_ms = std::min(t.best_wall_ms, wall);
+    if (st.total_ms < t.best.total_ms) t.best = st;
+  }
+  return t;
+}
+
 render::Image reference_with_progress(const std::vector<render::CloudVolume>& clouds, const render::Camera& cam,
-                                      const render::CloudLight& light, double view_step, double shadow_step,
-                                      const std::string& what) {
+                                      const std::vector<render::CloudLight>& light, double view_step,
+                                      double shadow_step, const std::string& what) {
   Progress progress(what);
   render::CloudReferenceSettings s;
   s.view_step_voxels = view_step;
   s.shadow_step_voxels = shadow_step;
   s.progress = [&](double f) { progress.update(f); };
   return render::render_cloud_reference(clouds, cam, light, s);
+}
+
+// The lamps: the noisy sphere lit by a lamp at a distance along the sun's front- and back-lit
+// directions (intensity d^2, so about 1 W m^-2 at the centre), slicer against the CPU reference;
+// two lamps at once against one pass each dropped; and the steam of the `steam-lamp` scene.
+void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const std::vector<render::CloudVolume>& clouds,
+                 const render::Camera& camera, const std::vector<bool>& back_lit, double ref_view, double ref_shadow) {
+  std::vector<double> distances;
+  for (const std::string& t : split_list(a.lamp_distances)) {
+    const std::optional<double> d = parse_double(t);
+    if (!d || !(*d > 0.5 && *d <= 1000.0)) throw UsageError("--lamp-distances: '" + t + "' must be in (0.5, 1000] metres");
+    distances.push_back(*d);
+  }
+  const std::vector<int> slice_counts = int_list("--lamp-slices", a.lamp_slices, 2, 4096);
+  auto lamp = [](bool back, double d) {
+    const glm::dvec3 dir = glm::normalize(bench_light(back).direction_to_light);
+    return render::point_light(d * dir, glm::dvec3(d * d));
+  };
+  std::printf("\n## Lamps: a point light at distance d from the sphere's centre (radius 0.47) along the front- or "
+              "back-lit direction, intensity d^2 W/sr\n\n");
+  std::printf("| lighting | d (m) | slices, light | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n");
+  std::printf("|---|---:|---|---:|---:|---:|---:|---:|\n");
+  std::map<bool, render::Image> mid_reference;  // at the first distance, for the two-lamp rows
+  for (const bool back : back_lit) {
+    for (std::size_t di = 0; di < distances.size(); ++di) {
+      const double d = distances[di];
+      const std::vector<render::CloudLight> lights = {lamp(back, d)};
+      const auto t0 = std::chrono::steady_clock::now();
+      const render::Image ref = reference_with_progress(clouds, camera, lights, ref_view, ref_shadow,
+                                                        std::string("reference lamp ") + (back ? "back" : "front"));
+      const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("| %s-lit | %.2f | reference (CPU, double), %g / %g voxel | | %.0f | 0 | 0 | 0 |\n", back ? "back" : "front",
+                  d, ref_view, ref_shadow, 1000.0 * ref_s);
+      if (di == 0) mid_reference[back] = ref;
+      for (const int n : slice_counts) {
+        if (di > 0 && n != a.switch_slices) continue;  // the slice sweep at the first distance only
+        render::CloudSliceSettings s;
+        s.slices = n;
+        s.light_res = a.switch_light_res;
+        s.jitter = a.jitter;
+        s.ambient = false;
+        const Timed t = timed_render(renderer, camera, lights, s, a.repeat);
+        const CoveredError e = covered_error(t.image, ref);
+        std::printf("| %s-lit | %.2f | %d slices, light %d^2 | %.1f | %.1f | %.4f | %+.4f | %.1e |\n",
+                    back ? "back" : "front", d, n, a.switch_light_res, t.best.total_ms, t.best_wall_ms,
+                    e.radiance.rel_rmse, e.radiance.mean_bias, e.alpha_rmse);
+        std::fflush(stdout);
+        save(a.out_dir, std::string("lamp_") + (back ? "back" : "front") + "_" + std::to_string(n), t.image,
+             n == a.switch_slices && di == 0);
+      }
+      save(a.out_dir, std::string("lamp_reference_") + (back ? "back" : "front") + "_" + std::to_string(di), ref, di == 0);
+    }
+  }
+  // Two lamps: one pass each, against the sum of their references; with max_lights 1 the weaker
+  // one is left out, and its share is the error.
+  if (mid_reference.size() == 2) {
+    const double d = distances.front();
+    const std::vector<render::CloudLight> both = {lamp(false, d), lamp(true, d)};
+    render::Image sum = mid_reference[false];
+    for (int y = 0; y < sum.height; ++y)
+      for (int x = 0; x < sum.width; ++x)
+        for (int c = 0; c < 3; ++c) sum.pixel(x, y)[c] += mid_reference[true].pixel(x, y)[c];
+    std::printf("\n| two lamps (front and back, d %.2f) | passes | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n", d);
+    std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+    for (const int max_lights : {2, 1}) {
+      render::CloudSliceSettings s;
+      s.slices = a.switch_slices;
+      s.light_res = a.switch_light_res;
+      s.jitter = a.jitter;
+      s.ambient = false;
+      s.max_lights = max_lights;
+      const Timed t = timed_render(renderer, camera, both, s, a.repeat);
+      const CoveredError e = covered_error(t.image, sum);
+      std::printf("| max_lights %d | %d | %.1f | %.1f | %.4f | %+.4f | %.1e |\n", max_lights, t.best.light_passes,
+                  t.best.total_ms, t.best_wall_ms, e.radiance.rel_rmse, e.radiance.mean_bias, e.alpha_rmse);
+      std::fflush(stdout);
+    }
+  }
+  // The steam of the seed's teacup under the street lamp (scene steam-lamp), clouds alone.
+  if (a.steam_voxel > 0.0) {
+    const render::Scene scene = render::make_scene("steam-lamp");
+    render::CloudOptics optics;
+    optics.extinction_per_m = *scene.cloud_extinction_per_m;
+    optics.phase = render::parse_cloud_phase("dual:0.7,-0.25,0.8");
+    const std::vector<render::CloudVolume> steam = {
+        render::generate_preset_cloud(render::load_preset_cloud("steam"), a.steam_voxel, 0.0, optics)};
+    render::Camera cam = scene.camera;
+    cam.width = camera.width;
+    cam.height = camera.height;
+    const std::vector<render::CloudLight> lights = {
+        render::point_light(scene.point_lights[0].position_m, scene.point_lights[0].intensity_w_sr)};
+    const auto t0 = std::chrono::steady_clock::now();
+    const render::Image ref = reference_with_progress(steam, cam, lights, ref_view, ref_shadow, "reference steam");
+    const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    render::CloudRenderer steam_renderer(steam, a.format == "r32f" ? GL_R32F : GL_R16F);
+    std::printf("\n## Steam under the lamp (scene steam-lamp, preset steam at %g m voxels: %dx%dx%d, extinction %g per "
+                "metre, dual-lobe phase 0.7/-0.25/0.8), clouds alone\n\n",
+                a.steam_voxel, static_cast<int>(steam[0].box.size[0]), static_cast<int>(steam[0].box.size[1]),
+                static_cast<int>(steam[0].box.size[2]), optics.extinction_per_m);
+    std::printf("| renderer | setting | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n");
+    std::printf("|---|---|---:|---:|---:|---:|---:|\n");
+    std::printf("| reference (CPU, double) | %g / %g voxel | | %.0f | 0 | 0 | 0 |\n", ref_view, ref_shadow, 1000.0 * ref_s);
+    for (const int n : slice_counts) {
+      render::CloudSliceSettings s;
+      s.slices = n;
+      s.light_res = a.switch_light_res;
+      s.jitter = a.jitter;
+      s.ambient = false;
+      const Timed t = timed_render(steam_renderer, cam, lights, s, a.repeat);
+      const CoveredError e = covered_error(t.image, ref);
+      std::printf("| slices (GL) | %d slices, light %d^2 | %.1f | %.1f | %.4f | %+.4f | %.1e |\n", n, a.switch_light_res,
+                  t.best.total_ms, t.best_wall_ms, e.radiance.rel_rmse, e.radiance.mean_bias, e.alpha_rmse);
+      std::fflush(stdout);
+      save(a.out_dir, "steam_" + std::to_string(n), t.image, n == a.switch_slices);
+    }
+    save(a.out_dir, "steam_reference", ref, true);
+  }
 }
 
 int run_bench_clouds(const BenchCloudsArgs& a) {
@@ -238,6 +378,7 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
   };
   std::vector<Lit> lits;
   for (const bool back : back_lit) {
+    if (a.no_sun) break;
     const std::string name = back ? "back" : "front";
     Lit lit{back, bench_light(back), {}};
     std::printf("\n## %s-lit: light towards (%.1f, %.1f, %.1f)\n\n", name.c_str(), lit.light.direction_to_light.x,
@@ -258,11 +399,11 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
                       .c_str());
     } else {
       const auto t0 = std::chrono::steady_clock::now();
-      lit.reference = reference_with_progress(clouds, camera, lit.light, ref_view, ref_shadow, "reference " + name);
+      lit.reference = reference_with_progress(clouds, camera, {lit.light}, ref_view, ref_shadow, "reference " + name);
       const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const auto t1 = std::chrono::steady_clock::now();
       const render::Image coarse =
-          reference_with_progress(clouds, camera, lit.light, 2 * ref_view, 2 * ref_shadow, "reference x2 " + name);
+          reference_with_progress(clouds, camera, {lit.light}, 2 * ref_view, 2 * ref_shadow, "reference x2 " + name);
       const double coarse_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       const CoveredError ce = covered_error(coarse, lit.reference);
       std::printf("| reference (CPU, double, %u threads) | %g / %g voxel | | %.0f | 0 | 0 | 0 |\n",
@@ -317,9 +458,11 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
     lits.push_back(std::move(lit));
   }
 
+  if (!a.no_lamps) bench_lamps(a, renderer, clouds, camera, back_lit, ref_view, ref_shadow);
+
   // The optional terms, one at a time, against the same single-scattering reference: their
   // cost, and how far each moves the image from single scattering.
-  if (!a.no_switches) {
+  if (!a.no_switches && !a.no_sun) {
     std::printf("\n## Switches at %d slices, light %d^2 (difference from the single-scattering reference)\n\n",
                 a.switch_slices, a.switch_light_res);
     std::printf("| lighting | switch | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n");
@@ -358,7 +501,7 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
   // Popping: the light sweeps through 90 degrees from the view direction, where the slicer
   // switches between compositing front to back and back to front. Frame-to-frame change =
   // relative RMSE of frame k+1 against frame k (jitter pattern fixed: frame 0).
-  if (!a.no_sweep) {
+  if (!a.no_sweep && !a.no_sun) {
     const glm::dvec3 view = glm::normalize(camera.look_at - camera.eye);
     const glm::dvec3 side = glm::normalize(glm::dvec3(0.6, 0.8, 0.0) - glm::dot(glm::dvec3(0.6, 0.8, 0.0), view) * view);
     const int frames = static_cast<int>(std::lround(2.0 * a.sweep_half_deg / a.sweep_step_deg));
@@ -436,6 +579,13 @@ void add_bench_clouds(CLI::App& bench, Action& action) {
   cmd->add_flag("--no-vdb-render", a->no_vdb_render, "Skip the vdb_render anchor");
   cmd->add_flag("--no-switches", a->no_switches, "Skip the blur/ambient/multiple-scattering/jitter rows");
   cmd->add_flag("--no-sweep", a->no_sweep, "Skip the popping sweep");
+  cmd->add_flag("--no-sun", a->no_sun, "Skip the sun's rows (grid, switches, sweep)");
+  cmd->add_flag("--no-lamps", a->no_lamps, "Skip the lamps' rows");
+  cmd->add_option("--lamp-distances", a->lamp_distances, "Lamp distances from the sphere's centre, metres (the first "
+                  "gets the slice sweep and the two-lamp rows)")->capture_default_str();
+  cmd->add_option("--lamp-slices", a->lamp_slices, "Slice counts of the lamp and steam rows")->capture_default_str();
+  cmd->add_option("--steam-voxel", a->steam_voxel, "Voxel of the steam-under-a-lamp rows, metres (0: skip them)")
+      ->capture_default_str();
   cmd->add_option("--switch-slices", a->switch_slices, "Slices for the switch rows and the sweep")
       ->capture_default_str();
   cmd->add_option("--switch-light-res", a->switch_light_res, "Light buffer for the switch rows and the sweep")

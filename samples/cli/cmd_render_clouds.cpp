@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "frame_range.hpp"
+#include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
@@ -97,6 +98,15 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--frames", a.frames, "Frame range A-B: a sequence name.%04d.exr (presets at frame/fps)");
   cmd->add_option("--fps", a.fps, "Frames per second of a sequence")->capture_default_str();
   cmd->add_option("--sun", a.sun, "Direction towards the sun X,Y,Z (replaces the scene's; adds one if it has none)");
+  cmd->add_option("--lamp", a.lamps,
+                  "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which light "
+                  "the clouds too)");
+  cmd->add_option("--lamp-intensity", a.lamp_intensity, "Radiant intensity of every --lamp, W/sr, V or R,G,B")
+      ->capture_default_str();
+  cmd->add_option("--spot", a.spot, "Every --lamp is a spot shining along DX,DY,DZ (--scene none only)");
+  cmd->add_option("--spot-cone", a.spot_cone, "The spot's inner,outer cone half-angles, degrees")->capture_default_str();
+  cmd->add_option("--max-lights", a.max_lights, "Lights the slicer draws, one pass each: the strongest at the clouds, 1-8")
+      ->capture_default_str();
   cmd->add_option("--slices", a.slices, "Half-angle slices")->capture_default_str();
   cmd->add_option("--light-res", a.light_res, "Light buffer size, texels per side")->capture_default_str();
   cmd->add_option("--cloud-shadow-res", a.shadow_map_res, "Texels per side of the clouds' shadow on the scene")
@@ -136,12 +146,13 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
 }
 
 // --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
-// bad value a UsageError naming its flag.
-static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a) {
+// bad value a UsageError naming its flag. Without the sun the light volume (photons from the sun)
+// is not the default.
+static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
   render::MultipleScattering ms;
   if (a.ms_method.empty()) {
-    ms.method = a.multiple && *a.multiple > 0 ? render::MultipleScatteringMethod::Octaves
-                                              : render::MultipleScatteringMethod::LightVolume;
+    ms.method = (a.multiple && *a.multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
+                                                        : render::MultipleScatteringMethod::LightVolume;
   } else {
     try {
       ms.method = render::parse_multiple_scattering_method(a.ms_method);
@@ -152,6 +163,7 @@ static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& 
   if (a.multiple && (*a.multiple < 0 || *a.multiple > 3))
     throw UsageError("--multiple: must be in [0, 3], got " + std::to_string(*a.multiple));
   if (ms.method == render::MultipleScatteringMethod::LightVolume) {
+    if (!sun) throw UsageError("--ms-method: light-volume traces photons from the sun, and nothing gives one (--sun)");
     if (a.multiple && *a.multiple > 1)
       throw UsageError("--multiple: --ms-method light-volume takes 0 (single scattering) or 1 (on), got " +
                        std::to_string(*a.multiple));
@@ -216,7 +228,11 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
 
   render::CloudOptics optics;
-  if (a.cloud_extinction) optics.extinction_per_m = *a.cloud_extinction;
+  if (a.cloud_extinction) {
+    optics.extinction_per_m = *a.cloud_extinction;
+  } else if (scene.cloud_extinction_per_m) {
+    optics.extinction_per_m = *scene.cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
+  }
   if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
   try {
     optics.phase = render::parse_cloud_phase(a.cloud_phase);
@@ -234,8 +250,38 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     throw UsageError(std::string("--cloud-extinction/--cloud-albedo/--ambient: ") + e.what());
   }
 
+  // The lights: the sun (given, or the scene's) and the lamps (given, and the scene's).
+  std::vector<render::CloudLight> lights;
+  for (const std::string& text : a.lamps) {
+    const glm::dvec3 at = parse_vec3("--lamp", text);
+    lights.push_back(render::point_light(at, parse_colour("--lamp-intensity", a.lamp_intensity)));
+  }
+  if (!a.spot.empty()) {
+    if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
+    if (!no_scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
+    const glm::dvec3 axis = parse_vec3("--spot", a.spot);
+    const std::size_t comma = a.spot_cone.find(',');
+    const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
+    const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));
+    if (!inner || !outer || !(*inner > 0.0) || !(*inner <= *outer) || !(*outer <= 180.0))
+      throw UsageError("--spot-cone: '" + a.spot_cone + "' must be INNER,OUTER degrees with 0 < INNER <= OUTER <= 180");
+    for (render::CloudLight& l : lights) {
+      l.spot_axis = axis;
+      l.spot_inner_rad = *inner * kPi / 180.0;
+      l.spot_outer_rad = *outer * kPi / 180.0;
+    }
+  }
+  for (const render::CloudLight& l : lights) {
+    try {
+      render::validate(l);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--lamp/--lamp-intensity/--spot: ") + e.what());
+    }
+  }
   render::CloudLight light;
+  bool sun = false;
   if (!a.sun.empty()) {
+    sun = true;
     light.direction_to_light = parse_vec3("--sun", a.sun);
     if (glm::length(light.direction_to_light) == 0.0) throw UsageError("--sun: the direction must not be zero");
     if (!no_scene) {
@@ -253,12 +299,16 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       }
       light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
     }
-  } else if (!no_scene) {
-    if (!scene.sun)
-      throw UsageError("--sun: the clouds need the sun, and scene '" + scene.name + "' has none; give --sun X,Y,Z");
+  } else if (!no_scene && scene.sun) {
+    sun = true;
     light.direction_to_light = scene.sun->direction_to_sun;
     light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+  } else if (!no_scene && scene.point_lights.empty() && lights.empty()) {
+    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene.name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
+  } else if (no_scene && lights.empty()) {
+    sun = true;  // clouds alone: the default sun
   }
+  if (sun) lights.insert(lights.begin(), light);
   if (a.ambient == "auto" && scene.sky) optics.ambient_radiance = render::sky_mean_radiance(*scene.sky);  // after --sun moved it
 
   render::CloudSliceSettings settings;
@@ -267,14 +317,15 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   settings.jitter = !a.no_jitter;
   settings.ambient = true;
   settings.blur_cone_rad = a.blur_deg * kPi / 180.0;
-  settings.multiple = multiple_scattering_of(a);
+  settings.multiple = multiple_scattering_of(a, sun);
+  settings.max_lights = a.max_lights;
   settings.multiple.occlusion = a.ms_occlusion;
   settings.multiple.contribution = a.ms_contribution;
   settings.multiple.eccentricity = a.ms_eccentricity;
   try {
     render::validate(settings);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--slices/--light-res/--multiple/--blur: ") + e.what());
+    throw UsageError(std::string("--slices/--light-res/--multiple/--blur/--max-lights: ") + e.what());
   }
   render::ShaftMethod shafts;
   if (!no_scene) {
@@ -330,7 +381,9 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (reference_progress) reference_progress->update(x);
   };
   fs.path_tracer.progress = fs.reference.progress;
-  render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), light, fs);
+  if (fs.method == render::CloudMethod::PathTrace && (lights.size() != 1 || lights[0].kind != render::CloudLightKind::Sun))
+    throw UsageError("--lamp: --method pathtrace traces the sun only");
+  render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), lights, fs);
 
   for (int frame = first; frame <= last; ++frame) {
     const auto start = std::chrono::steady_clock::now();

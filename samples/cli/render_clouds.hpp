@@ -21,6 +21,11 @@ struct CloudRenderArgs {
   std::string frames;                // A-B
   double fps = 24.0;
   std::string sun;                   // direction towards the sun X,Y,Z
+  std::vector<std::string> lamps;    // X,Y,Z of each lamp on the clouds (joins a scene's point lights)
+  std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp
+  std::string spot;                  // DX,DY,DZ: every --lamp is a spot shining that way (no scene only)
+  std::string spot_cone = "20,30";   // inner,outer half-angles of the spot's cone, degrees
+  int max_lights = 4;                // lights drawn by the slicer, one pass each
   int slices = 128;
   int light_res = 256;
   int shadow_map_res = 512;          // the clouds' shadow on the scene

@@ -100,6 +100,42 @@ TEST(RenderCloudsCli, PathTracerRendersCloudsAloneWithItsNoise) {
   fs::remove_all(d);
 }
 
+// Lamps on clouds: the steam-lamp scene (no sun; its street lamp lights the steam, with the
+// scene's denser extinction), clouds alone under a --lamp or a --spot, by the slicer and the
+// reference, which agree; the lights are named in the metadata.
+TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
+  const fs::path d = temp_dir("lamps");
+  const auto r = run_nimbus("render" + kSteam + "--scene steam-lamp -o " + (d / "a.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image img = render::read_exr(d / "a.exr");
+  EXPECT_TRUE(finite_non_negative(img));
+  EXPECT_NE(img.metadata.at("light").find("point 0.6,3.25,-3"), std::string::npos) << img.metadata.at("light");
+  EXPECT_EQ(img.metadata.at("light").find("sun"), std::string::npos) << img.metadata.at("light");
+  EXPECT_NE(img.metadata.at("cloud_optics").find("extinction_per_m 40"), std::string::npos);
+  const std::string alone = kSteam + "--scene none --eye 0.3,0.15,0.4 --look-at 0,0.12,0 --lamp 0.1,0.6,-0.1 ";
+  const auto s = run_nimbus("render" + alone + "--cloud-extinction 30 -o " + (d / "s.exr").string());
+  ASSERT_EQ(s.code, 0) << s.output;
+  const auto c = run_nimbus("render" + alone + "--cloud-extinction 30 --method reference -o " + (d / "c.exr").string());
+  ASSERT_EQ(c.code, 0) << c.output;
+  const render::Image slices = render::read_exr(d / "s.exr"), reference = render::read_exr(d / "c.exr");
+  double sum_s = 0.0, sum_c = 0.0;
+  for (std::size_t i = 0; i < slices.rgba.size(); i += 4) {
+    sum_s += slices.rgba[i];
+    sum_c += reference.rgba[i];
+  }
+  EXPECT_GT(sum_c, 0.0);
+  EXPECT_NEAR(sum_s / sum_c, 1.0, 0.05);  // 24 slices: the image's total radiance within 5 %
+  const auto p = run_nimbus("render" + alone + "--cloud-extinction 30 --spot 0,-1,0 --spot-cone 2,4 -o " +
+                            (d / "p.exr").string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  const render::Image spot = render::read_exr(d / "p.exr");
+  double sum_p = 0.0;
+  for (std::size_t i = 0; i < spot.rgba.size(); i += 4) sum_p += spot.rgba[i];
+  EXPECT_LT(sum_p, 0.9 * sum_s);  // a narrow cone lights less of the steam
+  EXPECT_NE(spot.metadata.at("light").find("spot axis"), std::string::npos);
+  fs::remove_all(d);
+}
+
 TEST(RenderCloudsCli, FramesWriteANumberedSequence) {
   const fs::path d = temp_dir("seq");
   const auto r = run_nimbus("render" + kSteam + "--scene none --frames 3-4 --fps 12 -o " + (d / "s.exr").string());
@@ -123,7 +159,14 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
   const Case cases[] = {
       {kSteam + "--method reference", "--scene none"},
       {kSteam + "--method raymarch:8", "--method"},
-      {kSteam + "--scene lamps", "--sun"},
+      {kSteam + "--spot 0,-1,0", "--spot"},
+      {kSteam + "--lamp 0,1,0 --spot 0,-1,0", "--spot"},
+      {kSteam + "--scene none --lamp 0,1,0 --spot 0,-1,0 --spot-cone 30,20", "--spot-cone"},
+      {kSteam + "--scene none --lamp 0,1", "--lamp"},
+      {kSteam + "--scene none --lamp 0,1,0 --lamp-intensity -5", "--lamp"},
+      {kSteam + "--scene steam-lamp --ms-method light-volume", "--ms-method"},
+      {kSteam + "--max-lights 0", "--max-lights"},
+      {kSteam + "--scene none --lamp 0,1,0 --method pathtrace", "--lamp"},
       {kSteam + "--scene nowhere", "--scene"},
       {kSteam + "--cloud-phase hg:1.5", "--cloud-phase"},
       {kSteam + "--cloud-albedo 2", "albedo"},

@@ -28,7 +28,7 @@ void expect_error_naming(const nr::Scene& s, const std::string& field) {
 TEST(ScenePresets, EveryNamedSceneIsValidWithA720pCamera) {
   const auto names = nr::scene_names();
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()),
-            (std::set<std::string>{"lamps", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky"}));
+            (std::set<std::string>{"lamps", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky", "steam-lamp"}));
   for (const std::string& name : names) {
     const nr::Scene s = nr::make_scene(name);
     EXPECT_EQ(s.name, name);

@@ -41,6 +41,8 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
                                          const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
                                          int resolution, const std::vector<const VolumeTexture*>& next_textures) const {
   validate(light);
+  if (light.kind != CloudLightKind::Sun)
+    throw std::invalid_argument("cloud shadow map light: the clouds cast their shadow on the scene from the sun only");
   if (clouds.empty()) throw std::invalid_argument("cloud shadow map: no clouds");
   if (textures.size() != clouds.size())
     throw std::invalid_argument("cloud shadow map: " + std::to_string(textures.size()) + " textures for " +

@@ -232,4 +232,53 @@ LightFrame light_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& 
   return f;
 }
 
+LampFrame lamp_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& lamp, const glm::dvec3& forward,
+                     int resolution, double margin_texels, double max_tan) {
+  LampFrame f;
+  f.forward = glm::normalize(forward);
+  const glm::dvec3 helper = std::abs(f.forward.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  f.u_axis = glm::normalize(glm::cross(helper, f.forward));
+  f.w_axis = glm::cross(f.forward, f.u_axis);
+  double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  double hi[2] = {-lo[0], -lo[1]};
+  for (const glm::dvec3& p : points) {
+    const glm::dvec3 d = p - lamp;
+    const double z = glm::dot(d, f.forward);
+    if (!(z > 1e-9 * (1.0 + glm::length(d)))) {
+      f.clipped = true;
+      continue;
+    }
+    const double t[2] = {glm::dot(d, f.u_axis) / z, glm::dot(d, f.w_axis) / z};
+    for (int a = 0; a < 2; ++a) {
+      if (std::abs(t[a]) > max_tan) f.clipped = true;
+      lo[a] = std::min(lo[a], std::clamp(t[a], -max_tan, max_tan));
+      hi[a] = std::max(hi[a], std::clamp(t[a], -max_tan, max_tan));
+    }
+  }
+  double origin[2], extent[2];
+  for (int a = 0; a < 2; ++a) {
+    if (!(hi[a] >= lo[a])) lo[a] = -1.0, hi[a] = 1.0;  // nothing in front: any frame
+    const double texel = std::max(hi[a] - lo[a], 1e-9) / (resolution - 2.0 * margin_texels);
+    origin[a] = lo[a] - margin_texels * texel;
+    extent[a] = texel * resolution;
+    f.texel_tan[a] = texel;
+  }
+  // Rows of the clip map in view coordinates (u, w, z): x_clip = (2 / e) u - (2 o / e + 1) z, the
+  // same for y, z_clip = 0, w_clip = z; then world -> view.
+  glm::dmat4 view(1.0);  // world -> (u, w, z), column-major
+  const glm::dvec3 axes[3] = {f.u_axis, f.w_axis, f.forward};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) view[c][r] = axes[r][c];
+    view[3][r] = -glm::dot(axes[r], lamp);
+  }
+  glm::dmat4 proj(0.0);
+  for (int a = 0; a < 2; ++a) {
+    proj[a][a] = 2.0 / extent[a];
+    proj[2][a] = -(2.0 * origin[a] / extent[a] + 1.0);
+  }
+  proj[2][3] = 1.0;
+  f.world_to_clip = proj * view;
+  return f;
+}
+
 }  // namespace nimbus::render::cloud_detail

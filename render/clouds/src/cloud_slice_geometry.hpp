@@ -81,4 +81,17 @@ struct LightFrame {
 LightFrame light_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& l, int resolution,
                        double margin_texels = 2.0);
 
+// The light buffer's perspective frame for a lamp at `lamp` (Kniss et al. 2003 for local lights):
+// a pinhole looking along unit `forward`, its image plane (at distance 1) covering the
+// projections of the `points` in front of the lamp, with `margin_texels` texels each side, and no
+// wider than max_tan either way (about 76 degrees for 4). A texel is a ray from the lamp.
+struct LampFrame {
+  glm::dvec3 u_axis{1, 0, 0}, w_axis{0, 1, 0}, forward{0, 0, 1};  // unit, right-handed
+  glm::dmat4 world_to_clip{1.0};  // clip = (2 tu' - 1, 2 tw' - 1, 0, 1) z, z = dot(x - lamp, forward)
+  glm::dvec2 texel_tan{1.0};      // a texel's width on the image plane (tangent units)
+  bool clipped = false;           // a point lay behind the lamp or beyond max_tan: it reads no shadow there
+};
+LampFrame lamp_frame(const std::vector<glm::dvec3>& points, const glm::dvec3& lamp, const glm::dvec3& forward,
+                     int resolution, double margin_texels = 2.0, double max_tan = 4.0);
+
 }  // namespace nimbus::render::cloud_detail

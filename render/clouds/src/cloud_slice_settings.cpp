@@ -31,6 +31,8 @@ void validate(const CloudSliceSettings& s) {
   if (s.branch != CloudSliceSettings::Branch::Auto && s.branch != CloudSliceSettings::Branch::FrontToBack &&
       s.branch != CloudSliceSettings::Branch::BackToFront)
     throw std::invalid_argument("slice settings branch: not one of auto, front-to-back, back-to-front");
+  if (s.max_lights < 1 || s.max_lights > 8)
+    throw std::invalid_argument("slice settings max_lights: must be in [1, 8], got " + std::to_string(s.max_lights));
   try {
     validate(s.multiple);
   } catch (const std::invalid_argument& e) {
@@ -51,7 +53,7 @@ void describe_slices(Image& image, const CloudSliceSettings& settings) {
   else
     o << ", octaves " << s.multiple.octaves << " (occlusion " << s.multiple.occlusion << " contribution "
       << s.multiple.contribution << " eccentricity " << s.multiple.eccentricity << ")";
-  o << ", branch " << branch_name(s.branch);
+  o << ", branch " << branch_name(s.branch) << ", max_lights " << s.max_lights;
   image.metadata["slices"] = o.str();
 }
 

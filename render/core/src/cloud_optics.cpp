@@ -12,8 +12,6 @@
 namespace nimbus::render {
 namespace {
 
-bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 void validate_g(double g, const char* field) {
   require(std::isfinite(g) && g > -1.0 && g < 1.0, std::string(field) + " must be in (-1, 1)");
 }
@@ -33,14 +31,6 @@ void validate(const CloudOptics& o) {
   for (int c = 0; c < 3; ++c)
     require(std::isfinite(o.ambient_radiance[c]) && o.ambient_radiance[c] >= 0.0,
             "cloud ambient_radiance must be finite and >= 0 per channel");
-}
-
-void validate(const CloudLight& l) {
-  require(finite3(l.direction_to_light) && glm::length(l.direction_to_light) > 1e-12,
-          "light direction_to_light must be finite and non-zero");
-  for (int c = 0; c < 3; ++c)
-    require(std::isfinite(l.irradiance_w_m2[c]) && l.irradiance_w_m2[c] >= 0.0,
-            "light irradiance_w_m2 must be finite and >= 0 per channel");
 }
 
 void validate(const MultipleScattering& m) {

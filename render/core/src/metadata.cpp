@@ -18,7 +18,21 @@ std::string describe_camera(const Camera& camera) {
 }
 
 std::string describe_light(const CloudLight& light) {
-  return "sun towards " + fmt3(light.direction_to_light) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
+  if (light.kind == CloudLightKind::Sun)
+    return "sun towards " + fmt3(light.direction_to_light) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
+  std::ostringstream s;
+  s.precision(9);
+  s << "point " << fmt3(light.position_m) << " I_w_sr " << fmt3(light.intensity_w_sr);
+  if (glm::length(light.spot_axis) > 0.0)
+    s << " spot axis " << fmt3(light.spot_axis) << " inner_rad " << light.spot_inner_rad << " outer_rad "
+      << light.spot_outer_rad;
+  return s.str();
+}
+
+std::string describe_lights(const std::vector<CloudLight>& lights) {
+  std::string out;
+  for (const CloudLight& l : lights) out += (out.empty() ? "" : "; ") + describe_light(l);
+  return out;
 }
 
 void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method) {
@@ -47,6 +61,10 @@ void describe_frame(Image& image, const Scene& scene, const Camera& camera, cons
 }
 
 void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const CloudLight& light) {
+  describe_clouds(image, clouds, std::vector<CloudLight>{light});
+}
+
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights) {
   std::string names, optics;
   for (const CloudVolume& c : clouds) {
     std::ostringstream o;
@@ -59,7 +77,7 @@ void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const
   }
   image.metadata["clouds"] = names;
   image.metadata["cloud_optics"] = optics;
-  image.metadata["light"] = describe_light(light);
+  image.metadata["light"] = describe_lights(lights);
 }
 
 }  // namespace nimbus::render

@@ -59,6 +59,8 @@ void validate(const Scene& s) {
   } catch (const std::invalid_argument& e) {
     fail("medium", e.what());
   }
+  if (s.cloud_extinction_per_m && !(std::isfinite(*s.cloud_extinction_per_m) && *s.cloud_extinction_per_m > 0.0))
+    fail("cloud_extinction_per_m", "must be finite and > 0");
   if (s.ground) {
     if (!std::isfinite(s.ground->height_m)) fail("ground.height_m", "must be finite");
     check_material(s.ground->material, "ground");

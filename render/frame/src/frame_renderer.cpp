@@ -38,21 +38,63 @@ void validate(const FrameSettings& s) {
 }
 
 FrameRenderer::FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings)
-    : scene_(std::move(scene)), light_(light), settings_(settings) {
+    : FrameRenderer(std::move(scene), std::vector<CloudLight>{light}, settings) {}
+
+FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight> lights, const FrameSettings& settings)
+    : scene_(std::move(scene)), settings_(settings) {
   validate(settings_);
-  validate(light_);
   if (is_cpu_method(settings_.method) && scene_)
     throw std::invalid_argument("the cloud " + to_string(settings_.method) + " renders clouds alone, without a scene");
-  set_light(light_);
+  int suns = 0;
+  for (const CloudLight& l : lights) {
+    validate(l);
+    if (l.kind == CloudLightKind::Sun) {
+      if (++suns > 1) throw std::invalid_argument("frame lights: at most one sun");
+      set_light(l);
+    } else if (scene_) {
+      // A lamp in a scene is one of its point lights: the fog, the surfaces and the clouds see it.
+      if (glm::length(l.spot_axis) > 0.0)
+        throw std::invalid_argument("frame lights: a spot lights clouds alone (no scene); a scene's lamps shine every way");
+      PointLight p;
+      p.position_m = l.position_m;
+      p.intensity_w_sr = l.intensity_w_sr;
+      scene_->point_lights.push_back(p);
+    } else {
+      lamps_.push_back(l);
+    }
+  }
+  if (scene_ && scene_->sun && !has_sun_) {  // the scene's own sun
+    CloudLight sun;
+    sun.direction_to_light = scene_->sun->direction_to_sun;
+    sun.irradiance_w_m2 = scene_->sun->irradiance_w_m2;
+    set_light(sun);
+  }
+  if (cloud_lights().empty()) throw std::invalid_argument("frame lights: nothing lights the clouds (no sun, no lamp)");
+  if (settings_.method == CloudMethod::PathTrace && !lamps_.empty())
+    throw std::invalid_argument("frame lights: the cloud path tracer takes the sun only, not lamps");
   if (scene_) validate(*scene_);
 }
 
 FrameRenderer::~FrameRenderer() = default;
 
+std::vector<CloudLight> FrameRenderer::cloud_lights() const {
+  std::vector<CloudLight> out;
+  if (has_sun_) out.push_back(light_);
+  if (scene_) {
+    for (const PointLight& p : scene_->point_lights) out.push_back(point_light(p.position_m, p.intensity_w_sr));
+  } else {
+    out.insert(out.end(), lamps_.begin(), lamps_.end());
+  }
+  return out;
+}
+
 void FrameRenderer::set_light(const CloudLight& light) {
   validate(light);
-  if (glm::normalize(light.direction_to_light) != glm::normalize(light_.direction_to_light)) light_volume_stale_ = true;
+  if (light.kind != CloudLightKind::Sun) throw std::invalid_argument("frame light: set_light moves the sun; this is a lamp");
+  if (!has_sun_ || glm::normalize(light.direction_to_light) != glm::normalize(light_.direction_to_light))
+    light_volume_stale_ = true;
   light_ = light;
+  has_sun_ = true;
   if (!scene_) return;
   if (!scene_->sun) scene_->sun = SunLight{};
   const bool moved = scene_->sun->direction_to_sun != light.direction_to_light ||
@@ -156,6 +198,9 @@ bool FrameRenderer::has_light_volume() const { return cloud_renderer_ && cloud_r
 double FrameRenderer::update_light_volume() {
   const MultipleScattering& ms = settings_.slices.multiple;
   if (ms.method != MultipleScatteringMethod::LightVolume || light_volume_given_) return 0.0;
+  if (!has_sun_)
+    throw std::invalid_argument("frame settings slices: the light volume of multiple scattering is built from the sun, and "
+                                "there is none; lamps take the octaves method");
   if (!light_volume_stale_ && cloud_renderer_->has_light_volume() && ms.light_volume == light_volume_built_) return 0.0;
   const LightVolume v = build_light_volume(cloud_renderer_->clouds(), light_, ms.light_volume);
   cloud_renderer_->set_light_volume(v);
@@ -171,7 +216,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
   Image image;
   if (settings_.method == CloudMethod::Reference) {
     if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
-    image = render_cloud_reference(reference_moved_, camera, light_, settings_.reference);
+    image = render_cloud_reference(reference_moved_, camera, cloud_lights(), settings_.reference);
     st.device = "CPU (double precision)";
   } else if (settings_.method == CloudMethod::PathTrace) {
     if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
@@ -187,13 +232,16 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
     if (scene_) {
       if (!shaft_renderer_) shaft_renderer_ = std::make_unique<ShaftRenderer>(*scene_, settings_.shaft_settings);
       if (!shadow_builder_) shadow_builder_ = std::make_unique<CloudShadowBuilder>();
-      const CloudShadowMap map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light_,
-                                                        settings_.cloud_shadow_res, cloud_renderer_->next_textures());
-      shaft_renderer_->set_cloud_shadow(&map);
+      // The clouds' shadow on the scene is the sun's; under lamps alone the clouds cast none.
+      std::optional<CloudShadowMap> map;
+      if (has_sun_)
+        map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light_,
+                                     settings_.cloud_shadow_res, cloud_renderer_->next_textures());
+      shaft_renderer_->set_cloud_shadow(map ? &*map : nullptr);
       try {
         shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);
         const SceneUnderlay under{shaft_renderer_->color_texture(), shaft_renderer_->distance_texture(), &*scene_};
-        image = cloud_renderer_->render(camera, light_, settings_.slices, &under, stats ? &st.clouds : nullptr);
+        image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, &under, stats ? &st.clouds : nullptr);
       } catch (...) {
         shaft_renderer_->set_cloud_shadow(nullptr);  // the map dies here
         throw;
@@ -203,10 +251,12 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
                     st.scene.total_ms, to_string(settings_.shafts).c_str(), st.clouds.light_ms, st.clouds.slices_ms,
                     st.clouds.composite_ms);
       describe_frame(image, *scene_, camera, "slices over " + to_string(settings_.shafts));
-      describe_clouds(image, cloud_renderer_->clouds(), light_);
+      const std::string drawn = image.metadata.at("light");
+      describe_clouds(image, cloud_renderer_->clouds(), cloud_lights());
+      image.metadata["light"] = drawn;  // the lights drawn (the slicer's choice)
       describe_slices(image, settings_.slices);
     } else {
-      image = cloud_renderer_->render(camera, light_, settings_.slices, nullptr, stats ? &st.clouds : nullptr);
+      image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, nullptr, stats ? &st.clouds : nullptr);
       std::snprintf(buf, sizeof buf, "clouds: light %.0f ms, slices %.0f ms", st.clouds.light_ms, st.clouds.slices_ms);
     }
     st.summary = buf;

@@ -78,6 +78,8 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
                                          const CloudLight& light, const PathTracerSettings& settings) {
   validate(camera);
   validate(light);
+  if (light.kind != CloudLightKind::Sun)
+    throw std::invalid_argument("cloud path tracer light: it traces the sun only; a lamp lights clouds through the slicer and the cloud reference");
   validate(settings);
   if (clouds.empty()) throw std::invalid_argument("path tracer clouds: the list is empty");
   const std::vector<TracedCloud> media = media_of(clouds);

@@ -83,26 +83,25 @@ struct IndexRay {
   double density(double t) const { return sample_density_local(*cloud, origin + t * dir); }
 };
 
-// What every ray needs: the clouds, their union box, the finest voxel and the light.
+// What every ray needs: the clouds, their union box, the finest voxel and the lights.
 struct Prepared {
   const std::vector<CloudVolume>& clouds;
+  const std::vector<CloudLight>& lights;
   glm::dvec3 box_min, box_max;   // union of the supports
   double voxel_m = 1e300;        // finest voxel edge
-  glm::dvec3 to_light;           // unit
-  glm::dvec3 irradiance;
 
-  Prepared(const std::vector<CloudVolume>& c, const CloudLight& light) : clouds(c) {
+  Prepared(const std::vector<CloudVolume>& c, const std::vector<CloudLight>& l) : clouds(c), lights(l) {
     cloud_bounds(clouds, box_min, box_max);
     for (const CloudVolume& cloud : clouds) voxel_m = std::min(voxel_m, voxel_size_m(cloud));
-    to_light = glm::normalize(light.direction_to_light);
-    irradiance = light.irradiance_w_m2;
   }
 
-  // exp(-optical depth) from p towards the light, midpoint steps of at most step_m, clipped to
-  // the union box.
-  double light_transmittance(const glm::dvec3& p, double step_m) const {
+  // exp(-optical depth) from p along unit `to_light` up to `distance_m` (the light; infinite for
+  // the sun), midpoint steps of at most step_m, clipped to the union box.
+  double light_transmittance(const glm::dvec3& p, const glm::dvec3& to_light, double distance_m, double step_m) const {
     double t0 = 0.0, t1 = 0.0;
     if (!clip_to_box(p, to_light, box_min, box_max, t0, t1)) return 1.0;
+    t1 = std::min(t1, distance_m);
+    if (!(t1 > t0)) return 1.0;
     const double length = t1 - t0;
     const int n = std::max(1, static_cast<int>(std::ceil(length / step_m - 1e-9)));
     const double h = length / n;
@@ -136,11 +135,9 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
   std::vector<IndexRay> rays;
   rays.reserve(P.clouds.size());
   for (const CloudVolume& c : P.clouds) rays.emplace_back(c, eye, dir);
-  const double cos_theta = glm::dot(P.to_light, dir);  // light propagation . (-dir)
-  std::vector<double> phase(P.clouds.size());
-  for (std::size_t i = 0; i < P.clouds.size(); ++i) phase[i] = cloud_phase_value(P.clouds[i].optics.phase, cos_theta);
   const double view_step = s.view_step_voxels * P.voxel_m;
   const double shadow_step = s.shadow_step_voxels * P.voxel_m;
+  std::vector<double> rho(P.clouds.size());
 
   glm::dvec3 radiance(0.0);
   double transmittance = 1.0;
@@ -150,20 +147,30 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
     for (int k = 0; k < n && transmittance >= s.min_transmittance; ++k) {
       const double t = t0 + (k + 0.5) * h;
       double sigma_t = 0.0;
-      glm::dvec3 sun_weight(0.0), ambient(0.0);  // sum_i sigma_s,i p_i and sum_i sigma_s,i L_amb,i
+      glm::dvec3 ambient(0.0);  // sum_i sigma_s,i L_amb,i
       for (std::size_t i = 0; i < rays.size(); ++i) {
-        const double rho = rays[i].density(t);
-        if (rho == 0.0) continue;
-        const double ext = rays[i].extinction_per_m * rho;
-        const glm::dvec3 sigma_s = P.clouds[i].optics.albedo * ext;
+        rho[i] = rays[i].density(t);
+        if (rho[i] == 0.0) continue;
+        const double ext = rays[i].extinction_per_m * rho[i];
         sigma_t += ext;
-        sun_weight += sigma_s * phase[i];
-        ambient += sigma_s * P.clouds[i].optics.ambient_radiance;
+        ambient += P.clouds[i].optics.albedo * ext * P.clouds[i].optics.ambient_radiance;
       }
       if (!(sigma_t > 0.0)) continue;
       const glm::dvec3 x = eye + t * dir;
-      const double t_light = P.light_transmittance(x, shadow_step);
-      const glm::dvec3 source = sun_weight * P.irradiance * t_light + ambient;  // W sr^-1 m^-3
+      glm::dvec3 source = ambient;  // W sr^-1 m^-3
+      for (const CloudLight& light : P.lights) {
+        const LightAtPoint a = light_at(light, x);
+        if (!(glm::length(a.irradiance_w_m2) > 0.0)) continue;
+        // Phase angle between the light's propagation (-to_light) and the way to the eye (-dir).
+        const double cos_theta = glm::dot(a.to_light, dir);
+        glm::dvec3 weight(0.0);  // sum_i sigma_s,i p_i
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+          if (rho[i] == 0.0) continue;
+          weight += P.clouds[i].optics.albedo * (rays[i].extinction_per_m * rho[i]) *
+                    cloud_phase_value(P.clouds[i].optics.phase, cos_theta);
+        }
+        source += weight * a.irradiance_w_m2 * P.light_transmittance(x, a.to_light, a.distance_m, shadow_step);
+      }
       const double step_t = std::exp(-sigma_t * h);
       // Hillaire 2015 step integral: the source is constant over the step, extinction is too.
       radiance += transmittance * (source / sigma_t) * (1.0 - step_t);
@@ -173,7 +180,7 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
   return {radiance, 1.0 - transmittance};
 }
 
-void describe(Image& image, const std::vector<CloudVolume>& clouds, const Camera& c, const CloudLight& light,
+void describe(Image& image, const std::vector<CloudVolume>& clouds, const Camera& c, const std::vector<CloudLight>& lights,
               const CloudReferenceSettings& s) {
   std::ostringstream v, sh, mt;
   v << s.view_step_voxels;
@@ -184,7 +191,7 @@ void describe(Image& image, const std::vector<CloudVolume>& clouds, const Camera
   image.metadata["shadow_step_voxels"] = sh.str();
   image.metadata["min_transmittance"] = mt.str();
   image.metadata["camera"] = describe_camera(c);
-  image.metadata["light"] = describe_light(light);
+  image.metadata["light"] = describe_lights(lights);
   std::string names;
   for (const CloudVolume& cloud : clouds) names += (names.empty() ? "" : ", ") + cloud.name;
   image.metadata["clouds"] = names;
@@ -205,16 +212,26 @@ void validate(const CloudReferenceSettings& s) {
   if (s.threads < 0) throw std::invalid_argument("cloud reference threads: must be >= 0 (0 = all cores)");
 }
 
-CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const CloudLight& light, const glm::dvec3& eye,
-                                const glm::dvec3& dir, const CloudReferenceSettings& settings) {
+static void validate_lights(const std::vector<CloudLight>& lights) {
+  if (lights.empty()) throw std::invalid_argument("cloud reference lights: the list is empty");
+  for (const CloudLight& l : lights) validate(l);
+}
+
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights,
+                                const glm::dvec3& eye, const glm::dvec3& dir, const CloudReferenceSettings& settings) {
   validate_clouds(clouds);
-  validate(light);
+  validate_lights(lights);
   validate(settings);
   if (!finite3(eye)) throw std::invalid_argument("cloud reference eye: must be finite");
   if (!finite3(dir) || !(glm::length(dir) > 0.0))
     throw std::invalid_argument("cloud reference dir: must be finite and non-zero");
-  const Prepared prepared(clouds, light);
+  const Prepared prepared(clouds, lights);
   return trace(prepared, eye, glm::normalize(dir), settings);
+}
+
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const CloudLight& light, const glm::dvec3& eye,
+                                const glm::dvec3& dir, const CloudReferenceSettings& settings) {
+  return cloud_reference_ray(clouds, std::vector<CloudLight>{light}, eye, dir, settings);
 }
 
 double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const CloudLight& light,
@@ -226,24 +243,31 @@ double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const C
     throw std::invalid_argument("cloud reference shadow_step_voxels: must be in (0, 8], got " +
                                 std::to_string(shadow_step_voxels));
   if (!finite3(point_m)) throw std::invalid_argument("cloud reference point_m: must be finite");
-  const Prepared prepared(clouds, light);
-  return prepared.light_transmittance(point_m, shadow_step_voxels * prepared.voxel_m);
+  const std::vector<CloudLight> lights{light};
+  const Prepared prepared(clouds, lights);
+  const LightAtPoint a = light_at(light, point_m);
+  return prepared.light_transmittance(point_m, a.to_light, a.distance_m, shadow_step_voxels * prepared.voxel_m);
 }
 
-Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const CloudLight& light,
-                             const CloudReferenceSettings& settings) {
+Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera,
+                             const std::vector<CloudLight>& lights, const CloudReferenceSettings& settings) {
   validate_clouds(clouds);
   validate(camera);
-  validate(light);
+  validate_lights(lights);
   validate(settings);
-  const Prepared prepared(clouds, light);
+  const Prepared prepared(clouds, lights);
   Image image(camera.width, camera.height);
-  describe(image, clouds, camera, light, settings);
+  describe(image, clouds, camera, lights, settings);
   detail::render_pixels(image, settings.threads, settings.progress, "cloud reference", [&](int x, int y) {
     const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
     return glm::dvec4(px.radiance, px.alpha);
   });
   return image;
+}
+
+Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const CloudLight& light,
+                             const CloudReferenceSettings& settings) {
+  return render_cloud_reference(clouds, camera, std::vector<CloudLight>{light}, settings);
 }
 
 }  // namespace nimbus::render

@@ -128,6 +128,8 @@ std::size_t light_volume_bytes(const LightVolume& grid) {
 LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
                                const LightVolumeSettings& settings) {
   validate(light);
+  if (light.kind != CloudLightKind::Sun)
+    throw std::invalid_argument("light volume light: photons come from the sun only; a lamp takes the octaves method of multiple scattering");
   LightVolume v = light_volume_grid(clouds, settings);
   if (light_volume_bytes(v) > kMaxBytes)
     throw std::length_error("light volume: " + std::to_string(v.size[0]) + "x" + std::to_string(v.size[1]) + "x" +

@@ -24,9 +24,10 @@ namespace nimbus::render {
 
 struct CloudFrameStats {
   double light_ms = 0, slices_ms = 0, composite_ms = 0, total_ms = 0;  // GPU time per pass
-  int slices_drawn = 0;
+  int slices_drawn = 0;           // over every light's pass
+  int light_passes = 0;           // lights drawn (one slicing pass each)
   bool front_to_back = false;    // the eye composites under (light behind the viewer)
-  double half_angle_rad = 0;     // between the slicing axis and the view direction
+  double half_angle_rad = 0;     // between the slicing axis and the view direction (first light)
   std::string timing;            // how the times were taken
 };
 
@@ -80,6 +81,13 @@ class CloudRenderer {
   // the scene's surfaces are hidden, fog in front of the clouds attenuates them and adds its
   // airlight, and the result is the finished frame. Metadata: describe_clouds' and describe_slices'.
   Image render(const Camera& camera, const CloudLight& light, const CloudSliceSettings& settings,
+               const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
+  // Several lights (the sun, lamps, spots; cloud_light.hpp): the settings.max_lights strongest at
+  // the clouds' centre get one slicing pass each, with its own axis and light buffer (a lamp's is
+  // its perspective view); their radiance adds up, the coverage is the first pass's, the ambient
+  // term enters once. Lights left out are named in the metadata key "lights_left_out". A lamp
+  // takes the octaves method of multiple scattering (std::invalid_argument with light-volume).
+  Image render(const Camera& camera, const std::vector<CloudLight>& lights, const CloudSliceSettings& settings,
                const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
 
   struct Impl;

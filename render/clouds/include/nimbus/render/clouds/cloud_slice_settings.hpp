@@ -1,5 +1,6 @@
 // The half-angle slicer's settings (cloud_renderer.hpp): slice count, light buffer, jitter,
-// forward-scattering blur, multiple-scattering octaves and the compositing branch.
+// forward-scattering blur, multiple-scattering octaves, the compositing branch and how many
+// lights get a pass.
 #pragma once
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/image.hpp"
@@ -19,6 +20,9 @@ struct CloudSliceSettings {
   // Which compositing branch: Auto chooses by the angle between the view and light directions
   // (the half-angle rule); the others force one, for tests at the switch.
   enum class Branch { Auto, FrontToBack, BackToFront } branch = Branch::Auto;
+  // Lights drawn, one slicing pass (and light buffer) each: the strongest at the clouds' centre
+  // (strongest_lights, cloud_light.hpp); the rest are left out and named in the metadata. [1, 8]
+  int max_lights = 4;
 };
 
 void validate(const CloudSliceSettings& settings);

@@ -1,11 +1,13 @@
 // How cloud density meets light: extinction and scattering per unit density (world units), a
-// dual-lobe Henyey-Greenstein phase, an ambient sky term, and the directional light (the sun)
-// that the half-angle slicer and the CPU reference both use.
+// dual-lobe Henyey-Greenstein phase, an ambient sky term and the multiple-scattering
+// approximations; the lights are in cloud_light.hpp.
 #pragma once
 #include <cstdint>
 #include <string>
 
 #include <glm/glm.hpp>
+
+#include "nimbus/render/core/cloud_light.hpp"
 
 namespace nimbus::render {
 
@@ -25,12 +27,6 @@ struct CloudOptics {
   // Isotropic sky radiance that lights every point of the cloud unshadowed (W sr^-1 m^-2 per
   // channel); its in-scattered radiance is sigma_s rho L_ambient. 0 switches it off.
   glm::dvec3 ambient_radiance{0.0};
-};
-
-// The sun: parallel light arriving from `direction_to_light`.
-struct CloudLight {
-  glm::dvec3 direction_to_light{0.3, 0.8, -0.5};  // normalised on use
-  glm::dvec3 irradiance_w_m2{3.0};                 // per channel, where it enters the clouds
 };
 
 // How the light volume (light_volume.hpp) is built: photons from the sun through the clouds
@@ -76,7 +72,6 @@ std::string to_string(MultipleScatteringMethod method);
 
 // Throw std::invalid_argument naming the field (NaN, infinity, out of range, zero direction).
 void validate(const CloudOptics& optics);
-void validate(const CloudLight& light);
 void validate(const MultipleScattering& ms);
 void validate(const LightVolumeSettings& settings);
 

@@ -99,6 +99,9 @@ struct Scene {
   std::optional<SunLight> sun;
   std::optional<Sky> sky;  // none: rays that meet nothing see black (through the fog's airlight)
   Camera camera;  // the scene's default view
+  // The clouds' extinction per unit density the scene is made for (per metre; `nimbus render`'s
+  // default for it): a hand-sized gas such as a cup's steam needs far more than a sky's clouds.
+  std::optional<double> cloud_extinction_per_m;
 };
 
 // Throws std::invalid_argument naming the bad field (negative radius, inverted box, bad

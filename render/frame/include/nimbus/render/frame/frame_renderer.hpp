@@ -63,6 +63,13 @@ class FrameRenderer {
   // no scene. The Slices method draws into the GL 4.5 context current on the calling thread.
   // Throws std::invalid_argument naming a bad scene, light or setting.
   FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings);
+  // Any lights (cloud_light.hpp): at most one sun (the scene's sun, as above; else the scene's own
+  // sun, if it has one, lights the clouds) and lamps. With a scene, a lamp joins its point lights
+  // (a spot is refused: the scene's lamps shine every way), and every point light of the scene
+  // lights the clouds too; without one, the lamps light the clouds alone. Throws
+  // std::invalid_argument when nothing lights the clouds, for two suns, or for lamps with the path
+  // tracer (sun only).
+  FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight> lights, const FrameSettings& settings);
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -93,12 +100,16 @@ class FrameRenderer {
   void move_light_volume(const glm::dvec3& world_min);
   bool has_light_volume() const;
 
-  // Moves the sun (the scene's too): its shadow maps (and a light volume, if the direction
-  // changed) are rebuilt at the next frame.
+  // Moves the sun (the scene's too; adds one if there was none): its shadow maps (and a light
+  // volume, if the direction changed) are rebuilt at the next frame. std::invalid_argument for a lamp.
   void set_light(const CloudLight& light);
   // A new sky behind the scene (its gradient follows the sun in the viewer).
   void set_sky(const Sky& sky);
-  const CloudLight& light() const { return light_; }
+  const CloudLight& light() const { return light_; }  // the sun (meaningful when has_sun())
+  bool has_sun() const { return has_sun_; }
+  // Every light on the clouds: the sun, then the lamps (the scene's point lights, or those given
+  // without a scene).
+  std::vector<CloudLight> cloud_lights() const;
   const std::optional<Scene>& scene() const { return scene_; }
   const FrameSettings& settings() const { return settings_; }
 
@@ -111,7 +122,9 @@ class FrameRenderer {
 
  private:
   std::optional<Scene> scene_;
-  CloudLight light_;
+  CloudLight light_;               // the sun
+  bool has_sun_ = false;
+  std::vector<CloudLight> lamps_;  // lamps on clouds without a scene
   FrameSettings settings_;
   std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds as set (Slices keeps them in cloud_renderer_)
   std::vector<CloudVolume> reference_moved_;   // Reference: the same, moved by set_motion

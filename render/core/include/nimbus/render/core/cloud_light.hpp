@@ -1,0 +1,64 @@
+// The lights that shine on clouds and gases: the sun (parallel light of a given irradiance) or a
+// lamp (a point light of radiant intensity I, falling off as I / r^2, optionally narrowed to a
+// spot's cone). The half-angle slicer (shaders/lib/cloud_light.glsl, the same formulas in float)
+// and the CPU references evaluate a light through light_at() alone.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace nimbus::render {
+
+enum class CloudLightKind { Sun, Point };
+
+struct CloudLight {
+  // Sun: parallel light arriving from `direction_to_light`, of irradiance `irradiance_w_m2`
+  // where it enters the clouds.
+  glm::dvec3 direction_to_light{0.3, 0.8, -0.5};  // normalised on use
+  glm::dvec3 irradiance_w_m2{3.0};                 // per channel
+  CloudLightKind kind = CloudLightKind::Sun;
+  // Point: at `position_m`, radiant intensity `intensity_w_sr` per channel; the irradiance at
+  // distance r is I / max(r, min_distance_m)^2 (the floor keeps a light inside a gas finite).
+  glm::dvec3 position_m{0.0};
+  glm::dvec3 intensity_w_sr{0.0};
+  double min_distance_m = 1e-3;                    // > 0
+  // Spot (a point light with a non-zero `spot_axis`): the light leaves along the unit axis
+  // (propagation direction) at full intensity within `spot_inner_rad` of it, smoothstep to 0 at
+  // `spot_outer_rad`: w = smoothstep(cos outer, cos inner, cos angle), 0 < inner <= outer <= pi.
+  glm::dvec3 spot_axis{0.0};                       // zero: all directions (an isotropic lamp)
+  double spot_inner_rad = 0.0, spot_outer_rad = 0.0;
+};
+
+// A lamp at `position_m` of intensity `intensity_w_sr`; a spot when `spot_axis` is non-zero.
+CloudLight point_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr,
+                       const glm::dvec3& spot_axis = glm::dvec3(0.0), double spot_inner_rad = 0.0,
+                       double spot_outer_rad = 0.0);
+
+// Throws std::invalid_argument naming the field: non-finite values, a zero sun direction,
+// negative irradiance or intensity, min_distance_m <= 0, a spot's cones outside 0 < inner <=
+// outer <= pi.
+void validate(const CloudLight& light);
+
+// The light as it arrives, unshadowed, at world point x: the unit direction towards the light,
+// the distance to it (infinite for the sun) and the irradiance on a plane facing it (W m^-2 per
+// channel). The light's propagation direction at x is -to_light.
+struct LightAtPoint {
+  glm::dvec3 to_light{0.0, 1.0, 0.0};
+  double distance_m = 0.0;
+  glm::dvec3 irradiance_w_m2{0.0};
+};
+LightAtPoint light_at(const CloudLight& light, const glm::dvec3& x);
+
+// A spot's weight for the unit propagation direction `dir` (1 for a lamp that is not a spot):
+// smoothstep(cos outer, cos inner, dot(dir, axis)).
+double spot_weight(const CloudLight& light, const glm::dvec3& dir);
+
+// The irradiance a light delivers at world point x, one number for ranking lights (the largest
+// channel).
+double light_strength_at(const CloudLight& light, const glm::dvec3& x);
+
+// Indices of at most `max_lights` lights, the strongest at `x` first (ties: in order).
+std::vector<int> strongest_lights(const std::vector<CloudLight>& lights, const glm::dvec3& x, int max_lights);
+
+}  // namespace nimbus::render

@@ -378,7 +378,7 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   const double sigma_t = scene.medium.extinction_per_m;
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
-  if (settings.surface_airlight) {  // for the medium's phase, built once per process (about a second), uploaded here
+  if (settings.surface_airlight && !scene.point_lights.empty()) {  // for the medium's phase, built once per process (about 2 s), uploaded here
     const SurfaceAirlightTable table(scene.medium.phase);
     impl_->surface_airlight_table = make_texture_2d(GL_R32F, table.nx(), table.ny(),
                                                     TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
@@ -450,7 +450,7 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     const bool clouds = s.cloud_shadow != nullptr;
-    const bool airlight = s.settings.surface_airlight;
+    const bool airlight = s.settings.surface_airlight && !s.scene.point_lights.empty();  // the sun adds none
     auto it = s.surface_programs.find({clouds, airlight});
     if (it == s.surface_programs.end())
       it = s.surface_programs

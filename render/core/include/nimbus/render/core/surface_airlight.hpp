@@ -74,7 +74,7 @@ double surface_airlight_reference(const SurfaceAirlightQuery& q, const Phase& ph
 // cell borders while building). Read bilinearly; T outside the range is clamped (T < kTMin:
 // G0 changes by less than 2 T ln(1/T) below it, 1.8e-4 at theta_s = pi; T > kTMax: the float
 // path's e^{-T} is 0).
-// Built once per size and phase function in double (about a second on two cores), shared by
+// Built once per size and phase function in double (1.7 s on two cores here, docs/shafts.md), shared by
 // all copies.
 class SurfaceAirlightTable {
  public:

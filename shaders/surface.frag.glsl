@@ -1,16 +1,26 @@
 #version 450 core
 // Surface pass: the radiance leaving each visible surface towards the eye, before the medium
-// between them attenuates it (thesis eq. 24, Lambert), and its distance from the eye.
+// between them attenuates it (thesis eq. 24, Lambert), and its distance from the eye. With
+// SURFACE_AIRLIGHT (default 1) each point light also adds the airlight the surface reflects
+// (Sun eq. 13's L_p,a, lib/surface_airlight_texture.glsl): from the whole hemisphere, whichever
+// way the surface faces and whether or not the light is shadowed (Sun's model has no occlusion).
+#ifndef SURFACE_AIRLIGHT
+#define SURFACE_AIRLIGHT 1
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_albedo;
 uniform float u_sigma_t;           // extinction, per metre
+uniform float u_sigma_s;           // scattering, per metre (the surface airlight's)
 uniform vec3 u_emissive_radiance;  // > 0 for light bulbs: their radiance, no shading
 uniform int u_emissive;
 uniform float u_normal_offset_texels;  // shadow lookups move this many texels along the normal
 uniform vec3 u_sky_irradiance_up;  // the sky's light on an upward surface, pi (zenith + horizon) / 2; 0 without a sky
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
+#if SURFACE_AIRLIGHT
+#include "lib/surface_airlight_texture.glsl"
+#endif
 layout(location = 0) out vec4 o_radiance;
 layout(location = 1) out float o_distance;
 void main() {
@@ -24,6 +34,9 @@ void main() {
     for (int i = 0; i < lights.point_count; ++i) {
       vec3 l = lights.point_position[i].xyz - v_world;
       float d = length(l);
+#if SURFACE_AIRLIGHT
+      L += v_albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
+#endif
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.

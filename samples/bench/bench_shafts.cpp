@@ -1,9 +1,13 @@
 // `nimbus bench shafts`: speed against error of the light-shaft methods. Every GPU method and
 // setting renders the same scene and camera; its frame time is set beside its image error
 // against the exact CPU reference (relative RMSE and maximum over lit pixels), and the
-// reference's own time is the anchor measured in the same run.
+// reference's own time is the anchor measured in the same run. Scenes with point lights also get
+// the surface airlight's rows (Sun et al. eq. 13's L_p,a): frame time with and without it, its
+// image error against the reference (which adds the same term), and its CPU cost per evaluation.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <map>
 #include <cstdio>
 #include <mutex>
@@ -15,6 +19,7 @@
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/core/surface_airlight.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
 #include "cli/progress.hpp"
 #include "cli/render_args.hpp"
@@ -40,6 +45,9 @@ struct BenchShaftsArgs {
   bool bulbs = false;
 };
 
+void bench_surface_airlight_cpu();
+void bench_surface_airlight_gpu(const render::Scene& scene, const render::Camera& camera, const render::Image& reference,
+                                const render::ShaftSettings& base, int repeat);
 
 int run_bench_shafts(const BenchShaftsArgs& a) {
   render::Scene scene;
@@ -141,6 +149,10 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
   }
   std::printf("# shadow maps: %.1f ms (once); lit pixels compared: %zu\n", shadow_ms,
               render::compare_images(reference, reference).pixels);
+  if (!scene.point_lights.empty()) {
+    bench_surface_airlight_gpu(scene, camera, reference, settings, a.repeat);
+    bench_surface_airlight_cpu();
+  }
   if (!a.plot.empty()) {
     Plot p;
     p.title = "Light shafts, scene " + scene.name + ", " + std::to_string(camera.width) + "x" +
@@ -151,6 +163,88 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
     write_svg_plot(a.plot, p);
   }
   return 0;
+}
+
+// ns per evaluation of each surface-airlight evaluation on the CPU (one core), over queries drawn
+// with a fixed seed (Tsp log-uniform in [1e-4, 50], theta_s uniform in [0, pi]), and the float
+// path's largest relative error against the reference over them.
+void bench_surface_airlight_cpu() {
+  const render::SurfaceAirlightTable table;  // isotropic (already built by the GPU rows)
+  // A table's build time: one for a phase function not built before in this run.
+  const auto t_table = std::chrono::steady_clock::now();
+  const render::SurfaceAirlightTable fresh(render::Phase{render::PhaseKind::HenyeyGreenstein, 0.123456789});
+  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_table).count();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<render::SurfaceAirlightQuery> queries(1 << 16);
+  for (auto& q : queries) {
+    q.Dsp = 1.0;
+    q.sigma_t = 1e-4 * std::pow(5e5, unit(rng));
+    q.sigma_s = q.sigma_t;
+    q.cos_theta_s = std::cos(M_PI * unit(rng));
+  }
+  auto time_ns = [&](std::size_t n, auto&& f) {
+    double sink = 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < n; ++i) sink += f(queries[i]);
+    const double ns = 1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / double(n);
+    if (!(sink >= 0.0)) std::printf("# (unexpected sum %g)\n", sink);
+    return ns;
+  };
+  const std::size_t n_ref = 64;
+  std::vector<double> ref(n_ref);
+  const double ref_ns = time_ns(n_ref, [&](const render::SurfaceAirlightQuery& q) {
+    const std::size_t i = std::size_t(&q - queries.data());
+    return ref[i] = render::surface_airlight_reference(q);
+  });
+  double worst_float = 0.0, worst_double = 0.0;
+  for (std::size_t i = 0; i < n_ref; ++i) {
+    worst_float = std::max(worst_float, std::abs(render::surface_airlight_float(queries[i], table) / ref[i] - 1.0));
+    worst_double = std::max(worst_double, std::abs(render::surface_airlight_table(queries[i], table) / ref[i] - 1.0));
+  }
+  const double float_ns = time_ns(queries.size(), [&](const render::SurfaceAirlightQuery& q) {
+    return render::surface_airlight_float(q, table);
+  });
+  const double double_ns = time_ns(queries.size(), [&](const render::SurfaceAirlightQuery& q) {
+    return render::surface_airlight_table(q, table);
+  });
+  std::printf("\n# surface airlight, CPU, one core: ns per evaluation (Tsp log-uniform in [1e-4, 50], theta_s uniform; "
+              "tables %dx%d, one builds in %.2f s)\n",
+              table.nx(), table.ny(), build_s);
+  std::printf("| evaluation | ns per evaluation | max rel. error vs reference (%zu queries) |\n|---|---:|---:|\n", n_ref);
+  std::printf("| reference (nested Gauss-Kronrod, double) | %.3g | (reference) |\n", ref_ns);
+  std::printf("| table, double (scene reference) | %.3g | %.2e |\n", double_ns, worst_double);
+  std::printf("| table, float (the shader's source as C++) | %.3g | %.2e |\n", float_ns, worst_float);
+}
+
+// Frame time with and without the surface airlight (GPU, analytic:stable shafts, best of
+// `repeat`), and each image's error against the reference, which adds the term.
+void bench_surface_airlight_gpu(const render::Scene& scene, const render::Camera& camera, const render::Image& reference,
+                                const render::ShaftSettings& base, int repeat) {
+  std::printf("\n# surface airlight (Sun et al. eq. 13, L_p,a), shafts analytic:stable; the reference adds the term\n");
+  std::printf("| surface airlight | surfaces ms | frame ms | rel. RMSE | median rel. | max rel. | bias |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  const render::ShaftMethod method = render::parse_shaft_method("analytic:stable");
+  for (bool on : {false, true}) {
+    render::ShaftSettings settings = base;
+    settings.surface_airlight = on;
+    render::ShaftRenderer renderer(scene, settings);
+    render::ShaftFrameStats st, best;
+    render::Image img = renderer.render(camera, method, &st);  // warm-up: compiles
+    best.total_ms = 1e300;
+    for (int r = 0; r < repeat; ++r) {
+      img = renderer.render(camera, method, &st);
+      const double frame = st.surfaces_ms + st.shadow_volume_ms + st.shafts_ms;
+      if (frame < best.total_ms) {
+        best = st;
+        best.total_ms = frame;
+      }
+    }
+    const render::ImageError err = render::compare_images(img, reference);
+    std::printf("| %s | %.1f | %.1f | %.4f | %.1e | %.3f | %+.4f |\n", on ? "on" : "off", best.surfaces_ms,
+                best.total_ms, err.rel_rmse, err.median_rel, err.max_rel, err.mean_bias);
+    std::fflush(stdout);
+  }
 }
 
 }  // namespace

@@ -34,6 +34,7 @@ struct RenderArgs {
   std::optional<double> exposure;
   std::string output;
   bool hide_bulbs = false;
+  bool no_surface_airlight = false;
   CloudRenderArgs clouds;
   std::string view_state;
   bool scene_given = false, method_given = false;
@@ -97,7 +98,7 @@ int run_render(const RenderArgs& a) {
   render::Image image;
   std::string device;
   if (method.kind == render::ShaftMethod::Kind::Reference) {
-    image = render_reference_with_progress(scene, camera);
+    image = render_reference_with_progress(scene, camera, !a.no_surface_airlight);
     device = "CPU (double precision)";
   } else {
     std::unique_ptr<render::GlContext> gl;
@@ -109,6 +110,7 @@ int run_render(const RenderArgs& a) {
     render::ShaftSettings settings;
     settings.point_shadow_res = a.shadow_res;
     settings.sun_shadow_res = 2 * a.shadow_res;
+    settings.surface_airlight = !a.no_surface_airlight;
     render::ShaftRenderer renderer(scene, settings);
     render::ShaftFrameStats stats;
     image = renderer.render(camera, method, &stats);
@@ -154,6 +156,8 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--albedo", a->albedo, "Override the fog's single-scattering albedo, [0, 1]");
   cmd->add_option("--phase", a->phase, "Override the phase function: isotropic, hg:G, schlick:G, rayleigh");
   cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
+  cmd->add_flag("--no-surface-airlight", a->no_surface_airlight,
+                "Surfaces do not reflect the fog's airlight (Sun et al. eq. 13's L_p,a; on by default)");
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
   cmd->add_option("--view-state", a->view_state,

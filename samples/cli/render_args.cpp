@@ -71,10 +71,11 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
-render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera) {
+render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera, bool surface_airlight) {
   Progress progress("reference " + scene.name);
   std::mutex m;
   render::ReferenceSettings rs;
+  rs.surface_airlight = surface_airlight;
   rs.progress = [&](double f) {
     std::lock_guard<std::mutex> lock(m);
     progress.update(f);

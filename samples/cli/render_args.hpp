@@ -32,6 +32,7 @@ std::pair<int, int> parse_resolution(const std::string& flag, const std::string&
 std::vector<std::string> split_list(const std::string& text);
 
 // The exact CPU reference with its progress on stderr (shared by render and bench shafts).
-render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera);
+render::Image render_reference_with_progress(const render::Scene& scene, const render::Camera& camera,
+                                             bool surface_airlight = true);
 
 }  // namespace nimbus::cli

@@ -60,6 +60,7 @@ const int UNIT_SKY_VIEW = 16;            // sampler2D: the physical sky's radian
 const int UNIT_AERIAL_SCATTERING = 17;   // sampler3D: the air's in-scattered radiance to a distance
 const int UNIT_AERIAL_TRANSMITTANCE = 18; // sampler3D: the air's transmittance to a distance
 const int UNIT_LIGHT_VOLUME = 19;        // sampler3D: scattered light's fluence and flux (lib/cloud_light_volume.glsl)
+const int UNIT_SURFACE_AIRLIGHT = 20;    // sampler2D: the surface airlight's g(ln Tsp, theta_s) (lib/surface_airlight_texture.glsl)
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -136,7 +136,7 @@ const std::map<std::string, int>& expected_units() {
       {"u_range", contract::IMAGE_CLOUD_RANGE},         {"u_density_next", contract::UNIT_CLOUD_DENSITY_NEXT},
       {"u_frame", contract::UNIT_SCENE_COLOR},            {"u_sky_view", contract::UNIT_SKY_VIEW},
       {"u_aerial_scattering", contract::UNIT_AERIAL_SCATTERING}, {"u_aerial_transmittance", contract::UNIT_AERIAL_TRANSMITTANCE},
-      {"u_light_volume", contract::UNIT_LIGHT_VOLUME},
+      {"u_light_volume", contract::UNIT_LIGHT_VOLUME},  {"u_surface_airlight_table", contract::UNIT_SURFACE_AIRLIGHT},
   };
   return units;
 }

@@ -4,7 +4,9 @@
 // Lambert's law (thesis eq. 24) and the airlight of a point light
 //   int sigma_s p(theta) I0 e^(-sigma_t d(x)) / d(x)^2 e^(-sigma_t x) V(x) dx
 // (thesis eq. 25 / Sun et al. eq. 5 with visibility V), of the sun
-//   int sigma_s p(theta) E e^(-sigma_t x) V(x) dx  (closed form on each lit interval).
+//   int sigma_s p(theta) E e^(-sigma_t x) V(x) dx  (closed form on each lit interval),
+// and, with settings.surface_airlight, the airlight each surface reflects from each point
+// light (Sun eq. 13's L_p,a, no occlusion; core/surface_airlight.hpp).
 #include "nimbus/render/reference/reference_renderer.hpp"
 
 #include <tbb/blocked_range.h>
@@ -14,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,6 +24,7 @@
 
 #include "nimbus/render/core/intersect.hpp"
 #include "nimbus/render/core/quadrature.hpp"
+#include "nimbus/render/core/surface_airlight.hpp"
 #include "nimbus/render/reference/reference_visibility.hpp"
 #include "nimbus/render/core/metadata.hpp"
 #include "per_pixel.hpp"
@@ -36,7 +40,8 @@ constexpr double kTailOpticalDepth = 35.0;
 // The scene prepared for rendering: intersection, and each point light's shadow regions of
 // each occluder (reference_visibility.hpp).
 struct Prepared {
-  explicit Prepared(const Scene& scene) : tracer(scene) {
+  Prepared(const Scene& scene, bool with_surface_airlight) : tracer(scene) {
+    if (with_surface_airlight && !scene.point_lights.empty()) surface_airlight.emplace(scene.medium.phase);
     for (const PointLight& l : scene.point_lights) {
       std::vector<ShadowRegion>& r = regions.emplace_back();
       for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
@@ -48,6 +53,7 @@ struct Prepared {
   }
   SceneTracer tracer;
   std::vector<std::vector<ShadowRegion>> regions;  // [light][occluder]
+  std::optional<SurfaceAirlightTable> surface_airlight;  // when surfaces reflect the airlight
 };
 
 struct RayContext {
@@ -121,18 +127,30 @@ double sun_airlight(const RayContext& ray, const SunLight& sun) {
   return sigma_s * p * sum;
 }
 
-// Lambert surface radiance at P (thesis eq. 24): albedo / pi * sum of the irradiances.
-glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm::dvec3 n,
+// Lambert surface radiance at P (thesis eq. 24): albedo / pi * sum of the irradiances, plus the
+// airlight reflected from each point light (Sun eq. 13), for every light whichever way the
+// surface faces and unshadowed (Sun's model: no occlusion).
+glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::dvec3 n,
                             const glm::dvec3& view_dir, const glm::dvec3& albedo) {
+  const SceneTracer& tracer = prepared.tracer;
   const Scene& s = tracer.scene();
   if (glm::dot(n, view_dir) > 0.0) n = -n;  // the side the eye sees
   const double scale = 1.0 + std::max({std::abs(P.x), std::abs(P.y), std::abs(P.z)});
   const glm::dvec3 start = P + (1e-8 * scale) * n;  // off the surface for shadow rays
   glm::dvec3 irradiance{0.0};
+  glm::dvec3 airlight{0.0};
   for (const PointLight& l : s.point_lights) {
     const glm::dvec3 to_light = l.position_m - P;
     const double dist = glm::length(to_light);
     const double cos_i = glm::dot(n, to_light) / dist;
+    if (prepared.surface_airlight && dist > 0.0) {
+      SurfaceAirlightQuery q;
+      q.sigma_t = s.medium.extinction_per_m;
+      q.sigma_s = s.medium.scattering_per_m();
+      q.Dsp = dist;
+      q.cos_theta_s = std::clamp(cos_i, -1.0, 1.0);
+      airlight += l.intensity_w_sr * surface_airlight_table(q, *prepared.surface_airlight);
+    }
     if (cos_i <= 0.0 || tracer.occluded(start, l.position_m)) continue;
     irradiance += l.intensity_w_sr * (cos_i * std::exp(-s.medium.extinction_per_m * dist) / (dist * dist));
   }
@@ -142,7 +160,7 @@ glm::dvec3 surface_radiance(const SceneTracer& tracer, const glm::dvec3& P, glm:
     if (cos_i > 0.0 && !tracer.occluded_toward(start, u)) irradiance += s.sun->irradiance_w_m2 * cos_i;
   }
   if (s.sky) irradiance += sky_irradiance(*s.sky, n);
-  return albedo / M_PI * irradiance;
+  return albedo / M_PI * irradiance + albedo * airlight;
 }
 
 ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm::dvec3& dir,
@@ -162,7 +180,7 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
     out.alpha = 1.0;
   } else if (hit) {
     t_end = hit->t;
-    out.radiance = surface_radiance(tracer, eye + t_end * dir, hit->normal, dir, hit->albedo) *
+    out.radiance = surface_radiance(prepared, eye + t_end * dir, hit->normal, dir, hit->albedo) *
                    std::exp(-sigma_t * t_end);
     out.alpha = 1.0;
   } else if (s.sky) {
@@ -190,6 +208,7 @@ void describe(Image& image, const Scene& s, const Camera& c, const ReferenceSett
   tol << settings.rel_tol;
   image.metadata["rel_tol"] = tol.str();
   image.metadata["visibility_samples"] = std::to_string(settings.visibility_samples);
+  image.metadata["surface_airlight"] = settings.surface_airlight ? "on" : "off";
 }
 
 }  // namespace
@@ -209,7 +228,7 @@ ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const g
                               const ReferenceSettings& settings) {
   validate(scene);
   validate(settings);
-  const Prepared prepared(scene);
+  const Prepared prepared(scene, settings.surface_airlight);
   return trace(prepared, eye, glm::normalize(dir), settings);
 }
 
@@ -217,7 +236,7 @@ Image render_reference(const Scene& scene, const Camera& camera, const Reference
   validate(scene);
   validate(camera);
   validate(settings);
-  const Prepared prepared(scene);
+  const Prepared prepared(scene, settings.surface_airlight);
   Image image(camera.width, camera.height);
   describe(image, scene, camera, settings);
   detail::render_pixels(image, settings.threads, settings.progress, "reference", [&](int x, int y) {

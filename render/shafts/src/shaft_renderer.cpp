@@ -27,6 +27,7 @@
 #include "nimbus/render/gl/uniform_blocks.hpp"
 #include "nimbus/render/core/intersect.hpp"
 #include "nimbus/render/core/scene_mesh.hpp"
+#include "nimbus/render/core/surface_airlight.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/core/metadata.hpp"
 
@@ -90,7 +91,7 @@ struct ShaftRenderer::Impl {
   UniformBuffer<CameraBlock> camera_block;
   UniformBuffer<LightsBlock> lights_block;
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
-  std::map<bool, ShaderProgram> surface_programs;  // by whether clouds cast shadows (CLOUD_SHADOW)
+  std::map<std::pair<bool, bool>, ShaderProgram> surface_programs;  // by (CLOUD_SHADOW, SURFACE_AIRLIGHT)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};
   ShaderProgram skirt_interval_program{{"shadow_volume_interval.vert.glsl", "shadow_volume_interval.frag.glsl"}};
   std::map<std::string, ShaderProgram> shaft_programs;
@@ -126,6 +127,7 @@ struct ShaftRenderer::Impl {
   GlTexture radiance, distance, depth_target, out;
   GlFramebuffer surface_fbo, out_fbo;
   std::map<int, GlTexture> f_tables;
+  GlTexture surface_airlight_table;  // g(ln Tsp, theta_s), R32F, when settings.surface_airlight
 
   Impl(const Scene& s, const ShaftSettings& st) : scene(s), settings(st) {}
 
@@ -376,6 +378,12 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   const double sigma_t = scene.medium.extinction_per_m;
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
+  if (settings.surface_airlight && !scene.point_lights.empty()) {  // for the medium's phase, built once per process (about 2 s), uploaded here
+    const SurfaceAirlightTable table(scene.medium.phase);
+    impl_->surface_airlight_table = make_texture_2d(GL_R32F, table.nx(), table.ny(),
+                                                    TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
+    glTextureSubImage2D(impl_->surface_airlight_table.id(), 0, 0, 0, table.nx(), table.ny(), GL_RED, GL_FLOAT, table.data());
+  }
   impl_->lights_block.update(lights_block(scene));
   if (scene.sky && scene.sky->atmosphere) impl_->atmosphere = upload_atmosphere(scene.sky->atmosphere);
   const SceneTracer tracer(scene);
@@ -442,16 +450,23 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     const bool clouds = s.cloud_shadow != nullptr;
-    auto it = s.surface_programs.find(clouds);
+    const bool airlight = s.settings.surface_airlight && !s.scene.point_lights.empty();  // the sun adds none
+    auto it = s.surface_programs.find({clouds, airlight});
     if (it == s.surface_programs.end())
       it = s.surface_programs
-               .emplace(clouds, ShaderProgram({"surface.vert.glsl", "surface.frag.glsl"},
-                                              std::string("#define CLOUD_SHADOW ") + (clouds ? "1" : "0") + "\n"))
+               .emplace(std::make_pair(clouds, airlight),
+                        ShaderProgram({"surface.vert.glsl", "surface.frag.glsl"},
+                                      std::string("#define CLOUD_SHADOW ") + (clouds ? "1" : "0") +
+                                          "\n#define SURFACE_AIRLIGHT " + (airlight ? "1" : "0") + "\n"))
                .first;
     const ShaderProgram& p = it->second;
     p.use();
     p.set("u_view_proj", view_proj);
     p.set("u_sigma_t", sigma_t);
+    if (airlight) {
+      p.set("u_sigma_s", sigma_s);
+      glBindTextureUnit(contract::UNIT_SURFACE_AIRLIGHT, s.surface_airlight_table.id());
+    }
     s.bind_lights(p);
     p.set("u_emissive", 0);
     p.set("u_sky_irradiance_up", s.scene.sky ? to_float(sky_irradiance(*s.scene.sky, glm::dvec3(0, 1, 0))) : glm::vec3(0.0f));
@@ -588,6 +603,7 @@ Image ShaftRenderer::render(const Camera& camera, const ShaftMethod& method, Sha
                                       (method.kind == ShaftMethod::Kind::ShadowVolume ? " (in [tn, tf] only)" : "");
     img.metadata["jitter"] = to_string(method.jitter);
   }
+  img.metadata["surface_airlight"] = s.settings.surface_airlight ? "on" : "off";
   img.metadata["shadow_map_res"] = std::to_string(s.settings.point_shadow_res) + " per cube face, sun " +
                                    std::to_string(s.settings.sun_shadow_res);
   if (stats) *stats = st;

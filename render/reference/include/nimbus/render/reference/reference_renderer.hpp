@@ -22,6 +22,10 @@ struct ReferenceSettings {
   // ray whose sun rays can meet an occluder. Only the points inside some occluder's shadow
   // region are traced.
   int visibility_samples = 1024;
+  // Surfaces add the airlight they reflect from each point light (Sun et al. eq. 13's L_p,a),
+  // from SurfaceAirlightTable in double (core/surface_airlight.hpp): the same term as the GPU's
+  // ShaftSettings::surface_airlight, bilinear in the same table, error as in docs/shafts.md.
+  bool surface_airlight = true;
   std::function<void(double)> progress;  // fraction of rows done, in [0, 1]; may be empty
 };
 
@@ -31,8 +35,8 @@ void validate(const ReferenceSettings& settings);
 // Renders `scene` (validated; std::invalid_argument naming the field) through `camera`
 // (validated): RGB = radiance (W sr^-1 m^-2), premultiplied by alpha; alpha = 1 where a
 // surface or bulb is hit, else 1 - e^(-sigma_t inf) (1 in fog, 0 in vacuum). Metadata:
-// describe_frame's (metadata.hpp) with method "reference", plus "rel_tol" and
-// "visibility_samples".
+// describe_frame's (metadata.hpp) with method "reference", plus "rel_tol",
+// "visibility_samples" and "surface_airlight".
 // Throws std::runtime_error if a pixel came out NaN or infinite.
 Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings = {});
 

@@ -22,6 +22,9 @@ struct ShaftSettings {
   double silhouette_jump = 0.02;  // relative distance jump between texels that makes a shadow-volume skirt
   std::size_t max_skirt_quads = 1u << 19;  // per light; beyond it the whole ray is sampled
   unsigned jitter_seed = 1;
+  // Surfaces add the airlight they reflect from each point light (Sun et al. eq. 13's L_p,a,
+  // core/surface_airlight.hpp); the sun adds none. The reference's switch is ReferenceSettings'.
+  bool surface_airlight = true;
 
   bool operator==(const ShaftSettings&) const = default;
 };

@@ -129,22 +129,6 @@ struct Timed {
   double best_wall_ms = 1e300;
 };
 
-Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::CloudLight& light,
-                   const render::CloudSliceSettings& s, int repeat) {
-  Timed t;
-  render::CloudFrameStats st;
-  t.image = r.render(cam, light, s, nullptr, &st);  // warm-up: programs, buffers
-  t.best.total_ms = 1e300;
-  for (int i = 0; i < repeat; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    t.image = r.render(cam, light, s, nullptr, &st);
-    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    t.best_wall_ms = std::min(t.best_wall_ms, wall);
-    if (st.total_ms < t.best.total_ms) t.best = st;
-  }
-  return t;
-}
-
 Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::CloudLight>& lights,
                    const render::CloudSliceSettings& s, int repeat) {
   Timed t;
@@ -161,6 +145,11 @@ Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const st
   return t;
 }
 
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::CloudLight& light,
+                   const render::CloudSliceSettings& s, int repeat) {
+  return timed_render(r, cam, std::vector<render::CloudLight>{light}, s, repeat);
+}
+
 render::Image reference_with_progress(const std::vector<render::CloudVolume>& clouds, const render::Camera& cam,
                                       const std::vector<render::CloudLight>& light, double view_step,
                                       double shadow_step, const std::string& what) {
@@ -175,14 +164,21 @@ render::Image reference_with_progress(const std::vector<render::CloudVolume>& cl
 // The lamps: the noisy sphere lit by a lamp at a distance along the sun's front- and back-lit
 // directions (intensity d^2, so about 1 W m^-2 at the centre), slicer against the CPU reference;
 // two lamps at once against one pass each dropped; and the steam of the `steam-lamp` scene.
-void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const std::vector<render::CloudVolume>& clouds,
-                 const render::Camera& camera, const std::vector<bool>& back_lit, double ref_view, double ref_shadow) {
+// --lamp-distances as metres; a usage error naming the flag.
+std::vector<double> lamp_distances(const BenchCloudsArgs& a) {
   std::vector<double> distances;
   for (const std::string& t : split_list(a.lamp_distances)) {
     const std::optional<double> d = parse_double(t);
     if (!d || !(*d > 0.5 && *d <= 1000.0)) throw UsageError("--lamp-distances: '" + t + "' must be in (0.5, 1000] metres");
     distances.push_back(*d);
   }
+  if (distances.empty()) throw UsageError("--lamp-distances: empty list");
+  return distances;
+}
+
+void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const std::vector<render::CloudVolume>& clouds,
+                 const render::Camera& camera, const std::vector<bool>& back_lit, double ref_view, double ref_shadow) {
+  const std::vector<double> distances = lamp_distances(a);
   const std::vector<int> slice_counts = int_list("--lamp-slices", a.lamp_slices, 2, 4096);
   auto lamp = [](bool back, double d) {
     const glm::dvec3 dir = glm::normalize(bench_light(back).direction_to_light);
@@ -319,6 +315,10 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
   if (!(a.sweep_half_deg > 0 && a.sweep_half_deg <= 45)) throw UsageError("--sweep-half-deg: must be in (0, 45]");
   if (!(a.sweep_step_deg > 0 && a.sweep_step_deg <= a.sweep_half_deg))
     throw UsageError("--sweep-step-deg: must be in (0, --sweep-half-deg]");
+  lamp_distances(a);  // the lamps' flags before any work
+  int_list("--lamp-slices", a.lamp_slices, 2, 4096);
+  if (!(a.steam_voxel == 0.0 || (a.steam_voxel >= 0.001 && a.steam_voxel <= 0.05)))
+    throw UsageError("--steam-voxel: must be 0 (no steam rows) or in [0.001, 0.05] metres");
   if (!a.out_dir.empty()) std::filesystem::create_directories(a.out_dir);
 
   // The volume, written where vdb_render can read it.

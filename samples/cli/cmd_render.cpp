@@ -58,9 +58,12 @@ int run_render(const RenderArgs& a) {
       throw UsageError("--view-state: the state holds the clouds, scene and method; give none of FILE, --preset, --scene, --method");
     return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure);
   }
-  if (!a.clouds.files.empty() || !a.clouds.presets.empty())
-    return run_render_clouds(a.clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
+  if (!a.clouds.files.empty() || !a.clouds.presets.empty()) {
+    CloudRenderArgs clouds = a.clouds;
+    clouds.surface_airlight = !a.no_surface_airlight;  // the scene's surfaces under the clouds
+    return run_render_clouds(clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
                              a.exposure);
+  }
   render::Scene scene;
   try {
     scene = render::make_scene(a.scene);

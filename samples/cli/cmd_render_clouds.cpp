@@ -358,6 +358,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   fs.slices = settings;
   fs.shafts = shafts;
   fs.cloud_shadow_res = a.shadow_map_res;
+  fs.shaft_settings.surface_airlight = a.surface_airlight;
   fs.path_tracer.samples_per_pixel = a.spp;
   fs.path_tracer.max_bounces = a.bounces;
   fs.path_tracer.seed = a.seed;
@@ -389,9 +390,10 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     const auto start = std::chrono::steady_clock::now();
     renderer.set_clouds(load_clouds(a, presets, optics, frame, sequence));
     const std::size_t n_clouds = renderer.clouds().size();
-    // Camera: framed on the clouds unless the flags place it.
+    // Camera: framed on the clouds unless the flags place it, or the scene is made for its gas
+    // (steam-lamp: its camera is aimed where the steam rises).
     render::Camera camera = base;
-    if (camera_args.eye.empty() && camera_args.look_at.empty()) {
+    if (camera_args.eye.empty() && camera_args.look_at.empty() && !scene.cloud_extinction_per_m) {
       CameraArgs size_only;
       size_only.res = camera_args.res;
       size_only.fov_deg = camera_args.fov_deg;

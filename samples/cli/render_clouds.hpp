@@ -26,6 +26,7 @@ struct CloudRenderArgs {
   std::string spot;                  // DX,DY,DZ: every --lamp is a spot shining that way (no scene only)
   std::string spot_cone = "20,30";   // inner,outer half-angles of the spot's cone, degrees
   int max_lights = 4;                // lights drawn by the slicer, one pass each
+  bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
   int slices = 128;
   int light_res = 256;
   int shadow_map_res = 512;          // the clouds' shadow on the scene

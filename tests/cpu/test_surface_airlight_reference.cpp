@@ -179,7 +179,9 @@ TEST(SurfaceAirlightReference, AnisotropicPhaseChangesIt) {
       const double r_hg = surface_airlight_G0_reference(T, theta, hg3) / iso;
       const double r_schlick = surface_airlight_G0_reference(T, theta, schlick3) / iso;
       std::printf("| %g | %.4f | %.3f | %.3f |\n", T, theta, r_hg, r_schlick);
-      if (!(T == 3.0 && theta == 0.5 * kPi)) EXPECT_GT(std::abs(r_hg - 1.0), 0.01) << T << " " << theta;  // ~1.001 there
+      if (!(T == 3.0 && theta == 0.5 * kPi)) {  // ~1.001 there
+        EXPECT_GT(std::abs(r_hg - 1.0), 0.01) << T << " " << theta;
+      }
     }
   }
 }

@@ -25,13 +25,6 @@ using namespace slice_test;
 constexpr int kN = 24;
 constexpr double kVoxel = 1.0 / kN;
 
-CloudReferenceSettings quick_reference() {
-  CloudReferenceSettings r;
-  r.view_step_voxels = 0.25;
-  r.shadow_step_voxels = 0.5;
-  return r;
-}
-
 struct LampCase {
   std::string name;
   glm::dvec3 direction;  // from the ball's centre towards the lamp

@@ -9,6 +9,7 @@
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/reference/cloud_reference.hpp"
 
 namespace nimbus::render::slice_test {
 
@@ -27,6 +28,14 @@ inline CloudVolume cube_cloud(int n, double voxel_m, const std::function<float(i
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) acc.setValue(openvdb::Coord(i, j, k), density(i, j, k));
   return make_cloud_volume(*grid, optics, name);
+}
+
+// The CPU reference's steps for the slicer's tests: a quarter voxel along the view, half toward the light.
+inline CloudReferenceSettings quick_reference() {
+  CloudReferenceSettings r;
+  r.view_step_voxels = 0.25;
+  r.shadow_step_voxels = 0.5;
+  return r;
 }
 
 inline CloudOptics grey_optics(double extinction_per_m, double albedo = 0.9) {

@@ -101,6 +101,7 @@ struct Scene {
   Camera camera;  // the scene's default view
   // The clouds' extinction per unit density the scene is made for (per metre; `nimbus render`'s
   // default for it): a hand-sized gas such as a cup's steam needs far more than a sky's clouds.
+  // Such a scene's camera is aimed where its gas rises: `nimbus render` keeps it.
   std::optional<double> cloud_extinction_per_m;
 };
 

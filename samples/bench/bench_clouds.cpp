@@ -176,6 +176,16 @@ std::vector<double> lamp_distances(const BenchCloudsArgs& a) {
   return distances;
 }
 
+// The lamp and steam rows' slicer settings: n slices, the switch rows' light buffer, no ambient.
+render::CloudSliceSettings lamp_row_settings(const BenchCloudsArgs& a, int n) {
+  render::CloudSliceSettings s;
+  s.slices = n;
+  s.light_res = a.switch_light_res;
+  s.jitter = a.jitter;
+  s.ambient = false;
+  return s;
+}
+
 void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const std::vector<render::CloudVolume>& clouds,
                  const render::Camera& camera, const std::vector<bool>& back_lit, double ref_view, double ref_shadow) {
   const std::vector<double> distances = lamp_distances(a);
@@ -202,11 +212,7 @@ void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, cons
       if (di == 0) mid_reference[back] = ref;
       for (const int n : slice_counts) {
         if (di > 0 && n != a.switch_slices) continue;  // the slice sweep at the first distance only
-        render::CloudSliceSettings s;
-        s.slices = n;
-        s.light_res = a.switch_light_res;
-        s.jitter = a.jitter;
-        s.ambient = false;
+        const render::CloudSliceSettings s = lamp_row_settings(a, n);
         const Timed t = timed_render(renderer, camera, lights, s, a.repeat);
         const CoveredError e = covered_error(t.image, ref);
         std::printf("| %s-lit | %.2f | %d slices, light %d^2 | %.1f | %.1f | %.4f | %+.4f | %.1e |\n",
@@ -231,11 +237,7 @@ void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, cons
     std::printf("\n| two lamps (front and back, d %.2f) | passes | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n", d);
     std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
     for (const int max_lights : {2, 1}) {
-      render::CloudSliceSettings s;
-      s.slices = a.switch_slices;
-      s.light_res = a.switch_light_res;
-      s.jitter = a.jitter;
-      s.ambient = false;
+      render::CloudSliceSettings s = lamp_row_settings(a, a.switch_slices);
       s.max_lights = max_lights;
       const Timed t = timed_render(renderer, camera, both, s, a.repeat);
       const CoveredError e = covered_error(t.image, sum);
@@ -269,11 +271,7 @@ void bench_lamps(const BenchCloudsArgs& a, render::CloudRenderer& renderer, cons
     std::printf("|---|---|---:|---:|---:|---:|---:|\n");
     std::printf("| reference (CPU, double) | %g / %g voxel | | %.0f | 0 | 0 | 0 |\n", ref_view, ref_shadow, 1000.0 * ref_s);
     for (const int n : slice_counts) {
-      render::CloudSliceSettings s;
-      s.slices = n;
-      s.light_res = a.switch_light_res;
-      s.jitter = a.jitter;
-      s.ambient = false;
+      const render::CloudSliceSettings s = lamp_row_settings(a, n);
       const Timed t = timed_render(steam_renderer, cam, lights, s, a.repeat);
       const CoveredError e = covered_error(t.image, ref);
       std::printf("| slices (GL) | %d slices, light %d^2 | %.1f | %.1f | %.4f | %+.4f | %.1e |\n", n, a.switch_light_res,

@@ -431,10 +431,15 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>&
     // The slab between two planes is spacing / dot(l, s) thick along the light (issue 5: d / cos);
     // for a lamp, per fragment along each of its rays.
     const double light_slab_m = planes.spacing_m / std::max(glm::dot(l, axis.axis), 1e-3);
-    const LightFrame lf = light_frame(s.hull_points, l, settings.light_res);
+    // The light buffer's frame: the sun's orthographic one, or the lamp's perspective one.
+    LightFrame lf;
     LampFrame lamp_f;
-    double texel_m[2] = {lf.texel_m.x, lf.texel_m.y};
-    if (lamp) {
+    double texel_m[2];
+    if (!lamp) {
+      lf = light_frame(s.hull_points, l, settings.light_res);
+      texel_m[0] = lf.texel_m.x;
+      texel_m[1] = lf.texel_m.y;
+    } else {
       lamp_f = lamp_frame(s.hull_points, light.position_m, l, settings.light_res);
       const double r = glm::length(centre - light.position_m);  // a texel's width at the clouds' centre
       texel_m[0] = std::max(r, 1e-9) * lamp_f.texel_tan.x;
@@ -457,7 +462,6 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>&
     eye.set("u_spacing_m", static_cast<float>(planes.spacing_m));
     eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                       static_cast<float>(ms.eccentricity)));
-    eye.set("u_world_to_light", to_float(lf.world_to_uv));
     if (lamp) {
       for (const ShaderProgram* p : {&eye, &lp}) {
         p->set("u_lamp_position", to_float(light.position_m));
@@ -472,6 +476,7 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>&
       }
       eye.set("u_world_to_light_clip", to_float(lamp_f.world_to_clip));
     } else {
+      eye.set("u_world_to_light", to_float(lf.world_to_uv));
       eye.set("u_light_slab_m", static_cast<float>(light_slab_m));
       eye.set("u_light_dir", to_float(l));
       eye.set("u_irradiance", to_float(light.irradiance_w_m2));

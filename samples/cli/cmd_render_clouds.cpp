@@ -71,7 +71,10 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
   const render::UpAxis up = render::parse_up_axis(a.up);
   for (const std::string& pattern : a.files) {
     const std::string path = frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos);
-    clouds.push_back(render::load_cloud_file(path, a.grid, up, optics));
+    render::CloudFileOptions fo;
+    fo.level_set_to_fog = a.level_set_to_fog;
+    fo.warn = [](const std::string& text) { std::fprintf(stderr, "nimbus: warning: %s\n", text.c_str()); };
+    clouds.push_back(render::load_cloud_file(path, a.grid, up, optics, fo));
   }
   for (const render::PresetCloud& preset : presets) {
     Progress progress("generating " + preset.name);
@@ -93,6 +96,8 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--grid", a.grid, "Grid name in the files (default: density, else the first float grid)");
   cmd->add_option("--up-axis", a.up, "Up axis of the files: auto (their up_axis metadata, else y), y or z")
       ->capture_default_str();
+  cmd->add_flag("--level-set-to-fog", a.level_set_to_fog,
+                "A level set (signed distance) in a file becomes a fog volume: 1 inside, 0 outside (else it is refused)");
   cmd->add_option("--voxel-size", a.voxel_size, "Voxel size of generated presets, metres (default: the preset's)");
   cmd->add_option("--time", a.time, "Time of generated presets, seconds");
   cmd->add_option("--frames", a.frames, "Frame range A-B: a sequence name.%04d.exr (presets at frame/fps)");

@@ -16,6 +16,7 @@ struct CloudRenderArgs {
   std::vector<std::string> presets;  // generated at --time or per frame
   std::string grid;                  // grid name in the files (default: density, else the first float grid)
   std::string up = "auto";           // up axis of the files: auto (their metadata, else y), y or z
+  bool level_set_to_fog = false;     // a level set in a file becomes a fog volume (else refused)
   std::optional<double> voxel_size;  // metres, presets
   std::optional<double> time;        // seconds, presets
   std::string frames;                // A-B

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "vdb_common.hpp"
+#include "vdb_isolated.hpp"
 #include "vdb_open.hpp"
 
 namespace nimbus::volume {
@@ -72,17 +73,24 @@ GridSummary summarize(const openvdb::GridBase& grid) {
 
 }  // namespace
 
-FileSummary summarize_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid) {
-  detail::OpenedVdb vdb = detail::open_vdb(path);
+FileSummary summarize_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid,
+                          const VdbReadLimits& limits) {
+  const std::string file = path.string();
+  detail::GridsRead r = detail::read_grids(
+      path,
+      [&](const std::vector<GridInfo>& grids) {
+        if (grid && std::none_of(grids.begin(), grids.end(), [&](const GridInfo& g) { return g.name == *grid; }))
+          throw GridNotFound(file + ": no grid named '" + *grid + "' (grids: " + detail::list_grids(grids) + ")");
+        std::vector<std::string> names;
+        for (const GridInfo& g : grids)
+          if (!grid || g.name == *grid) names.push_back(g.name);
+        return names;
+      },
+      limits);
   FileSummary out;
-  out.metadata = vdb.metadata;
-  out.checksum_verified = vdb.checksum_verified;
-  if (grid && std::none_of(vdb.grids.begin(), vdb.grids.end(), [&](const GridInfo& g) { return g.name == *grid; }))
-    throw GridNotFound(path.string() + ": no grid named '" + *grid + "' (grids: " + detail::list_grids(vdb.grids) + ")");
-  for (const GridInfo& g : vdb.grids) {
-    if (grid && g.name != *grid) continue;
-    out.grids.push_back(summarize(*detail::read_grid(vdb, path, g.name)));
-  }
+  out.metadata = std::move(r.metadata);
+  out.checksum_verified = r.checksum_verified;
+  for (const openvdb::GridBase::Ptr& g : r.read) out.grids.push_back(summarize(*g));
   return out;
 }
 

@@ -51,8 +51,13 @@ void check_vdb_layout(const std::filesystem::path& file) {
   r.name = file.string();
   r.size = std::filesystem::file_size(file);
   r.in.open(file, std::ios::binary);
-  if (!r.in || r.size < 8) return;  // OpenVDB reports these itself
-  if (r.read<int64_t>("magic number") != 0x56444220) return;  // OPENVDB_MAGIC; not a VDB
+  if (!r.in) return;  // OpenVDB reports it itself
+  // OpenVDB 10.0.1 reads a 4-7 byte prefix of a VDB file as a valid file holding no grids.
+  if (r.size < 8)
+    throw std::runtime_error(r.name + ": not a readable OpenVDB file (" + std::to_string(r.size) +
+                             " bytes, too short to hold even its magic number)");
+  if (r.read<int64_t>("magic number") != 0x56444220)  // OPENVDB_MAGIC
+    throw std::runtime_error(r.name + ": not a readable OpenVDB file (it does not start with OpenVDB's magic number)");
   const uint32_t version = r.read<uint32_t>("file version");
   if (version < 222 || version > 224) return;
   r.skip(8, "library version");

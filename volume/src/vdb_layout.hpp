@@ -10,7 +10,8 @@ namespace nimbus::volume::detail {
 // Walks the header, the file metadata and every grid descriptor of a seekable VDB file (file
 // format 222 to 224, written by OpenVDB 3 to 10+), checking that each grid's start and end
 // offsets are ordered and within the file. Throws std::runtime_error naming the file when they
-// are not, or when the descriptors themselves run past the end. Files of other format
+// are not, when the descriptors themselves run past the end, when the file is shorter than a
+// magic number or does not start with one. Files of other format
 // versions, and stream-written files without offsets, are left to OpenVDB.
 void check_vdb_layout(const std::filesystem::path& file);
 

@@ -1,7 +1,8 @@
 // Opening VDB files defensively: existence, nimbus's seal (or, without one, the grid offsets
 // against the file size), then OpenVDB, whose exceptions
-// (openvdb::IoError, RuntimeError, KeyError, std::bad_alloc on absurd sizes...) all become one
-// line naming the file.
+// (openvdb::IoError, RuntimeError, KeyError...) all become one line naming the file. An absurd
+// size's std::bad_alloc passes through: in the reading child (vdb_isolated.hpp) it is the
+// memory limit at work.
 #include "vdb_open.hpp"
 
 #include <stdexcept>
@@ -12,15 +13,19 @@
 
 namespace nimbus::volume::detail {
 
-OpenedVdb open_vdb(const std::filesystem::path& path) {
+void check_regular_file(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   const std::string name = path.string();
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw std::runtime_error(name + ": no such file");
   if (fs::is_directory(st)) throw std::runtime_error(name + ": is a directory, not a VDB file");
-  if (!fs::is_regular_file(st)) throw std::runtime_error(name + ": not a regular file");
+  if (!fs::is_regular_file(st)) throw std::runtime_error(name + ": not a regular file (a device, FIFO or socket)");
+}
 
+OpenedVdb open_vdb(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  check_regular_file(path);
   init_openvdb();
   OpenedVdb vdb;
   vdb.checksum_verified = check_vdb_seal(path) == Seal::Verified;
@@ -31,6 +36,8 @@ OpenedVdb open_vdb(const std::filesystem::path& path) {
     vdb.metadata = from_meta_map(*vdb.file->getMetadata());
     const openvdb::GridPtrVecPtr grids = vdb.file->readAllGridMetadata();
     for (const auto& g : *grids) vdb.grids.push_back({g->getName(), g->valueType()});
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception& e) {
     throw std::runtime_error(name + ": not a readable OpenVDB file (" + one_line(e.what()) + ")");
   } catch (...) {
@@ -51,6 +58,8 @@ openvdb::GridBase::Ptr read_grid(OpenedVdb& vdb, const std::filesystem::path& pa
     openvdb::GridBase::Ptr grid = vdb.file->readGrid(name);
     if (!grid) throw std::runtime_error("no data");
     return grid;
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": cannot read grid '" + name + "', the file is truncated or corrupt (" +
                              one_line(e.what()) + ")");

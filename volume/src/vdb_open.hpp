@@ -19,12 +19,15 @@ struct OpenedVdb {
   bool checksum_verified = false;
 };
 
+// Throws std::runtime_error naming the file unless it exists and is a regular file.
+void check_regular_file(const std::filesystem::path& path);
+
 // Checks the file exists and is a regular file, checks nimbus's seal when present, and opens
 // it with OpenVDB (header, file metadata and grid descriptors; no grid data yet).
 OpenedVdb open_vdb(const std::filesystem::path& path);
 
 // Reads one grid's data, rethrowing anything OpenVDB throws as std::runtime_error naming the
-// file and the grid.
+// file and the grid (std::bad_alloc passes through: it is a limit, not damage).
 openvdb::GridBase::Ptr read_grid(OpenedVdb& vdb, const std::filesystem::path& path,
                                  const std::string& name);
 

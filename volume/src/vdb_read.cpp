@@ -2,54 +2,104 @@
 #include "nimbus/volume/vdb_read.hpp"
 
 #include <openvdb/tools/Dense.h>
+#include <openvdb/tools/LevelSetUtil.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "nimbus/base/memory.hpp"
+#include "vdb_isolated.hpp"
 #include "vdb_open.hpp"
 
 namespace nimbus::volume {
 
-VolumeFile read_volume_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid_name) {
-  const std::string file = path.string();
-  detail::OpenedVdb vdb = detail::open_vdb(path);
+namespace {
+
+// The grid to read: `wanted` if given, else "density" among the float grids, else the first.
+std::vector<std::string> choose_float_grid(const std::string& file, const std::optional<std::string>& wanted,
+                                           const std::vector<GridInfo>& grids) {
   const std::string float_type = openvdb::typeNameAsString<float>();
-  std::string chosen;
-  if (grid_name) {
+  if (wanted) {
     bool found = false, is_float = false;
-    for (const GridInfo& g : vdb.grids)
-      if (g.name == *grid_name) {
+    for (const GridInfo& g : grids)
+      if (g.name == *wanted) {
         found = true;
         is_float |= g.value_type == float_type;
       }
-    if (!found)
-      throw GridNotFound(file + ": no grid named '" + *grid_name + "' (grids: " + detail::list_grids(vdb.grids) + ")");
+    if (!found) throw GridNotFound(file + ": no grid named '" + *wanted + "' (grids: " + detail::list_grids(grids) + ")");
     if (!is_float)
-      throw std::runtime_error(file + ": grid '" + *grid_name + "' does not hold float values (grids: " +
-                               detail::list_grids(vdb.grids) + ")");
-    chosen = *grid_name;
-  } else {
-    for (const GridInfo& g : vdb.grids)
-      if (g.value_type == float_type && (chosen.empty() || g.name == "density")) {
-        chosen = g.name;
-        if (chosen == "density") break;
-      }
-    if (chosen.empty() && !std::any_of(vdb.grids.begin(), vdb.grids.end(),
-                                       [&](const GridInfo& g) { return g.value_type == float_type; }))
-      throw std::runtime_error(file + ": no float grid to read (grids: " + detail::list_grids(vdb.grids) + ")");
+      throw std::runtime_error(file + ": grid '" + *wanted + "' does not hold float values (grids: " +
+                               detail::list_grids(grids) + ")");
+    return {*wanted};
   }
+  std::string chosen;
+  for (const GridInfo& g : grids)
+    if (g.value_type == float_type && (chosen.empty() || g.name == "density")) {
+      chosen = g.name;
+      if (chosen == "density") break;
+    }
+  if (chosen.empty()) throw std::runtime_error(file + ": no float grid to read (grids: " + detail::list_grids(grids) + ")");
+  return {chosen};
+}
 
+// Index-to-world must be finite and keep three dimensions (a zero or repeated axis has no
+// inverse, and every world-to-index lookup would be NaN).
+void check_transform(const std::string& where, const openvdb::math::Transform& t) {
+  if (!t.isLinear()) return;  // frustum maps: left to the caller (the renderer refuses them)
+  const openvdb::Mat4d m = t.baseMap()->getAffineMap()->getMat4();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!std::isfinite(m(i, j))) throw std::runtime_error(where + " has a transform that is not finite");
+  const openvdb::Vec3d vs = t.voxelSize();
+  const double det = m.getMat3().det();
+  if (!(std::abs(det) > 1e-300) || !(std::abs(det) >= 1e-12 * vs[0] * vs[1] * vs[2]))
+    throw std::runtime_error(where + " has a degenerate transform (voxel size " + std::to_string(vs[0]) + " x " +
+                             std::to_string(vs[1]) + " x " + std::to_string(vs[2]) + ", determinant " +
+                             std::to_string(det) + ")");
+}
+
+}  // namespace
+
+VolumeFile read_volume_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid_name) {
+  VdbReadOptions options;
+  options.grid = grid_name;
+  return read_volume_vdb(path, options);
+}
+
+VolumeFile read_volume_vdb(const std::filesystem::path& path, const VdbReadOptions& options) {
+  const std::string file = path.string();
+  detail::GridsRead r = detail::read_grids(
+      path, [&](const std::vector<GridInfo>& grids) { return choose_float_grid(file, options.grid, grids); },
+      options.limits);
+  if (r.read.size() != 1 || !r.read[0]) throw std::runtime_error(file + ": the grid could not be read");
+  const std::string chosen = r.read[0]->getName();
+  const std::string where = file + ": grid '" + chosen + "'";
   VolumeFile out;
-  out.grid = openvdb::gridPtrCast<openvdb::FloatGrid>(detail::read_grid(vdb, path, chosen));
-  if (!out.grid) throw std::runtime_error(file + ": grid '" + chosen + "' is not a float grid");
-  for (auto it = out.grid->cbeginValueOn(); it; ++it)
-    if (!std::isfinite(*it))
-      throw std::runtime_error(file + ": grid '" + chosen + "' holds non-finite values (corrupt file?)");
-  out.metadata = std::move(vdb.metadata);
-  out.grids = std::move(vdb.grids);
-  out.checksum_verified = vdb.checksum_verified;
+  out.grid = openvdb::gridPtrCast<openvdb::FloatGrid>(r.read[0]);
+  if (!out.grid) throw std::runtime_error(where + " is not a float grid");
+  check_transform(where, out.grid->transform());
+  for (auto it = out.grid->cbeginValueAll(); it; ++it)  // tiles and voxels, active or not
+    if (!std::isfinite(*it)) throw std::runtime_error(where + " holds non-finite values (corrupt file?)");
+  if (!std::isfinite(out.grid->background())) throw std::runtime_error(where + " has a non-finite background");
+  if (out.grid->getGridClass() == openvdb::GRID_LEVEL_SET) {
+    if (!options.level_set_to_fog)
+      throw std::runtime_error(where + " is a level set (a signed distance field), not a density; convert it to a "
+                               "fog volume with --level-set-to-fog");
+    openvdb::tools::sdfToFogVolume(*out.grid);
+    out.from_level_set = true;
+  }
+  bool any = false;
+  for (auto it = out.grid->cbeginValueOn(); it; ++it) {
+    out.min_value = any ? std::min(out.min_value, *it) : *it;
+    any = true;
+    if (*it < 0.0f) out.negative_values += it.isVoxelValue() ? 1 : it.getVoxelCount();
+  }
+  out.metadata = std::move(r.metadata);
+  out.grids = std::move(r.grids);
+  out.checksum_verified = r.checksum_verified;
+  out.read_in_child = r.read_in_child;
   return out;
 }
 
@@ -70,6 +120,10 @@ DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbo
   const std::string what = "a dense copy of grid '" + grid.getName() + "' (" + std::to_string(box.size[0]) +
                            " x " + std::to_string(box.size[1]) + " x " + std::to_string(box.size[2]) + " voxels)";
   if (overflow) throw OutOfMemoryRequest(what + " exceeds any memory");
+  for (int a = 0; a < 3; ++a)
+    if (box.size[a] > std::numeric_limits<int32_t>::max())
+      throw OutOfMemoryRequest(what + " spans more than 2^31 - 1 voxels along " + std::string(1, char('x' + a)) +
+                               ", more than a dense copy can index");
   ensure_fits_in_memory(count, sizeof(float), what);
   box.values.resize(size_t(count));
   // LayoutXYZ is OpenVDB's x-fastest layout.

@@ -1,6 +1,10 @@
 // Clouds from VDB files and presets (cloud_source.hpp).
 #include "nimbus/render/core/cloud_source.hpp"
 
+#include <openvdb/tools/ChangeBackground.h>
+
+#include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <variant>
 
@@ -18,8 +22,25 @@ UpAxis parse_up_axis(const std::string& text) {
   throw std::invalid_argument("up axis '" + text + "' must be auto, y or z");
 }
 
-openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps) {
-  volume::VolumeFile f = volume::read_volume_vdb(path, grid.empty() ? std::nullopt : std::optional(grid));
+openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps,
+                                        const CloudFileOptions& options) {
+  volume::VdbReadOptions ro;
+  if (!grid.empty()) ro.grid = grid;
+  ro.level_set_to_fog = options.level_set_to_fog;
+  volume::VolumeFile f = volume::read_volume_vdb(path, ro);
+  const bool negative_background = f.grid->background() < 0.0f;
+  if (f.negative_values > 0 || negative_background) {
+    for (auto it = f.grid->beginValueAll(); it; ++it)
+      if (*it < 0.0f) it.setValue(0.0f);
+    if (negative_background) openvdb::tools::changeBackground(f.grid->tree(), 0.0f);
+    if (options.warn) {
+      char least[32];
+      std::snprintf(least, sizeof least, "%g", double(std::min(f.min_value, f.grid->background())));
+      options.warn(path + ": grid '" + f.grid->getName() + "' holds " + std::to_string(f.negative_values) +
+                   " negative value(s)" + (negative_background ? " and a negative background" : "") +
+                   " (least " + least + "); a density cannot be negative, so they are read as 0");
+    }
+  }
   bool z_up = up == UpAxis::Z;
   for (const auto& [key, value] : f.metadata) {
     const std::string* text = std::get_if<std::string>(&value);
@@ -32,8 +53,9 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
   return z_up ? volume::rotate_z_up_to_y_up(*f.grid) : f.grid;
 }
 
-CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics) {
-  return make_cloud_volume(*load_cloud_grid(path, grid, up), optics, path);
+CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
+                            const CloudFileOptions& options) {
+  return make_cloud_volume(*load_cloud_grid(path, grid, up, nullptr, options), optics, path);
 }
 
 PresetCloud load_preset_cloud(const std::string& name) {

@@ -36,8 +36,9 @@ struct FileSummary {
   bool checksum_verified = false;  // nimbus's seal present and intact
 };
 
-// Reads the whole file (or only `grid`, GridNotFound when absent). Errors as in vdb_read.hpp.
+// Reads the whole file (or only `grid`, GridNotFound when absent); a foreign file in the
+// isolated child (vdb_read.hpp). Errors as in vdb_read.hpp.
 FileSummary summarize_vdb(const std::filesystem::path& path,
-                          const std::optional<std::string>& grid = std::nullopt);
+                          const std::optional<std::string>& grid = std::nullopt, const VdbReadLimits& limits = {});
 
 }  // namespace nimbus::volume

@@ -17,15 +17,25 @@ enum class UpAxis { Auto, Y, Z };
 // "auto", "y", "z"; std::invalid_argument naming the text otherwise.
 UpAxis parse_up_axis(const std::string& text);
 
+// How a file's grid becomes a density.
+struct CloudFileOptions {
+  bool level_set_to_fog = false;  // a level set becomes a fog volume (else it is refused)
+  // Told, in one line naming the file, when negative values (which a density cannot hold) were
+  // read as 0. May be empty.
+  std::function<void(const std::string&)> warn;
+};
+
 // The float grid `grid` (empty: "density", else the first float grid) of the VDB file at `path`,
-// y-up, as a cloud named by the path. Missing or damaged files throw std::runtime_error, an
-// unknown grid volume::GridNotFound (both naming the file), and a box too large to hold
-// OutOfMemoryRequest.
-CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics);
+// y-up, as a cloud named by the path. Foreign files are read in an isolated child process
+// (volume/vdb_read.hpp). Missing, damaged or hostile files and level sets throw
+// std::runtime_error, an unknown grid volume::GridNotFound (both naming the file), and a box too
+// large to hold OutOfMemoryRequest. Negative values (and a negative background) become 0.
+CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
+                            const CloudFileOptions& options = {});
 // The same grid, y-up, before it becomes a cloud (the viewer keeps keyframes as grids). `fps`:
 // the file's "fps" metadata when it has one.
 openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up,
-                                        double* fps = nullptr);
+                                        double* fps = nullptr, const CloudFileOptions& options = {});
 
 // A preset's cloud parameters and its own voxel size (metres); std::invalid_argument naming an
 // unknown preset or a bad parameter.

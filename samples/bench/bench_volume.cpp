@@ -1,6 +1,6 @@
 // `nimbus bench volume`: generation speed per preset beside its error, against the same field
 // evaluated naively at every voxel (the anchor), with the octave limit on and off; plus file
-// size and write time.
+// size, write time and read time (sealed and foreign, bench_volume_read.hpp).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench_volume_read.hpp"
 #include "cli/cli.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -219,6 +220,11 @@ int run_bench_volume(const BenchVolumeArgs& a) {
     std::printf("| %s | %d | %lld | %ju | %.3f | %ju | %.3f | %.2f |\n", f.preset.c_str(), f.res,
                 static_cast<long long>(f.active), f.half_bytes, f.half_s, f.float_bytes, f.float_s,
                 f.active ? double(f.half_bytes) / double(f.active) : 0.0);
+  std::vector<std::filesystem::path> written;
+  for (const FileRow& f : files)
+    if (f.res == files.back().res)  // the largest resolution's files
+      for (const char* kind : {".half.vdb", ".float.vdb"}) written.push_back(tmp / (f.preset + kind));
+  bench_reading(written, tmp, a.quick ? 1 : 3);
   if (a.field) bench_field(a.quick, tmp);
   std::filesystem::remove_all(tmp);
   return 0;

@@ -133,7 +133,7 @@ GridsRead read_grids(const std::filesystem::path& path, const GridChoice& choose
   check_regular_file(path);
   init_openvdb();
   if (check_vdb_seal(path) == Seal::Verified) {  // nimbus's own file, intact: read here
-    OpenedVdb vdb = open_vdb(path);
+    OpenedVdb vdb = open_vdb(path, /*seal_verified=*/true);
     GridsRead out;
     for (const std::string& name : choose(vdb.grids)) out.read.push_back(read_grid(vdb, path, name));
     out.metadata = std::move(vdb.metadata);

@@ -24,7 +24,8 @@ void check_regular_file(const std::filesystem::path& path);
 
 // Checks the file exists and is a regular file, checks nimbus's seal when present, and opens
 // it with OpenVDB (header, file metadata and grid descriptors; no grid data yet).
-OpenedVdb open_vdb(const std::filesystem::path& path);
+// `seal_verified`: the caller has just checked the seal and found it intact (skips the CRC).
+OpenedVdb open_vdb(const std::filesystem::path& path, bool seal_verified = false);
 
 // Reads one grid's data, rethrowing anything OpenVDB throws as std::runtime_error naming the
 // file and the grid (std::bad_alloc passes through: it is a limit, not damage).

@@ -262,6 +262,20 @@ TEST(VdbHostile, ACorruptMetadataLengthCannotExhaustTheCaller) {
   EXPECT_THROW(summarize_vdb(dir / "meta.vdb", std::nullopt, o.limits), std::runtime_error);
 }
 
+TEST(VdbHostile, FilesThatEndOpenVdbInProcessAreErrors) {
+  // Damaged foreign files on which OpenVDB 10.0.1 fails an assertion (SIGABRT) or asks for
+  // absurd memory (tests/data/hostile-vdb/README.md). Read in this process they would end it.
+  const std::filesystem::path dir = std::filesystem::path(NIMBUS_SOURCE_DIR) / "tests/data/hostile-vdb";
+  for (const char* name : {"openvdb-asserts-in-delayed-load-mask.vdb", "openvdb-asserts-in-delayed-load-mask-2.vdb",
+                           "openvdb-asks-for-absurd-memory.vdb"}) {
+    const std::string msg = read_error(dir / name);
+    EXPECT_TRUE(msg.find("crashed") != std::string::npos || msg.find("memory") != std::string::npos ||
+                msg.find("corrupt") != std::string::npos)
+        << msg;
+    EXPECT_THROW(summarize_vdb(dir / name), std::runtime_error) << name;
+  }
+}
+
 TEST(VdbHostile, AFifoIsNotWaitedOn) {
   TempDir dir;
   const auto fifo = dir / "pipe.vdb";

@@ -276,6 +276,29 @@ TEST(VdbHostile, FilesThatEndOpenVdbInProcessAreErrors) {
   }
 }
 
+TEST(VdbHostile, TheFilesOwnNamesCannotBreakOrFloodTheErrorLine) {
+  // A grid named with a line break and 100,000 characters: an error quoting it stays one line
+  // of bounded length.
+  TempDir dir;
+  auto grid = openvdb::Int32Grid::create(0);
+  grid->setName("evil\nname" + std::string(100000, 'x'));
+  grid->tree().setValueOn(openvdb::Coord(0, 0, 0), 1);
+  write_foreign(dir / "names.vdb", {grid});
+  for (const std::optional<std::string>& wanted : {std::optional<std::string>(), std::optional<std::string>("nope")}) {
+    try {
+      VdbReadOptions o;
+      o.grid = wanted;
+      read_volume_vdb(dir / "names.vdb", o);
+      ADD_FAILURE() << "read succeeded";
+    } catch (const std::runtime_error& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.find('\n'), std::string::npos);
+      EXPECT_LT(msg.size(), 5000u);
+      EXPECT_EQ(msg.rfind((dir / "names.vdb").string(), 0), 0u) << msg.substr(0, 200);
+    }
+  }
+}
+
 TEST(VdbHostile, AFifoIsNotWaitedOn) {
   TempDir dir;
   const auto fifo = dir / "pipe.vdb";

@@ -47,6 +47,10 @@ Metadata from_meta_map(const openvdb::MetaMap& meta) {
 }
 
 std::string one_line(std::string text) {
+  // A damaged file's bytes can come back inside OpenVDB's message (a 98-byte file once gave a
+  // 1.9 GB line): keep the head, which says what went wrong.
+  constexpr size_t kMax = 400;
+  if (text.size() > kMax) text = text.substr(0, kMax) + "... (" + std::to_string(text.size() - kMax) + " more bytes)";
   for (char& c : text)
     if (c == '\n' || c == '\r' || c == '\t') c = ' ';
   while (!text.empty() && text.back() == ' ') text.pop_back();

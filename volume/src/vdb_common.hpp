@@ -19,7 +19,8 @@ openvdb::MetaMap to_meta_map(const Metadata& metadata);
 // (vectors, matrices) as OpenVDB prints it.
 Metadata from_meta_map(const openvdb::MetaMap& meta);
 
-// Newlines and tabs become spaces, so an error message stays one line.
+// Newlines and tabs become spaces, so an error message stays one line; at most 400 characters
+// of it are kept.
 std::string one_line(std::string text);
 
 }  // namespace nimbus::volume::detail

@@ -85,8 +85,9 @@ void encode(const OpenedVdb& vdb, const openvdb::GridPtrVec& read, std::string& 
 
 GridsRead decode(const std::string& answer, const std::string& file) {
   if (answer.empty()) throw std::runtime_error(file + ": the reader's answer is empty");
-  if (answer[0] == 'G') throw GridNotFound(answer.substr(1));
-  if (answer[0] == 'R') throw std::runtime_error(answer.substr(1));
+  // The child's messages quote the file's own names and bytes: one line, bounded.
+  if (answer[0] == 'G') throw GridNotFound(one_line(answer.substr(1, 4096)));
+  if (answer[0] == 'R') throw std::runtime_error(one_line(answer.substr(1, 4096)));
   GridsRead out;
   Reader r{answer, 1};
   out.checksum_verified = r.get<uint8_t>() != 0;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "nimbus/base/memory.hpp"
+#include "vdb_common.hpp"
 #include "vdb_isolated.hpp"
 #include "vdb_open.hpp"
 
@@ -74,8 +75,7 @@ VolumeFile read_volume_vdb(const std::filesystem::path& path, const VdbReadOptio
       path, [&](const std::vector<GridInfo>& grids) { return choose_float_grid(file, options.grid, grids); },
       options.limits);
   if (r.read.size() != 1 || !r.read[0]) throw std::runtime_error(file + ": the grid could not be read");
-  const std::string chosen = r.read[0]->getName();
-  const std::string where = file + ": grid '" + chosen + "'";
+  const std::string where = detail::one_line(file + ": grid '" + r.read[0]->getName().substr(0, 200) + "'");
   VolumeFile out;
   out.grid = openvdb::gridPtrCast<openvdb::FloatGrid>(r.read[0]);
   if (!out.grid) throw std::runtime_error(where + " is not a float grid");

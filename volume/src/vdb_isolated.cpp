@@ -149,7 +149,10 @@ GridsRead read_grids(const std::filesystem::path& path, const GridChoice& choose
   il.memory_bytes = limits.memory_bytes ? limits.memory_bytes
                                         : uint64_t(env_number("NIMBUS_READ_MEMORY_GB", 0.0) * double(uint64_t(1) << 30));
   if (il.memory_bytes == 0) il.memory_bytes = isolation_memory_for_file(ec ? 0 : size);
-  il.seconds = limits.seconds > 0.0 ? limits.seconds : env_number("NIMBUS_READ_SECONDS", 300.0);
+  // 20 s, and 1 s more per 5 MB of file: a sound file reads at hundreds of MB/s, while a 10 KB
+  // hostile one kept OpenVDB's readTopology busy for 75 CPU seconds.
+  il.seconds = limits.seconds > 0.0 ? limits.seconds
+                                    : env_number("NIMBUS_READ_SECONDS", 20.0 + double(ec ? 0 : size) / 5e6);
   std::string answer;
   try {
     answer = call_isolated(il, [&](std::string& out) {

@@ -45,7 +45,8 @@ struct VdbReadLimits {
   // hold. 0: the environment's NIMBUS_READ_MEMORY_GB, else max(2 GiB, 64 x the file's size), at
   // most a third of the memory available.
   uint64_t memory_bytes = 0;
-  // Wall-clock (and CPU) seconds. 0: the environment's NIMBUS_READ_SECONDS, else 300.
+  // Wall-clock (and CPU) seconds. 0: the environment's NIMBUS_READ_SECONDS, else 20 s + 1 s per
+  // 5 MB of file.
   double seconds = 0.0;
 };
 

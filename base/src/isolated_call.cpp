@@ -54,11 +54,17 @@ bool write_all(int fd, const char* data, size_t size) {
     dup2(null, STDOUT_FILENO);
     dup2(null, STDERR_FILENO);
   }
-  const rlimit as{address_space + limits.memory_bytes, address_space + limits.memory_bytes};
-  const rlimit fsize{limits.memory_bytes + 4096, limits.memory_bytes + 4096};
-  const rlim_t cpu = rlim_t(std::ceil(limits.seconds)) + 1;
-  const rlimit cpu_limit{cpu, cpu + 1};
-  if (setrlimit(RLIMIT_AS, &as) != 0 || setrlimit(RLIMIT_FSIZE, &fsize) != 0 || setrlimit(RLIMIT_CPU, &cpu_limit) != 0)
+  // Only ever lowered: a limit the process inherited (ulimit, a batch system) stays in force.
+  const auto lower = [](int resource, rlim_t value) {
+    rlimit r{};
+    if (getrlimit(resource, &r) != 0) return false;
+    if (r.rlim_max != RLIM_INFINITY && r.rlim_max < value) value = r.rlim_max;
+    if (r.rlim_cur != RLIM_INFINITY && r.rlim_cur < value) value = r.rlim_cur;
+    r.rlim_cur = value;
+    return setrlimit(resource, &r) == 0;
+  };
+  if (!lower(RLIMIT_AS, address_space + limits.memory_bytes) || !lower(RLIMIT_FSIZE, limits.memory_bytes + 4096) ||
+      !lower(RLIMIT_CPU, rlim_t(std::ceil(limits.seconds)) + 1))
     _exit(5);
   itimerval timer{};
   timer.it_value.tv_sec = time_t(limits.seconds);

@@ -1,7 +1,10 @@
 // Available-memory checks for large grids.
 #include "nimbus/base/memory.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <cstdio>
 #include <fstream>
@@ -10,7 +13,9 @@
 
 namespace nimbus {
 
-uint64_t available_memory_bytes() {
+namespace {
+
+uint64_t machine_available_bytes() {
   std::ifstream in("/proc/meminfo");
   std::string key;
   uint64_t kb = 0;
@@ -21,6 +26,21 @@ uint64_t available_memory_bytes() {
   if (pages > 0 && page > 0) return uint64_t(pages) * uint64_t(page);
   return std::numeric_limits<uint64_t>::max();
 }
+
+// What the process's own address-space limit (ulimit -v, a batch system's) leaves it.
+uint64_t address_space_left_bytes() {
+  rlimit r{};
+  if (getrlimit(RLIMIT_AS, &r) != 0 || r.rlim_cur == RLIM_INFINITY) return std::numeric_limits<uint64_t>::max();
+  std::ifstream in("/proc/self/statm");
+  uint64_t pages = 0;
+  in >> pages;
+  const uint64_t used = pages * uint64_t(sysconf(_SC_PAGE_SIZE));
+  return r.rlim_cur > used ? uint64_t(r.rlim_cur) - used : 0;
+}
+
+}  // namespace
+
+uint64_t available_memory_bytes() { return std::min(machine_available_bytes(), address_space_left_bytes()); }
 
 void ensure_fits_in_memory(uint64_t count, uint64_t bytes_per_element, const std::string& what) {
   if (bytes_per_element != 0 && count > std::numeric_limits<uint64_t>::max() / bytes_per_element)

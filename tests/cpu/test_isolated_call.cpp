@@ -3,11 +3,16 @@
 // with the right reason, and goes on.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <csignal>
+#include <fstream>
 #include <cstdlib>
 #include <vector>
 
 #include "nimbus/base/isolated_call.hpp"
+#include "nimbus/base/memory.hpp"
 
 namespace {
 
@@ -96,6 +101,53 @@ TEST(IsolatedCall, TheChildsWritesDoNotReachTheParent) {
   static int touched = 0;
   call_isolated(small_limits(), [](std::string&) { touched = 42; });
   EXPECT_EQ(touched, 0);
+}
+
+TEST(IsolatedCall, LimitsTheProcessInheritedAreKeptNotRaised) {
+  // A batch system's hard CPU limit below the call's time: the child must not try to raise it
+  // (EPERM made every foreign file "damaged"). Run in a death-test child: hard limits stick.
+  EXPECT_EXIT(
+      {
+        rlimit cpu{};
+        getrlimit(RLIMIT_CPU, &cpu);
+        cpu.rlim_cur = cpu.rlim_max = 100;
+        setrlimit(RLIMIT_CPU, &cpu);
+        IsolationLimits l = small_limits(300.0);
+        // The answer: the hard CPU limit the work ran under (root could raise it; it must not).
+        const std::string answer = call_isolated(l, [](std::string& out) {
+          rlimit r{};
+          getrlimit(RLIMIT_CPU, &r);
+          out = std::to_string(r.rlim_max);
+        });
+        const bool ok = answer == "100";
+        _exit(ok ? 0 : 1);  // no static destructors: a forked child has no TBB workers to join
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+TEST(IsolatedCall, AvailableMemoryHonoursTheAddressSpaceLimit) {
+  // ulimit -v 200 MB more than in use: a request for 1 GiB must be refused before allocating,
+  // whatever the machine has free.
+  EXPECT_EXIT(
+      {
+        std::ifstream statm("/proc/self/statm");
+        uint64_t pages = 0;
+        statm >> pages;
+        const uint64_t used = pages * uint64_t(sysconf(_SC_PAGE_SIZE));
+        rlimit as{};
+        getrlimit(RLIMIT_AS, &as);
+        as.rlim_cur = used + (uint64_t(200) << 20);
+        setrlimit(RLIMIT_AS, &as);
+        const bool ok = nimbus::available_memory_bytes() <= (uint64_t(200) << 20);
+        bool refused = false;
+        try {
+          nimbus::ensure_fits_in_memory(uint64_t(1) << 28, 4, "a test grid");
+        } catch (const nimbus::OutOfMemoryRequest&) {
+          refused = true;
+        }
+        _exit(ok && refused ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(IsolatedCall, BadLimitsAreRefused) {

@@ -121,14 +121,26 @@ TEST(VdbHostile, ExtentsNoDenseCopyCanIndexAreRefusedByName) {
   try {
     dense_active_box(*f.grid);
     ADD_FAILURE() << "a dense copy of 2^32 voxels along x was made";
-  } catch (const nimbus::OutOfMemoryRequest& e) {
+  } catch (const std::runtime_error& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("density"), std::string::npos) << msg;
     EXPECT_NE(msg.find("along x"), std::string::npos) << msg;
   }
   EXPECT_THROW(nimbus::render::load_cloud_file((dir / "wide.vdb").string(), "", nimbus::render::UpAxis::Y,
                                                nimbus::render::CloudOptics{}),
-               nimbus::OutOfMemoryRequest);
+               std::runtime_error);
+
+  // A small box at the far end of the index range: OpenVDB's copy overflowed int32 and crashed.
+  auto far = openvdb::FloatGrid::create(0.0f);
+  far->setName("density");
+  for (int i = 0; i < 4; ++i) far->tree().setValueOn(openvdb::Coord(std::numeric_limits<int32_t>::max() - 2 - i, 5, 5), 0.5f);
+  write_foreign(dir / "far.vdb", {far});
+  try {
+    dense_active_box(*read_volume_vdb(dir / "far.vdb").grid);
+    ADD_FAILURE() << "a dense copy at the end of the index range was made";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("2^30"), std::string::npos) << e.what();
+  }
 }
 
 TEST(VdbHostile, EveryShortPrefixOfAFileIsAnError) {
@@ -212,6 +224,22 @@ TEST(VdbHostile, NonFiniteInactiveValuesAndDegenerateTransformsAreRefused) {
   nan_inside->tree().setValueOff(openvdb::Coord(1, 1, 1), std::numeric_limits<float>::infinity());
   write_foreign(dir / "inf.vdb", {nan_inside});
   EXPECT_NE(read_error(dir / "inf.vdb").find("non-finite"), std::string::npos);
+
+  // A zero scale, written as another tool might (OpenVDB throws when asked for its inverse).
+  auto zero = make_ball(5, 0.5);
+  write_foreign(dir / "zero.vdb", {zero});
+  {
+    std::string bytes = read_bytes(dir / "zero.vdb");
+    const double half = 0.5, nothing = 0.0;
+    size_t patched = 0;
+    for (size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&half), 8)); at != std::string::npos && patched < 1;
+         at = bytes.find(std::string(reinterpret_cast<const char*>(&half), 8), at + 8), ++patched)
+      std::memcpy(&bytes[at], &nothing, 8);  // the scale's x
+    ASSERT_EQ(patched, 1u);
+    write_bytes(dir / "zero.vdb", bytes);
+  }
+  const std::string zero_msg = read_error(dir / "zero.vdb");
+  EXPECT_TRUE(zero_msg.find("transform") != std::string::npos || zero_msg.find("corrupt") != std::string::npos) << zero_msg;
 
   // Two index axes mapped almost onto one world direction: invertible, but a world-to-index
   // lookup would amplify rounding by 1e13.

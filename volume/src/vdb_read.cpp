@@ -79,7 +79,11 @@ VolumeFile read_volume_vdb(const std::filesystem::path& path, const VdbReadOptio
   VolumeFile out;
   out.grid = openvdb::gridPtrCast<openvdb::FloatGrid>(r.read[0]);
   if (!out.grid) throw std::runtime_error(where + " is not a float grid");
-  check_transform(where, out.grid->transform());
+  try {
+    check_transform(where, out.grid->transform());
+  } catch (const openvdb::Exception& e) {  // ScaleMap::getAffineMap on zero, NaN or subnormal scales
+    throw std::runtime_error(where + " has a transform OpenVDB cannot invert (" + detail::one_line(e.what()) + ")");
+  }
   for (auto it = out.grid->cbeginValueAll(); it; ++it)  // tiles and voxels, active or not
     if (!std::isfinite(*it)) throw std::runtime_error(where + " holds non-finite values (corrupt file?)");
   if (!std::isfinite(out.grid->background())) throw std::runtime_error(where + " has a non-finite background");
@@ -117,13 +121,21 @@ DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbo
     box.size[a] = int64_t(bbox.max()[a]) - bbox.min()[a] + 1;
     overflow |= __builtin_mul_overflow(count, uint64_t(box.size[a]), &count);
   }
-  const std::string what = "a dense copy of grid '" + grid.getName() + "' (" + std::to_string(box.size[0]) +
-                           " x " + std::to_string(box.size[1]) + " x " + std::to_string(box.size[2]) + " voxels)";
+  const std::string what = detail::one_line("a dense copy of grid '" + grid.getName().substr(0, 200) + "' (" +
+                                            std::to_string(box.size[0]) + " x " + std::to_string(box.size[1]) + " x " +
+                                            std::to_string(box.size[2]) + " voxels)");
   if (overflow) throw OutOfMemoryRequest(what + " exceeds any memory");
-  for (int a = 0; a < 3; ++a)
+  // OpenVDB's copyToDense adds node sizes to node origins in int32: near the ends of the index
+  // range that overflows (a crash), and an axis longer than 2^31 - 1 has no Coord to index it.
+  constexpr int32_t kIndexLimit = int32_t(1) << 30;
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis(1, char('x' + a));
     if (box.size[a] > std::numeric_limits<int32_t>::max())
-      throw OutOfMemoryRequest(what + " spans more than 2^31 - 1 voxels along " + std::string(1, char('x' + a)) +
-                               ", more than a dense copy can index");
+      throw std::runtime_error(what + " spans more than 2^31 - 1 voxels along " + axis + ", more than a dense copy can index");
+    if (bbox.min()[a] < -kIndexLimit || bbox.max()[a] > kIndexLimit)
+      throw std::runtime_error(what + " reaches index " + std::to_string(bbox.min()[a] < -kIndexLimit ? bbox.min()[a] : bbox.max()[a]) +
+                               " along " + axis + ", beyond +-2^30, where a dense copy cannot index it");
+  }
   ensure_fits_in_memory(count, sizeof(float), what);
   box.values.resize(size_t(count));
   // LayoutXYZ is OpenVDB's x-fastest layout.

@@ -11,7 +11,8 @@ struct OutOfMemoryRequest : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Bytes of memory available to this process now (MemAvailable, else physical memory).
+// Bytes of memory available to this process now: MemAvailable (else physical memory), and no
+// more than its address-space limit (RLIMIT_AS) leaves it.
 uint64_t available_memory_bytes();
 
 // Throws OutOfMemoryRequest naming `what` when `bytes` exceeds 80 % of available memory, or

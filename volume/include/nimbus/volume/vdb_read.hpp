@@ -89,8 +89,9 @@ struct DenseBox {
   std::vector<float> values;
 };
 
-// Throws nimbus::OutOfMemoryRequest (before allocating) when the box would not fit in memory or
-// spans more voxels along an axis than a dense copy can index (2^31 - 1).
+// Throws nimbus::OutOfMemoryRequest (before allocating) when the box would not fit in memory,
+// and std::runtime_error when it spans more voxels along an axis than a dense copy can index
+// (2^31 - 1) or reaches beyond index +-2^30 (where OpenVDB's copy overflows int32).
 DenseBox dense_active_box(const openvdb::FloatGrid& grid);
 
 // The grid's values over a given index box (voxels outside the grid's active ones hold the

@@ -1,0 +1,133 @@
+// Corpus replay without libFuzzer: runs a harness's LLVMFuzzerTestOneInput once on every file
+// given (directories are walked, in sorted order), each in its own child process with a memory
+// limit and a time limit, and reports every input that crashed, aborted (a broken contract, see
+// fuzz_common.hpp), ran out of its memory or time. Exit status 0 only when every input passed.
+//
+//   nimbus_fuzz_<target>_replay [--mem-mb N] [--timeout S] PATH...
+//
+// The parent never calls the code under test, so it forks before OpenVDB or TBB start threads.
+// The harnesses' scratch files go to a temporary directory of the parent's (NIMBUS_FUZZ_TMPDIR).
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int usage(const char* why) {
+  std::fprintf(stderr, "replay: %s (usage: replay [--mem-mb N] [--timeout SECONDS] FILE_OR_DIR...)\n", why);
+  return 2;
+}
+
+[[noreturn]] void run_child(const fs::path& input, long mem_mb, long timeout_s) {
+  if (mem_mb > 0) {
+    const rlim_t bytes = rlim_t(mem_mb) << 20;
+    const rlimit limit{bytes, bytes};
+    setrlimit(RLIMIT_AS, &limit);
+  }
+  const rlimit no_core{0, 0};
+  setrlimit(RLIMIT_CORE, &no_core);
+  alarm(unsigned(timeout_s));
+  std::ifstream in(input, std::ios::binary);
+  if (!in) {
+    std::fprintf(stderr, "replay: cannot read %s\n", input.c_str());
+    std::_Exit(3);
+  }
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  // Not exit(): a library's exit handler can wait for a thread that only the parent has
+  // (log4cplus, loaded with OpenVDB, starts one before main), and hang. The harness's scratch
+  // file lies in the parent's temporary directory, removed at the end.
+  std::fflush(nullptr);
+  std::_Exit(0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  long mem_mb = 4096, timeout_s = 120;
+  std::vector<fs::path> inputs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if ((a == "--mem-mb" || a == "--timeout") && i + 1 < argc) {
+      char* end = nullptr;
+      const long v = std::strtol(argv[++i], &end, 10);
+      if (*end || v < 0) return usage("a number >= 0 is needed");
+      (a == "--mem-mb" ? mem_mb : timeout_s) = v;
+    } else if (a.rfind("--", 0) == 0) {
+      return usage(("unknown option " + a).c_str());
+    } else {
+      std::error_code ec;
+      if (fs::is_directory(a, ec)) {
+        std::vector<fs::path> found;
+        for (const auto& e : fs::recursive_directory_iterator(a))
+          if (e.is_regular_file() && e.path().filename().string()[0] != '.') found.push_back(e.path());
+        std::sort(found.begin(), found.end());
+        inputs.insert(inputs.end(), found.begin(), found.end());
+      } else if (fs::is_regular_file(a, ec)) {
+        inputs.push_back(a);
+      } else {
+        return usage(("no such file or directory: " + a).c_str());
+      }
+    }
+  }
+  if (inputs.empty()) return usage("no inputs (an empty corpus checks nothing)");
+  if (timeout_s == 0) timeout_s = 120;
+
+  std::string tmp_template = (fs::temp_directory_path() / "nimbus-fuzz-replay-XXXXXX").string();
+  if (!mkdtemp(tmp_template.data())) {
+    std::perror("replay: mkdtemp");
+    return 1;
+  }
+  const fs::path tmp_dir = tmp_template;
+  setenv("NIMBUS_FUZZ_TMPDIR", tmp_dir.c_str(), 1);
+
+  std::fflush(nullptr);
+  int failed = 0;
+  for (const fs::path& input : inputs) {
+    const pid_t pid = fork();
+    if (pid < 0) {
+      std::perror("replay: fork");
+      return 1;
+    }
+    if (pid == 0) run_child(input, mem_mb, timeout_s);
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid) {
+      std::perror("replay: waitpid");
+      return 1;
+    }
+    std::string outcome;
+    if (WIFSIGNALED(status)) {
+      const int sig = WTERMSIG(status);
+      outcome = sig == SIGALRM ? "timed out after " + std::to_string(timeout_s) + " s"
+                               : std::string("killed by signal ") + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    } else if (WEXITSTATUS(status) != 0) {
+      outcome = "exit status " + std::to_string(WEXITSTATUS(status));
+    }
+    if (!outcome.empty()) {
+      ++failed;
+      std::printf("FAILED %s: %s\n", input.c_str(), outcome.c_str());
+      std::fflush(stdout);
+    }
+  }
+  std::error_code ec;
+  fs::remove_all(tmp_dir, ec);
+  std::printf("replayed %zu inputs: %zu passed, %d failed (memory limit %ld MB, %ld s each)\n", inputs.size(),
+              inputs.size() - size_t(failed), failed, mem_mb, timeout_s);
+  return failed ? 1 : 0;
+}

@@ -75,7 +75,8 @@ def params_seeds():
     return seeds
 
 
-VDB_KINDS = ["fog_small", "fog_half", "multi_grid", "level_set", "vec3_only", "bool_only", "int_only",
+# A level set (110 KB) is left to the command-line driver: the corpus stays small.
+VDB_KINDS = ["fog_small", "fog_half", "multi_grid", "vec3_only", "bool_only", "int_only",
              "empty_grid", "no_grids", "nan_inf", "negative", "nonuniform_scale", "frustum", "extent_overflow",
              "zero_scale"]
 
@@ -92,7 +93,7 @@ def vdb_seeds(nimbus, tmp):
         with open(path, "rb") as f:
             seeds[name] = f.read()
     rng = random.Random(7)
-    for base, how in [("fog_small.vdb", "trunc"), ("fog_small.vdb", "metalen"), ("multi_grid.vdb", "offsets"),
+    for base, how in [("fog_small.vdb", "trunc"), ("fog_small.vdb", "metalen"), ("fog_half.vdb", "offsets"),
                       ("nimbus-noise.vdb", "flip1"), ("nimbus-noise.vdb", "trunc"), ("nimbus-steam.vdb", "garble16")]:
         data, _ = hostile.damage(seeds[base], how, rng)
         seeds["damaged-%s-%s" % (how, base)] = data

@@ -3,7 +3,7 @@
 // box is small, dense_active_box, the renderer's dense copy) and summarize_vdb are called.
 //
 // The contract checked (vdb_read.hpp, vdb_info.hpp): every failure is a std::runtime_error
-// whose message is one line starting with the file name (dense_active_box may also refuse a
+// whose message is one line (at most 64 KB) starting with the file name (dense_active_box may also refuse a
 // box with nimbus::OutOfMemoryRequest); a grid that was read holds no NaN or Inf among its
 // active values; both readers agree on whether the nimbus seal was verified. Anything else,
 // and any crash, hang or runaway allocation, is a finding.
@@ -29,9 +29,13 @@ using nimbus::fuzz::contract_failure;
 using nimbus::fuzz::one_line;
 
 constexpr int64_t kDenseLimit = int64_t(1) << 24;  // 16 M voxels, 64 MB of floats
+constexpr size_t kMessageLimit = 64 << 10;          // a one-line message a person can read
 
 void expect_named(const std::exception& e, const std::string& step, const std::string& path) {
   const std::string_view what = e.what();
+  if (what.size() > kMessageLimit)  // e.g. a corrupt type name of gigabytes echoed in the error
+    contract_failure(step + ": a message of " + std::to_string(what.size()) + " bytes: " +
+                     std::string(what.substr(0, 200)) + "...");
   if (!one_line(what)) contract_failure(step + ": the message is not one line: " + std::string(what));
   if (what.substr(0, path.size()) != path)
     contract_failure(step + ": the message does not start with the file name: " + std::string(what));

@@ -1,9 +1,15 @@
 // Corpus replay without libFuzzer: runs a harness's LLVMFuzzerTestOneInput once on every file
 // given (directories are walked, in sorted order), each in its own child process with a memory
 // limit and a time limit, and reports every input that crashed, aborted (a broken contract, see
-// fuzz_common.hpp), ran out of its memory or time. Exit status 0 only when every input passed.
+// fuzz_common.hpp), ran out of its memory or time, or whose peak resident memory passed --rss-mb
+// (as libFuzzer's -rss_limit_mb: a file of a few KB must not cost gigabytes, even when the
+// allocation succeeds). Exit status 0 only when every input passed.
 //
-//   nimbus_fuzz_<target>_replay [--mem-mb N] [--timeout S] PATH...
+//   nimbus_fuzz_<target>_replay [--mem-mb N] [--rss-mb N] [--timeout S] PATH...
+//
+// --mem-mb (default 4096) limits the address space (RLIMIT_AS), --rss-mb (default 2048) is
+// checked on the child's peak resident set after the input ran, --timeout (default 120) is
+// enforced with SIGALRM.
 //
 // The parent never calls the code under test, so it forks before OpenVDB or TBB start threads.
 // The harnesses' scratch files go to a temporary directory of the parent's (NIMBUS_FUZZ_TMPDIR).
@@ -30,11 +36,13 @@ namespace {
 namespace fs = std::filesystem;
 
 int usage(const char* why) {
-  std::fprintf(stderr, "replay: %s (usage: replay [--mem-mb N] [--timeout SECONDS] FILE_OR_DIR...)\n", why);
+  std::fprintf(stderr, "replay: %s (usage: replay [--mem-mb N] [--rss-mb N] [--timeout SECONDS] FILE_OR_DIR...)\n", why);
   return 2;
 }
 
-[[noreturn]] void run_child(const fs::path& input, long mem_mb, long timeout_s) {
+constexpr int kRssExit = 86;  // the child's exit status when its peak resident memory passed --rss-mb
+
+[[noreturn]] void run_child(const fs::path& input, long mem_mb, long rss_mb, long timeout_s) {
   if (mem_mb > 0) {
     const rlim_t bytes = rlim_t(mem_mb) << 20;
     const rlimit limit{bytes, bytes};
@@ -54,21 +62,28 @@ int usage(const char* why) {
   // (log4cplus, loaded with OpenVDB, starts one before main), and hang. The harness's scratch
   // file lies in the parent's temporary directory, removed at the end.
   std::fflush(nullptr);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);  // ru_maxrss in KB
+  if (rss_mb > 0 && usage.ru_maxrss / 1024 > rss_mb) {
+    std::fprintf(stderr, "replay: %s: peak resident memory %ld MB, over the %ld MB limit\n", input.c_str(),
+                 long(usage.ru_maxrss / 1024), rss_mb);
+    std::_Exit(kRssExit);
+  }
   std::_Exit(0);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  long mem_mb = 4096, timeout_s = 120;
+  long mem_mb = 4096, rss_mb = 2048, timeout_s = 120;
   std::vector<fs::path> inputs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if ((a == "--mem-mb" || a == "--timeout") && i + 1 < argc) {
+    if ((a == "--mem-mb" || a == "--rss-mb" || a == "--timeout") && i + 1 < argc) {
       char* end = nullptr;
       const long v = std::strtol(argv[++i], &end, 10);
       if (*end || v < 0) return usage("a number >= 0 is needed");
-      (a == "--mem-mb" ? mem_mb : timeout_s) = v;
+      (a == "--mem-mb" ? mem_mb : a == "--rss-mb" ? rss_mb : timeout_s) = v;
     } else if (a.rfind("--", 0) == 0) {
       return usage(("unknown option " + a).c_str());
     } else {
@@ -105,7 +120,7 @@ int main(int argc, char** argv) {
       std::perror("replay: fork");
       return 1;
     }
-    if (pid == 0) run_child(input, mem_mb, timeout_s);
+    if (pid == 0) run_child(input, mem_mb, rss_mb, timeout_s);
     int status = 0;
     if (waitpid(pid, &status, 0) != pid) {
       std::perror("replay: waitpid");
@@ -116,6 +131,8 @@ int main(int argc, char** argv) {
       const int sig = WTERMSIG(status);
       outcome = sig == SIGALRM ? "timed out after " + std::to_string(timeout_s) + " s"
                                : std::string("killed by signal ") + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    } else if (WEXITSTATUS(status) == kRssExit) {
+      outcome = "peak resident memory over " + std::to_string(rss_mb) + " MB";
     } else if (WEXITSTATUS(status) != 0) {
       outcome = "exit status " + std::to_string(WEXITSTATUS(status));
     }
@@ -127,7 +144,7 @@ int main(int argc, char** argv) {
   }
   std::error_code ec;
   fs::remove_all(tmp_dir, ec);
-  std::printf("replayed %zu inputs: %zu passed, %d failed (memory limit %ld MB, %ld s each)\n", inputs.size(),
-              inputs.size() - size_t(failed), failed, mem_mb, timeout_s);
+  std::printf("replayed %zu inputs: %zu passed, %d failed (address space %ld MB, peak resident %ld MB, %ld s each)\n",
+              inputs.size(), inputs.size() - size_t(failed), failed, mem_mb, rss_mb, timeout_s);
   return failed ? 1 : 0;
 }

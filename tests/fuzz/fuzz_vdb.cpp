@@ -61,12 +61,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     int64_t active = 0;
     for (auto it = v.grid->cbeginValueOn(); it && active < kDenseLimit; ++it, ++active)
       if (!std::isfinite(*it)) contract_failure("read_volume_vdb accepted a grid with a non-finite active value");
+    // The box in 64 bits: its extent can pass 2^31 (voxels near both ends of the int32 range),
+    // and a grid with nodes but no active voxel has an inverted (empty) box.
     const openvdb::CoordBBox box = v.grid->evalActiveVoxelBoundingBox();
-    if (!v.grid->empty()) {
+    {
       int64_t voxels = 1;
       for (int a = 0; a < 3; ++a) {
         const int64_t n = int64_t(box.max()[a]) - int64_t(box.min()[a]) + 1;
-        voxels = (n > kDenseLimit || voxels > kDenseLimit) ? kDenseLimit + 1 : voxels * n;
+        if (n <= 0) voxels = 0;
+        else if (voxels > 0) voxels = (n > kDenseLimit || voxels > kDenseLimit) ? kDenseLimit + 1 : voxels * n;
       }
       if (voxels <= kDenseLimit) {
         try {

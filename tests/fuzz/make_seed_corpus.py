@@ -9,7 +9,8 @@
   vdb/          inputs of fuzz_vdb.cpp: small intact files from pyopenvdb (make_hostile_vdbs.py's
                 kinds) and from nimbus (sealed), and damaged copies that must be refused cleanly.
 
-Deterministic (the generator's seeds are fixed), so rerunning it rewrites the same bytes. Every
+Deterministic (the generator's seeds are fixed), so rerunning it rewrites the same bytes; inputs the
+fuzzer found and that now pass (e.g. vdb/nodes-without-active-voxels.vdb) are kept beside them. Every
 file here must pass the replay (Fuzz.*CorpusReplay); inputs that break the code go to
 tests/fuzz/findings/ instead.
 """

@@ -5,11 +5,13 @@
 // (as libFuzzer's -rss_limit_mb: a file of a few KB must not cost gigabytes, even when the
 // allocation succeeds). Exit status 0 only when every input passed.
 //
-//   nimbus_fuzz_<target>_replay [--mem-mb N] [--rss-mb N] [--timeout S] PATH...
+//   nimbus_fuzz_<target>_replay [--mem-mb N] [--rss-mb N] [--cpu-s N] [--timeout S] PATH...
 //
-// --mem-mb (default 4096) limits the address space (RLIMIT_AS), --rss-mb (default 2048) is
-// checked on the child's peak resident set after the input ran, --timeout (default 120) is
-// enforced with SIGALRM.
+// --mem-mb (default 4096) limits the address space (RLIMIT_AS); --rss-mb (default 2048) is
+// checked on the child's peak resident set after the input ran; --cpu-s (default 20) limits the
+// CPU time (RLIMIT_CPU: SIGXCPU), which a corpus input needs a few milliseconds of, so only a
+// spinning reader reaches it, however loaded the machine; --timeout (default 600) is a last
+// wall-clock guard (SIGALRM) for a child blocked without using CPU.
 //
 // The parent never calls the code under test, so it forks before OpenVDB or TBB start threads.
 // The harnesses' scratch files go to a temporary directory of the parent's (NIMBUS_FUZZ_TMPDIR).
@@ -36,13 +38,13 @@ namespace {
 namespace fs = std::filesystem;
 
 int usage(const char* why) {
-  std::fprintf(stderr, "replay: %s (usage: replay [--mem-mb N] [--rss-mb N] [--timeout SECONDS] FILE_OR_DIR...)\n", why);
+  std::fprintf(stderr, "replay: %s (usage: replay [--mem-mb N] [--rss-mb N] [--cpu-s N] [--timeout SECONDS] FILE_OR_DIR...)\n", why);
   return 2;
 }
 
 constexpr int kRssExit = 86;  // the child's exit status when its peak resident memory passed --rss-mb
 
-[[noreturn]] void run_child(const fs::path& input, long mem_mb, long rss_mb, long timeout_s) {
+[[noreturn]] void run_child(const fs::path& input, long mem_mb, long rss_mb, long cpu_s, long timeout_s) {
   if (mem_mb > 0) {
     const rlim_t bytes = rlim_t(mem_mb) << 20;
     const rlimit limit{bytes, bytes};
@@ -50,6 +52,10 @@ constexpr int kRssExit = 86;  // the child's exit status when its peak resident 
   }
   const rlimit no_core{0, 0};
   setrlimit(RLIMIT_CORE, &no_core);
+  if (cpu_s > 0) {
+    const rlimit cpu{rlim_t(cpu_s), rlim_t(cpu_s) + 5};
+    setrlimit(RLIMIT_CPU, &cpu);
+  }
   alarm(unsigned(timeout_s));
   std::ifstream in(input, std::ios::binary);
   if (!in) {
@@ -75,15 +81,15 @@ constexpr int kRssExit = 86;  // the child's exit status when its peak resident 
 }  // namespace
 
 int main(int argc, char** argv) {
-  long mem_mb = 4096, rss_mb = 2048, timeout_s = 120;
+  long mem_mb = 4096, rss_mb = 2048, cpu_s = 20, timeout_s = 600;
   std::vector<fs::path> inputs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if ((a == "--mem-mb" || a == "--rss-mb" || a == "--timeout") && i + 1 < argc) {
+    if ((a == "--mem-mb" || a == "--rss-mb" || a == "--cpu-s" || a == "--timeout") && i + 1 < argc) {
       char* end = nullptr;
       const long v = std::strtol(argv[++i], &end, 10);
       if (*end || v < 0) return usage("a number >= 0 is needed");
-      (a == "--mem-mb" ? mem_mb : a == "--rss-mb" ? rss_mb : timeout_s) = v;
+      (a == "--mem-mb" ? mem_mb : a == "--rss-mb" ? rss_mb : a == "--cpu-s" ? cpu_s : timeout_s) = v;
     } else if (a.rfind("--", 0) == 0) {
       return usage(("unknown option " + a).c_str());
     } else {
@@ -102,7 +108,7 @@ int main(int argc, char** argv) {
     }
   }
   if (inputs.empty()) return usage("no inputs (an empty corpus checks nothing)");
-  if (timeout_s == 0) timeout_s = 120;
+  if (timeout_s == 0) timeout_s = 600;
 
   std::string tmp_template = (fs::temp_directory_path() / "nimbus-fuzz-replay-XXXXXX").string();
   if (!mkdtemp(tmp_template.data())) {
@@ -120,7 +126,7 @@ int main(int argc, char** argv) {
       std::perror("replay: fork");
       return 1;
     }
-    if (pid == 0) run_child(input, mem_mb, rss_mb, timeout_s);
+    if (pid == 0) run_child(input, mem_mb, rss_mb, cpu_s, timeout_s);
     int status = 0;
     if (waitpid(pid, &status, 0) != pid) {
       std::perror("replay: waitpid");
@@ -129,8 +135,9 @@ int main(int argc, char** argv) {
     std::string outcome;
     if (WIFSIGNALED(status)) {
       const int sig = WTERMSIG(status);
-      outcome = sig == SIGALRM ? "timed out after " + std::to_string(timeout_s) + " s"
-                               : std::string("killed by signal ") + std::to_string(sig) + " (" + strsignal(sig) + ")";
+      outcome = sig == SIGALRM  ? "still running after " + std::to_string(timeout_s) + " s"
+                : sig == SIGXCPU ? "used more than " + std::to_string(cpu_s) + " s of CPU time"
+                                 : std::string("killed by signal ") + std::to_string(sig) + " (" + strsignal(sig) + ")";
     } else if (WEXITSTATUS(status) == kRssExit) {
       outcome = "peak resident memory over " + std::to_string(rss_mb) + " MB";
     } else if (WEXITSTATUS(status) != 0) {
@@ -144,7 +151,7 @@ int main(int argc, char** argv) {
   }
   std::error_code ec;
   fs::remove_all(tmp_dir, ec);
-  std::printf("replayed %zu inputs: %zu passed, %d failed (address space %ld MB, peak resident %ld MB, %ld s each)\n",
-              inputs.size(), inputs.size() - size_t(failed), failed, mem_mb, rss_mb, timeout_s);
+  std::printf("replayed %zu inputs: %zu passed, %d failed (each: address space %ld MB, peak resident %ld MB, "
+              "%ld s of CPU)\n", inputs.size(), inputs.size() - size_t(failed), failed, mem_mb, rss_mb, cpu_s);
   return failed ? 1 : 0;
 }

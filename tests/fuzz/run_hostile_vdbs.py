@@ -12,12 +12,13 @@ command-line contract on each run:
 
 Every nimbus run has its address space limited (--mem-mb, default 4096, setrlimit RLIMIT_AS)
 so that a runaway allocation fails inside the process instead of taking the machine down, and
-a generous time limit (--timeout) so that a hang is reported rather than waited on forever. A
+a CPU-time limit (--cpu-s, default 60; RLIMIT_CPU) so that a reader spinning on a corrupt count
+is stopped (SIGXCPU, counted as a crash), with a last wall-clock guard (--timeout). A
 run whose peak resident memory passes --rss-mb (default 2048; wait4's ru_maxrss) breaks the
 contract too: these files are a few KB, and only the limit stops some of them from taking
 gigabytes.
 
-    run_hostile_vdbs.py --nimbus BIN [--count 300] [--seed 1] [--render-every 4] [--jobs 2]
+    run_hostile_vdbs.py --nimbus BIN [--count 266] [--seed 1] [--render-every 4] [--jobs 2] [--rss-mb 2048]
                         [--workdir DIR] [--keep] [--report FILE.md] [--kinds a,b] [--damages a,b]
 
 Prints the counts (files, runs, exit 0/1/2, crashes, contract violations) overall and per kind
@@ -38,18 +39,20 @@ import threading
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def limit_memory(mb):
+def limits(mem_mb, cpu_s):
     def apply():
-        if mb > 0:
-            resource.setrlimit(resource.RLIMIT_AS, (mb << 20, mb << 20))
+        if mem_mb > 0:
+            resource.setrlimit(resource.RLIMIT_AS, (mem_mb << 20, mem_mb << 20))
+        if cpu_s > 0:  # SIGXCPU: a reader spinning on a corrupt count, however loaded the machine
+            resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))  # no core files from expected crashes
     return apply
 
 
-def run_one(cmd, mem_mb, timeout):
+def run_one(cmd, mem_mb, cpu_s, timeout):
     """(exit code or -signal, stdout, stderr, timed out, peak resident MB) of one run."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        p = subprocess.Popen(cmd, stdout=out, stderr=err, preexec_fn=limit_memory(mem_mb))
+        p = subprocess.Popen(cmd, stdout=out, stderr=err, preexec_fn=limits(mem_mb, cpu_s))
         fired = []
         timer = threading.Timer(timeout, lambda: (fired.append(True), p.kill()))
         timer.start()
@@ -119,7 +122,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--mem-mb", type=int, default=4096, help="address-space limit per nimbus run (0: none)")
     ap.add_argument("--rss-mb", type=int, default=2048, help="peak resident memory a run may reach (0: any)")
-    ap.add_argument("--timeout", type=float, default=300, help="seconds before a run counts as hung")
+    ap.add_argument("--cpu-s", type=int, default=60, help="CPU seconds a run may use (0: any)")
+    ap.add_argument("--timeout", type=float, default=600, help="wall-clock seconds before a run counts as hung")
     ap.add_argument("--workdir", help="write the files here (default: a temporary directory)")
     ap.add_argument("--keep", action="store_true", help="keep the files and outputs")
     ap.add_argument("--report", help="also write the tables as Markdown here")
@@ -159,7 +163,7 @@ def main():
 
     def go(job):
         row, verb, path, cmd = job
-        rc, out, err, timed_out, rss_mb = run_one(cmd, a.mem_mb, a.timeout)
+        rc, out, err, timed_out, rss_mb = run_one(cmd, a.mem_mb, a.cpu_s, a.timeout)
         return row, verb, path, rc, out, err, timed_out, rss_mb
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:

@@ -56,18 +56,20 @@ constexpr bool kAddressSanitizer = false;
 
 constexpr int kRssExit = 86;  // the child's exit status when its peak resident memory passed --rss-mb
 
+// Soft limits only: the code under test may fork a reader that sets limits of its own, and one
+// above a hard limit inherited from here would fail (EPERM) for reasons that are not the input's.
+void soft_limit(int resource, rlim_t value) {
+  rlimit limit{};
+  getrlimit(resource, &limit);
+  limit.rlim_cur = limit.rlim_max == RLIM_INFINITY ? value : std::min(value, limit.rlim_max);
+  setrlimit(resource, &limit);
+}
+
 [[noreturn]] void run_child(const fs::path& input, long mem_mb, long rss_mb, long cpu_s, long timeout_s) {
-  if (mem_mb > 0 && !kAddressSanitizer) {  // ASan's shadow memory needs terabytes of address space
-    const rlim_t bytes = rlim_t(mem_mb) << 20;
-    const rlimit limit{bytes, bytes};
-    setrlimit(RLIMIT_AS, &limit);
-  }
-  const rlimit no_core{0, 0};
-  setrlimit(RLIMIT_CORE, &no_core);
-  if (cpu_s > 0) {
-    const rlimit cpu{rlim_t(cpu_s), rlim_t(cpu_s) + 5};
-    setrlimit(RLIMIT_CPU, &cpu);
-  }
+  // ASan's shadow memory needs terabytes of address space.
+  if (mem_mb > 0 && !kAddressSanitizer) soft_limit(RLIMIT_AS, rlim_t(mem_mb) << 20);
+  soft_limit(RLIMIT_CORE, 0);
+  if (cpu_s > 0) soft_limit(RLIMIT_CPU, rlim_t(cpu_s));
   alarm(unsigned(timeout_s));
   std::ifstream in(input, std::ios::binary);
   if (!in) {

@@ -40,12 +40,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def limits(mem_mb, cpu_s):
+    # Soft limits only: nimbus may fork a reader that sets limits of its own, and one above a hard
+    # limit inherited from here would fail (EPERM) for reasons that are not the file's.
+    def soft(which, value):
+        resource.setrlimit(which, (value, resource.getrlimit(which)[1]))
+
     def apply():
         if mem_mb > 0:
-            resource.setrlimit(resource.RLIMIT_AS, (mem_mb << 20, mem_mb << 20))
+            soft(resource.RLIMIT_AS, mem_mb << 20)
         if cpu_s > 0:  # SIGXCPU: a reader spinning on a corrupt count, however loaded the machine
-            resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 5))
-        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))  # no core files from expected crashes
+            soft(resource.RLIMIT_CPU, cpu_s)
+        soft(resource.RLIMIT_CORE, 0)  # no core files from expected crashes
     return apply
 
 

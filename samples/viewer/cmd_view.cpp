@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -98,6 +99,8 @@ int run_view(const ViewArgs& a) {
   }
   viewer::Script script;
   if (!a.script.empty()) script = viewer::load_script(a.script);
+  // --state-out may be --state (Ctrl+S saves there by default), but not another input.
+  if (!a.state_out.empty()) check_outputs({{"--state-out", a.state_out}}, {{"--sky", a.sky}, {"--script", a.script}});
   viewer::ViewerOptions options;
   options.screenshot_dir = a.screenshot_dir;
   options.shader_dir = a.shader_dir.empty() ? source_shader_dir() : a.shader_dir;

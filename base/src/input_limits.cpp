@@ -45,6 +45,12 @@ std::string read_regular_file(const std::string& path, const std::string& what, 
   return text;
 }
 
+void refuse_special_file(const std::string& path, const std::string& what) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw std::runtime_error(what + " '" + path + "': is " + file_kind(st.st_mode) + ", not a regular file");
+}
+
 void check_json_depth(std::string_view text, const std::string& what, int max_depth) {
   int depth = 0;
   bool in_string = false;

@@ -12,6 +12,7 @@
 
 #include "cli.hpp"
 #include "frame_range.hpp"
+#include "nimbus/base/memory.hpp"
 #include "outputs.hpp"
 #include "progress.hpp"
 #include "nimbus/volume/generate.hpp"
@@ -105,7 +106,14 @@ int run_generate(const GenerateArgs& a) {
       std::lock_guard<std::mutex> lock(m);
       progress.update(f);
     };
-    const auto density = volume::generate_density(params, opt, &stats);
+    openvdb::FloatGrid::Ptr density;
+    try {
+      density = volume::generate_density(params, opt, &stats);
+    } catch (const OutOfMemoryRequest&) {
+      throw;
+    } catch (const std::invalid_argument& e) {  // the parameters passed at time 0: the time is at fault
+      throw UsageError("at " + time_text(t) + " (--time, --frames/--fps): " + e.what());
+    }
     if (stats.active_voxels == 0)
       throw std::runtime_error((sequence ? "frame " + std::to_string(frame) + ": " : std::string()) +
                                "the cloud has no voxel of density >= 1e-6 at voxel size " + std::to_string(opt.voxel_size) +

@@ -17,6 +17,8 @@
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/memory.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/volume/vdb_read.hpp"
 #include "outputs.hpp"
@@ -87,10 +89,16 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
     Progress progress("generating " + preset.name);
     std::mutex m;
     const double time = sequence ? frame / a.fps : a.time.value_or(0.0);
-    clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
-      std::lock_guard<std::mutex> lock(m);
-      progress.update(x);
-    }));
+    try {
+      clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
+        std::lock_guard<std::mutex> lock(m);
+        progress.update(x);
+      }));
+    } catch (const OutOfMemoryRequest&) {
+      throw;
+    } catch (const std::invalid_argument& e) {  // the time moved the cloud or its noise out of range
+      throw UsageError("--preset " + preset.name + " at " + time_text(time) + " (--time, --frames/--fps): " + e.what());
+    }
   }
   return clouds;
 }
@@ -407,6 +415,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     for (const std::string& pattern : a.files)
       inputs.push_back({"FILE", frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos)});
   }
+  for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
   check_outputs(outputs, inputs);
 
   std::unique_ptr<render::GlContext> gl;

@@ -1,6 +1,7 @@
 // "--frames A-B" (or one frame number) as the commands that write sequences read it.
 #pragma once
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <regex>
 #include <string>
@@ -14,6 +15,13 @@ namespace nimbus::cli {
 // A sequence longer than this needs --many-frames: a typo such as 1-1000000 would otherwise start
 // writing a million files.
 inline constexpr long kMaxFramesUnforced = 10000;
+
+// A time in seconds for a message: "t = 1e+12 s".
+inline std::string time_text(double seconds) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "t = %g s", seconds);
+  return buf;
+}
 
 // First and last frame; UsageError naming --frames when malformed or reversed.
 inline std::pair<int, int> parse_frame_range(const std::string& text) {

@@ -129,6 +129,10 @@ TEST_F(HostileCli, InputFilesHaveSizeDepthAndKindLimits) {
       {{"render", "--view-state", "{d}/big.json", "-o", "{d}/v.exr"}, 1, "larger than the limit of 16 MiB"},
       {{"render", "--view-state", "{d}/fifo", "-o", "{d}/v.exr"}, 1, "is a FIFO"},
       {{"view", "--headless", "--script", "{d}/deep.json"}, 1, "nested deeper than 64 levels"},
+      {{"info", "{d}/fifo"}, 1, "FILE '{d}/fifo': is a FIFO"},
+      {{"info", "{d}/sub"}, 1, "FILE '{d}/sub': is a directory"},
+      {{"render", "{d}/fifo", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 1, "FILE '{d}/fifo': is a FIFO"},
+      {{"compare", "/dev/zero", "{d}/cloud.exr"}, 1, "TEST '/dev/zero': is a character device"},
   });
 }
 
@@ -197,6 +201,8 @@ TEST_F(HostileCli, RangesAreSaneBeforeAnyWork) {
       {{"render", "{d}/cloud.vdb", "--grid", "nope", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 2,
        "--grid"},
       {{"info", "{d}/cloud.vdb", "--grid", "nope"}, 2, "--grid"},
+      // The wind carries the cloud 10^13 m away: the time is at fault, and the message says so.
+      {with(kCumulus, {"--time", "1e12", "-o", "{d}/o.vdb"}), 2, "at t = 1e+12 s (--time"},
   });
 }
 

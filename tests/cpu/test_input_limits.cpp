@@ -43,6 +43,17 @@ TEST(InputLimits, FilesOverTheLimitOrNotRegularAreRefusedNamingThem) {
   EXPECT_NE(error_of([&] { read_regular_file((d / "missing").string(), "x"); }).find("cannot be read"), std::string::npos);
 }
 
+TEST(InputLimits, SpecialFilesAreRefusedAndMissingOnesLeftToTheReader) {
+  TempDir d;
+  write_bytes(d / "a.vdb", "x");
+  ::mkfifo((d / "fifo").c_str(), 0600);
+  EXPECT_NO_THROW(refuse_special_file((d / "a.vdb").string(), "FILE"));
+  EXPECT_NO_THROW(refuse_special_file((d / "missing.vdb").string(), "FILE"));
+  EXPECT_NE(error_of([&] { refuse_special_file((d / "fifo").string(), "FILE"); }).find("FILE '" + (d / "fifo").string() + "': is a FIFO"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { refuse_special_file("/dev/null", "TEST"); }).find("is a character device"), std::string::npos);
+}
+
 TEST(InputLimits, JsonDepthCountsBracketsOutsideStrings) {
   EXPECT_NO_THROW(check_json_depth(std::string(64, '[') + std::string(64, ']'), "x"));
   EXPECT_NE(error_of([] { check_json_depth(std::string(65, '['), "--params 'p'"); }).find("nested deeper than 64"),

@@ -31,6 +31,12 @@ inline constexpr std::size_t kEchoChars = 40;
 std::string read_regular_file(const std::string& path, const std::string& what,
                               std::uintmax_t max_bytes = kMaxInputFileBytes);
 
+// std::runtime_error "<what> '<path>': is a FIFO, not a regular file" when `path` exists and is
+// not a regular file (a directory, FIFO, device or socket), for inputs that other readers open
+// (VDB, EXR): a FIFO would block them, a device feed them without end. A missing file passes,
+// for the reader to report.
+void refuse_special_file(const std::string& path, const std::string& what);
+
 // std::runtime_error "<what>: JSON nested deeper than <max_depth> levels" when `text` opens more
 // than max_depth arrays or objects inside one another (brackets in strings do not count). A
 // linear scan, cheap enough to run before every parse.

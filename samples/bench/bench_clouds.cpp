@@ -17,6 +17,7 @@
 
 #include "bench_clouds_scene.hpp"
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/scene.hpp"
@@ -314,6 +315,7 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
   if (!(a.sweep_step_deg > 0 && a.sweep_step_deg <= a.sweep_half_deg))
     throw UsageError("--sweep-step-deg: must be in (0, --sweep-half-deg]");
   lamp_distances(a);  // the lamps' flags before any work
+  check_outputs({{"--plot", a.plot}});
   int_list("--lamp-slices", a.lamp_slices, 2, 4096);
   if (!(a.steam_voxel == 0.0 || (a.steam_voxel >= 0.001 && a.steam_voxel <= 0.05)))
     throw UsageError("--steam-voxel: must be 0 (no steam rows) or in [0.001, 0.05] metres");

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
@@ -131,6 +132,7 @@ int run_bench_look(const BenchLookArgs& a) {
   const std::vector<int> spps = parse_ints("--spp", a.spp);
   if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
   if (a.slices < 2 || a.slices > 4096) throw UsageError("--slices: must be in [2, 4096]");
+  check_outputs({{"--plot", a.plot}});
   render::PresetCloud preset;
   try {
     preset = render::load_preset_cloud(a.preset);

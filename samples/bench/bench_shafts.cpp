@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
@@ -75,6 +76,7 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
     if (methods.back().kind == render::ShaftMethod::Kind::Reference)
       throw UsageError("--methods: the reference is always measured; list GPU methods only");
   }
+  check_outputs({{"--plot", a.plot}});
 
   // The anchor: the exact CPU reference, rendered (and timed) in this run unless given.
   render::Image reference;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -140,6 +141,7 @@ int run_bench_view(const BenchViewArgs& a) {
   if (sizes.empty()) throw UsageError("--sizes: give at least one WxH");
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
+  check_outputs({{"--strip", a.strip}});
   const auto gl = render::GlContext::create_headless();
   const render::ViewState start = render::default_view_state();
   viewer::ViewerOptions options;

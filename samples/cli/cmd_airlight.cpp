@@ -1,6 +1,8 @@
 // `nimbus airlight --method table:N|stable|raymarch:N|quadrature [--device cpu|gl] [--phase P]`:
 // Sun et al.'s airlight for CSV rows `beta,I0,Dsv,Dvp,gamma` read from stdin (Dvp may be inf),
-// one La per line (%.9g). A malformed row is a usage error (exit 2) naming its line and field.
+// one La per line (%.9g). A malformed row is a usage error (exit 2) naming its line and field;
+// stdin is read within the input limits (base/input_limits.hpp: 4096 bytes a line, 1,000,000
+// lines, 64 MiB), so /dev/zero or an endless pipe fails at once instead of filling memory.
 #include <charconv>
 #include <cstdio>
 #include <iostream>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/render/core/airlight.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
 
@@ -48,7 +51,7 @@ render::AirlightQuery parse_row(const std::string& line, long number) {
     const char* last = first + f.size();
     const auto r = std::from_chars(first, last, v[k]);
     if (f.empty() || r.ec != std::errc() || r.ptr != last)
-      throw UsageError(where + ", field " + kFields[k] + ": '" + f + "' is not a number");
+      throw UsageError(where + ", field " + kFields[k] + ": '" + echo(f) + "' is not a number");
   }
   render::AirlightQuery q{v[0], v[1], v[2], v[3], v[4]};
   try {
@@ -79,7 +82,20 @@ int run_airlight(const AirlightOptions& o) {
   std::vector<render::AirlightQuery> queries;
   std::string line;
   long number = 0;
-  while (std::getline(std::cin, line)) queries.push_back(parse_row(line, ++number));
+  std::size_t bytes = 0;
+  for (;;) {
+    const LineRead r = read_line_limited(std::cin, line, kMaxStdinLineBytes);
+    if (r == LineRead::End) break;
+    ++number;
+    if (r == LineRead::TooLong)
+      throw UsageError("stdin line " + std::to_string(number) + ": longer than " + std::to_string(kMaxStdinLineBytes) +
+                       " bytes (a row is beta,I0,Dsv,Dvp,gamma)");
+    if (static_cast<std::size_t>(number) > kMaxStdinLines)
+      throw UsageError("stdin: more than " + std::to_string(kMaxStdinLines) + " rows; split the input");
+    bytes += line.size() + 1;
+    if (bytes > kMaxStdinBytes) throw UsageError("stdin: more than " + std::to_string(kMaxStdinBytes >> 20) + " MiB; split the input");
+    queries.push_back(parse_row(line, number));
+  }
   const std::vector<double> la =
       o.device == "gl" ? render::evaluate_airlight_gl(queries, method, phase) : render::evaluate_airlight(queries, method, phase);
   for (double v : la) std::printf("%.9g\n", v);

@@ -12,8 +12,11 @@
 
 #include "cli.hpp"
 #include "frame_range.hpp"
+#include "nimbus/base/memory.hpp"
+#include "outputs.hpp"
 #include "progress.hpp"
 #include "nimbus/volume/generate.hpp"
+#include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/vdb_io.hpp"
 
@@ -28,6 +31,7 @@ struct GenerateArgs {
   std::optional<double> time;
   std::string frames;
   double fps = 24.0;
+  bool many_frames = false;
   std::vector<std::string> sets;
   std::string params;
   std::string up = "z";
@@ -50,7 +54,7 @@ int run_generate(const GenerateArgs& a) {
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
   if (a.res && (*a.res < 1 || *a.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
-  const FrameRange range = parse_frames(a.time, a.frames, a.fps);
+  const FrameRange range = parse_frames(a.time, a.frames, a.fps, a.many_frames);
   const int first = range.first, last = range.last;
   const bool sequence = range.sequence;
 
@@ -71,13 +75,17 @@ int run_generate(const GenerateArgs& a) {
   }
 
   volume::GenerateOptions opt;
-  opt.voxel_size = doc.value("voxel_size", 25.0);
+  opt.voxel_size = doc.contains("voxel_size") ? volume::json_number(doc["voxel_size"], "voxel_size", 1e-9, 1e9) : 25.0;
   if (a.voxel_size) opt.voxel_size = *a.voxel_size;
+  // The model itself refuses what its parameters cannot give (densities beyond the float range).
+  const volume::Aabb bounds = volume::CloudModel(params, opt.voxel_size, 0.0).bounds();
   if (a.res) {  // the largest extent of the cloud at time 0 spans `res` voxels
-    const volume::Aabb b = volume::CloudModel(params, opt.voxel_size, 0.0).bounds();
-    const glm::dvec3 e = b.hi - b.lo;
+    const glm::dvec3 e = bounds.hi - bounds.lo;
     opt.voxel_size = std::max({e.x, e.y, e.z}) / *a.res;
   }
+  std::vector<PathArg> outputs;
+  for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? frame_path(a.output, frame) : a.output});
+  check_outputs(outputs, {{"--params", a.params}});
 
   volume::ExportInfo info;
   info.preset = a.preset;
@@ -98,7 +106,18 @@ int run_generate(const GenerateArgs& a) {
       std::lock_guard<std::mutex> lock(m);
       progress.update(f);
     };
-    const auto density = volume::generate_density(params, opt, &stats);
+    openvdb::FloatGrid::Ptr density;
+    try {
+      density = volume::generate_density(params, opt, &stats);
+    } catch (const OutOfMemoryRequest&) {
+      throw;
+    } catch (const std::invalid_argument& e) {  // the parameters passed at time 0: the time is at fault
+      throw UsageError("at " + time_text(t) + " (--time, --frames/--fps): " + e.what());
+    }
+    if (stats.active_voxels == 0)
+      throw std::runtime_error((sequence ? "frame " + std::to_string(frame) + ": " : std::string()) +
+                               "the cloud has no voxel of density >= 1e-6 at voxel size " + std::to_string(opt.voxel_size) +
+                               " m (shapes smaller than a voxel, or coverage, weight or density leave nothing); nothing written");
     std::vector<openvdb::FloatGrid::ConstPtr> grids{density};
     if (auto temperature = volume::generate_temperature(params, *density)) grids.push_back(temperature);
     info.time = t;
@@ -125,6 +144,7 @@ void add_generate_command(CLI::App& app, Action& action) {
   cmd->add_option("--time", a->time, "time in seconds (wind and evolution)");
   cmd->add_option("--frames", a->frames, "frames A-B, written as OUT.%04d.vdb; time = frame / fps");
   cmd->add_option("--fps", a->fps, "frames per second for --frames")->capture_default_str();
+  cmd->add_flag("--many-frames", a->many_frames, "allow --frames to span more than 10000 frames");
   cmd->add_option("--set", a->sets, "override a parameter: key=value (repeatable; nimbus presets show NAME)");
   cmd->add_option("--params", a->params, "JSON file of parameter overrides");
   cmd->add_option("--up", a->up, "up axis of the written file: z (Blender) or y (Houdini)")->capture_default_str();

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "cli.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/volume/vdb_info.hpp"
 
 namespace nimbus::cli {
@@ -75,6 +76,7 @@ void print_grid(const volume::GridSummary& g) {
 int run_info(const InfoOptions& o) {
   std::optional<std::string> grid;
   if (!o.grid.empty()) grid = o.grid;
+  refuse_special_file(o.file, "FILE");
   volume::FileSummary s;
   try {
     s = volume::summarize_vdb(o.file, grid);

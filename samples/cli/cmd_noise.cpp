@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "outputs.hpp"
 #include "nimbus/noise/noise.hpp"
 #include "nimbus/volume/vdb_io.hpp"
 
@@ -73,6 +74,7 @@ int run_noise(const NoiseOptions& o) {
   noise::OctaveChoice choice{};
   if (o.auto_octaves) p = noise::limit_octaves(p, spacing, &choice);
 
+  check_outputs({{"-o", o.output}});
   const int64_t count = o.res * o.res * o.res;
   ensure_fits_in_memory(uint64_t(count), 12, "a " + std::to_string(o.res) + "^3 noise grid");
   const auto t0 = std::chrono::steady_clock::now();

@@ -14,9 +14,11 @@
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
+#include "outputs.hpp"
 #include "progress.hpp"
 #include "render_args.hpp"
 #include "render_clouds.hpp"
+#include "render_modes.hpp"
 #include "render_view_state.hpp"
 
 namespace nimbus::cli {
@@ -40,7 +42,7 @@ struct RenderArgs {
   bool scene_given = false, method_given = false;
 };
 
-int run_render(const RenderArgs& a) {
+int run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (a.output.empty()) throw UsageError("-o: an output file (.exr) is required");
   // The image is always a linear EXR: a name that says otherwise (out.png) would get EXR bytes.
   const auto ends_with = [](const std::string& s, const std::string& tail) {
@@ -56,14 +58,19 @@ int run_render(const RenderArgs& a) {
   if (!a.view_state.empty()) {
     if (!a.clouds.files.empty() || !a.clouds.presets.empty() || a.scene_given || a.method_given)
       throw UsageError("--view-state: the state holds the clouds, scene and method; give none of FILE, --preset, --scene, --method");
+    if (!a.camera.eye.empty() || !a.camera.look_at.empty() || !a.camera.up.empty() || a.camera.fov_deg)
+      throw UsageError("--view-state: the camera comes from the state; only --res may be given");
+    check_render_flags(cmd, kRenderViewState);
     return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure);
   }
   if (!a.clouds.files.empty() || !a.clouds.presets.empty()) {
+    check_render_flags(cmd, kRenderClouds);
     CloudRenderArgs clouds = a.clouds;
     clouds.surface_airlight = !a.no_surface_airlight;  // the scene's surfaces under the clouds
     return run_render_clouds(clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
                              a.exposure);
   }
+  check_render_flags(cmd, kRenderScene);
   render::Scene scene;
   try {
     scene = render::make_scene(a.scene);
@@ -72,6 +79,8 @@ int run_render(const RenderArgs& a) {
   }
   if (a.hide_bulbs)
     for (render::PointLight& l : scene.point_lights) l.bulb_radius_m = 0.0;
+  if (a.extinction && !(std::abs(*a.extinction) <= kMaxFlagMagnitude))
+    throw UsageError("--extinction: must be at most 1e12 per metre");
   if (a.extinction) scene.medium.extinction_per_m = *a.extinction;
   if (a.albedo) scene.medium.albedo = *a.albedo;
   if (!a.phase.empty()) {
@@ -95,11 +104,12 @@ int run_render(const RenderArgs& a) {
     throw UsageError(std::string("--method/--jitter: ") + e.what());
   }
   if (a.shadow_res < 16 || a.shadow_res > 8192) throw UsageError("--shadow-res: must be in [16, 8192]");
-  if (a.exposure && !std::isfinite(*a.exposure)) throw UsageError("--exposure: must be finite (stops)");
+  check_exposure(a.exposure);
+  check_outputs({{"-o", a.output}, {"--preview", a.preview}});
 
   const auto start = std::chrono::steady_clock::now();
   render::Image image;
-  std::string device;
+  std::string device, gpu_times;
   if (method.kind == render::ShaftMethod::Kind::Reference) {
     image = render_reference_with_progress(scene, camera, !a.no_surface_airlight);
     device = "CPU (double precision)";
@@ -116,20 +126,24 @@ int run_render(const RenderArgs& a) {
     settings.surface_airlight = !a.no_surface_airlight;
     render::ShaftRenderer renderer(scene, settings);
     render::ShaftFrameStats stats;
-    image = renderer.render(camera, method, &stats);
+    try {
+      image = renderer.render(camera, method, &stats);
+    } catch (const std::runtime_error& e) {  // a non-finite pixel: name what was rendered, not only the stage
+      throw std::runtime_error("rendering scene " + scene.name + " (--method " + a.method + ", flags as given): " + e.what());
+    }
     device = gl->renderer();
-    std::fprintf(stderr, "GPU ms: shadow maps %.1f, surfaces %.1f, shadow volume %.1f (%zu skirts), shafts %.1f (%s)\n",
-                 stats.shadow_maps_ms, stats.surfaces_ms, stats.shadow_volume_ms, stats.skirt_quads, stats.shafts_ms,
-                 stats.timing.c_str());
+    char line[256];
+    std::snprintf(line, sizeof line, "GPU ms: shadow maps %.1f, surfaces %.1f, shadow volume %.1f (%zu skirts), shafts %.1f (%s)\n",
+                  stats.shadow_maps_ms, stats.surfaces_ms, stats.shadow_volume_ms, stats.skirt_quads, stats.shafts_ms,
+                  stats.timing.c_str());
+    gpu_times = line;  // printed once the files are written: a failed run prints its error alone
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   image.metadata["device"] = device;
-  render::write_exr(a.output, image);
-  if (!a.preview.empty()) {
-    render::PreviewOptions po;
-    po.exposure_stops = a.exposure ? *a.exposure : render::auto_exposure_stops(image);
-    render::write_png_preview(a.preview, image, po);
-  }
+  render::PreviewOptions po;
+  if (!a.preview.empty()) po.exposure_stops = a.exposure ? *a.exposure : render::auto_exposure_stops(image);
+  write_image_files(a.output, a.preview, image, po);
+  std::fputs(gpu_times.c_str(), stderr);
   std::fprintf(stderr, "%s: %s %dx%d, %s, %.2f s on %s\n", a.output.c_str(), scene.name.c_str(), camera.width,
                camera.height, render::to_string(method).c_str(), seconds, device.c_str());
   return 0;
@@ -169,7 +183,7 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->callback([&action, a, cmd] {
     a->scene_given = cmd->count("--scene") > 0;
     a->method_given = cmd->count("--method") > 0;
-    action = [a] { return run_render(*a); };
+    action = [a, cmd] { return run_render(*a, *cmd); };
   });
 }
 

@@ -17,7 +17,11 @@
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/memory.hpp"
 #include "nimbus/render/image/image_io.hpp"
+#include "nimbus/volume/vdb_read.hpp"
+#include "outputs.hpp"
 #include "progress.hpp"
 #include "render_clouds.hpp"
 
@@ -58,6 +62,7 @@ glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
       used = 0;
     }
     if (used != text.size() || !std::isfinite(v)) throw UsageError(flag + ": '" + text + "' must be V or R,G,B");
+    if (std::abs(v) > kMaxFlagMagnitude) throw UsageError(flag + ": '" + text + "' must be within +-1e12");
     return glm::dvec3(v);
   }
   return parse_vec3(flag, text);
@@ -74,18 +79,38 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
     render::CloudFileOptions fo;
     fo.level_set_to_fog = a.level_set_to_fog;
     fo.warn = [](const std::string& text) { std::fprintf(stderr, "nimbus: warning: %s\n", text.c_str()); };
-    clouds.push_back(render::load_cloud_file(path, a.grid, up, optics, fo));
+    try {
+      clouds.push_back(render::load_cloud_file(path, a.grid, up, optics, fo));
+    } catch (const volume::GridNotFound& e) {
+      throw UsageError(std::string("--grid: ") + e.what());  // as nimbus info reports it
+    }
   }
   for (const render::PresetCloud& preset : presets) {
     Progress progress("generating " + preset.name);
     std::mutex m;
     const double time = sequence ? frame / a.fps : a.time.value_or(0.0);
-    clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
-      std::lock_guard<std::mutex> lock(m);
-      progress.update(x);
-    }));
+    try {
+      clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
+        std::lock_guard<std::mutex> lock(m);
+        progress.update(x);
+      }));
+    } catch (const OutOfMemoryRequest&) {
+      throw;
+    } catch (const std::invalid_argument& e) {  // the time moved the cloud or its noise out of range
+      throw UsageError("--preset " + preset.name + " at " + time_text(time) + " (--time, --frames/--fps): " + e.what());
+    }
   }
   return clouds;
+}
+
+// What a frame renders, for an error that arises while rendering it: "clouds.vdb, --preset steam
+// (frame 3)".
+std::string describe_clouds(const CloudRenderArgs& a, int frame, bool sequence) {
+  std::string text;
+  for (const std::string& f : a.files)
+    text += (text.empty() ? "" : ", ") + frame_path(f, frame, sequence && f.find('%') != std::string::npos);
+  for (const std::string& p : a.presets) text += (text.empty() ? "--preset " : ", --preset ") + p;
+  return text + (sequence ? " (frame " + std::to_string(frame) + ")" : "");
 }
 
 }  // namespace
@@ -102,6 +127,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--time", a.time, "Time of generated presets, seconds");
   cmd->add_option("--frames", a.frames, "Frame range A-B: a sequence name.%04d.exr (presets at frame/fps)");
   cmd->add_option("--fps", a.fps, "Frames per second of a sequence")->capture_default_str();
+  cmd->add_flag("--many-frames", a.many_frames, "Allow a sequence of more than 10000 frames");
   cmd->add_option("--sun", a.sun, "Direction towards the sun X,Y,Z (replaces the scene's; adds one if it has none)");
   cmd->add_option("--lamp", a.lamps,
                   "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which light "
@@ -223,17 +249,23 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
-  const FrameRange range = parse_frames(a.time, a.frames, a.fps);
+  const FrameRange range = parse_frames(a.time, a.frames, a.fps, a.many_frames);
   const int first = range.first, last = range.last;
   const bool sequence = range.sequence;
+  if (last > first && a.presets.empty() &&
+      std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
+    throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
+                     "name.%04d.vdb, or --preset (generated at each frame's time)");
   check_pattern("-o", output);
   if (!preview.empty()) check_pattern("--preview", preview);
   for (const std::string& f : a.files) check_pattern("file", f);
-  if (exposure && !std::isfinite(*exposure)) throw UsageError("--exposure: must be finite (stops)");
+  check_exposure(exposure);
   if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
 
   render::CloudOptics optics;
   if (a.cloud_extinction) {
+    if (!(std::abs(*a.cloud_extinction) <= kMaxFlagMagnitude))
+      throw UsageError("--cloud-extinction: must be at most 1e12 per metre (per unit density)");
     optics.extinction_per_m = *a.cloud_extinction;
   } else if (scene.cloud_extinction_per_m) {
     optics.extinction_per_m = *scene.cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
@@ -372,6 +404,20 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--spp/--bounces: ") + e.what());
   }
+  if (fs.method == render::CloudMethod::PathTrace && (lights.size() != 1 || lights[0].kind != render::CloudLightKind::Sun))
+    throw UsageError("--lamp: --method pathtrace traces the sun only");
+
+  // Every file of every frame: outputs writable, none of them an input, before any work.
+  std::vector<PathArg> outputs, inputs;
+  for (int frame = first; frame <= last; ++frame) {
+    outputs.push_back({"-o", frame_path(output, frame, sequence)});
+    if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, sequence)});
+    for (const std::string& pattern : a.files)
+      inputs.push_back({"FILE", frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos)});
+  }
+  for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
+  check_outputs(outputs, inputs);
+
   std::unique_ptr<render::GlContext> gl;
   if (fs.method == render::CloudMethod::Slices) {
     try {
@@ -387,8 +433,6 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (reference_progress) reference_progress->update(x);
   };
   fs.path_tracer.progress = fs.reference.progress;
-  if (fs.method == render::CloudMethod::PathTrace && (lights.size() != 1 || lights[0].kind != render::CloudLightKind::Sun))
-    throw UsageError("--lamp: --method pathtrace traces the sun only");
   render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), lights, fs);
 
   for (int frame = first; frame <= last; ++frame) {
@@ -411,7 +455,14 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (render::is_cpu_method(fs.method))
       reference_progress = std::make_unique<Progress>("cloud " + method + (sequence ? " frame " + std::to_string(frame) : ""));
     render::FrameStats stats;
-    render::Image image = renderer.render(camera, &stats);
+    render::Image image;
+    try {
+      image = renderer.render(camera, &stats);
+    } catch (const std::invalid_argument& e) {
+      // A stage refused what it computed (a NaN pixel): the flags were checked, so say which
+      // input it was rendering, and that it is a failure of the render, not of the usage.
+      throw std::runtime_error("rendering " + describe_clouds(a, frame, sequence) + ": " + e.what());
+    }
     reference_progress.reset();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (sequence) {
@@ -419,12 +470,9 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       image.metadata["fps"] = std::to_string(a.fps);
     }
     const std::string out = frame_path(output, frame, sequence);
-    render::write_exr(out, image);
-    if (!preview.empty()) {
-      render::PreviewOptions po;
-      po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
-      render::write_png_preview(frame_path(preview, frame, sequence), image, po);
-    }
+    render::PreviewOptions po;
+    if (!preview.empty()) po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
+    write_image_files(out, preview.empty() ? "" : frame_path(preview, frame, sequence), image, po);
     std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
                  no_scene ? "nothing" : scene.name.c_str(), camera.width, camera.height, method.c_str(), seconds,
                  stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());

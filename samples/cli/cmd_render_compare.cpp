@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "cli.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 
@@ -23,6 +24,8 @@ void add_compare_command(CLI::App& app, Action& action) {
   cmd->add_option("--worst", files->worst, "Also list the N lit pixels with the largest relative error");
   cmd->callback([&action, files] {
     action = [files] {
+      refuse_special_file(files->test, "TEST");
+      refuse_special_file(files->reference, "REFERENCE");
       const render::Image test = render::read_exr(files->test);
       const render::Image ref = render::read_exr(files->reference);
       if (test.width != ref.width || test.height != ref.height)

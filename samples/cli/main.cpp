@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "cli.hpp"
+#include "flag_checks.hpp"
 #include "nimbus/base/memory.hpp"
 
 int main(int argc, char** argv) {
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    nimbus::cli::refuse_empty_values(app);
     return action ? action() : 0;
   } catch (const nimbus::cli::UsageError& e) {
     std::fprintf(stderr, "nimbus: %s\n", e.what());

@@ -26,9 +26,15 @@ glm::dvec3 parse_vec3(const std::string& flag, const std::string& text) {
     }
     if (used != static_cast<std::size_t>(m[i + 1].length()) || !std::isfinite(x))
       throw UsageError(flag + ": '" + text + "' must be three finite numbers X,Y,Z");
+    if (std::abs(x) > kMaxFlagMagnitude)
+      throw UsageError(flag + ": '" + text + "' must be three numbers within +-1e12");
     v[i] = x;
   }
   return v;
+}
+
+void check_exposure(const std::optional<double>& stops) {
+  if (stops && !(std::abs(*stops) <= 64.0)) throw UsageError("--exposure: must be in [-64, 64] stops");
 }
 
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text) {

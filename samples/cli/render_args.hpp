@@ -23,8 +23,16 @@ void add_camera_options(CLI::App* cmd, CameraArgs& args);
 // The scene's default camera with the given flags applied; bad values -> UsageError naming the flag.
 render::Camera apply_camera_args(const CameraArgs& args, render::Camera camera);
 
-// "X,Y,Z" -> vector; UsageError naming `flag` when malformed or not finite.
+// The largest magnitude a number of a render flag may have (positions, directions, radiances,
+// extinctions): beyond it the GPU's floats (and lengths in double) overflow into NaN pixels.
+inline constexpr double kMaxFlagMagnitude = 1e12;
+
+// "X,Y,Z" -> vector; UsageError naming `flag` when malformed, not finite, or beyond
+// +-kMaxFlagMagnitude.
 glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
+
+// --exposure: UsageError unless within [-64, 64] stops (2^64 already overflows a half float).
+void check_exposure(const std::optional<double>& stops);
 // "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
 

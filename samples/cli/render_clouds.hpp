@@ -21,6 +21,7 @@ struct CloudRenderArgs {
   std::optional<double> time;        // seconds, presets
   std::string frames;                // A-B
   double fps = 24.0;
+  bool many_frames = false;          // allow more than kMaxFramesUnforced frames
   std::string sun;                   // direction towards the sun X,Y,Z
   std::vector<std::string> lamps;    // X,Y,Z of each lamp on the clouds (joins a scene's point lights)
   std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp

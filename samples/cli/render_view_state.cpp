@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "cli.hpp"
+#include "outputs.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -15,12 +16,11 @@ namespace nimbus::cli {
 
 int run_render_view_state(const std::string& path, const CameraArgs& camera, const std::string& output,
                           const std::string& preview, std::optional<double> exposure) {
-  if (!camera.eye.empty() || !camera.look_at.empty() || !camera.up.empty() || camera.fov_deg)
-    throw UsageError("--view-state: the camera comes from the state; only --res may be given");
   int width = 960, height = 540;
   if (!camera.res.empty()) std::tie(width, height) = parse_resolution("--res", camera.res);
-  if (exposure && !std::isfinite(*exposure)) throw UsageError("--exposure: must be finite (stops)");
+  check_exposure(exposure);
   const render::ViewState state = render::load_view_state(path);
+  check_outputs({{"-o", output}, {"--preview", preview}}, {{"--view-state", path}});
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<render::GlContext> gl;
   try {
@@ -30,12 +30,9 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   }
   render::SkyRenderer renderer(state);
   const render::Image image = renderer.render(state, width, height, render::FrameQuality{}, true);
-  render::write_exr(output, image);
-  if (!preview.empty()) {
-    render::PreviewOptions po;
-    po.exposure_stops = exposure ? *exposure : state.exposure_stops;
-    render::write_png_preview(preview, image, po);
-  }
+  render::PreviewOptions po;
+  po.exposure_stops = exposure ? *exposure : state.exposure_stops;
+  write_image_files(output, preview, image, po);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "%s: view state %s, %dx%d, %.2f s\n", output.c_str(), path.c_str(), width, height, seconds);
   return 0;

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/outputs.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -50,6 +52,7 @@ int run_view(const ViewArgs& a) {
     const std::size_t n = std::count(f.begin(), f.end(), '%');
     if (n > 1 || (n == 1 && f.find("%0") == std::string::npos && f.find("%d") == std::string::npos))
       throw UsageError("FILE: '" + f + "' may hold one frame-number field such as %04d, and no other %");
+    if (n == 0) refuse_special_file(f, "FILE");
   }
   if (!a.shader_dir.empty() && !std::filesystem::is_directory(a.shader_dir))
     throw UsageError("--shader-dir: '" + a.shader_dir + "' is not a folder");
@@ -98,6 +101,8 @@ int run_view(const ViewArgs& a) {
   }
   viewer::Script script;
   if (!a.script.empty()) script = viewer::load_script(a.script);
+  // --state-out may be --state (Ctrl+S saves there by default), but not another input.
+  if (!a.state_out.empty()) check_outputs({{"--state-out", a.state_out}}, {{"--sky", a.sky}, {"--script", a.script}});
   viewer::ViewerOptions options;
   options.screenshot_dir = a.screenshot_dir;
   options.shader_dir = a.shader_dir.empty() ? source_shader_dir() : a.shader_dir;

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -113,6 +115,17 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   mean_ = billow_->expected_mean();  // Worley noise is not centred
   inv_sd_ = 1.0 / billow_->expected_sd();
   min_useful_coverage_ = threshold_ / (1.0 + p.billow * (1.0 - mean_) * inv_sd_);
+  // The largest density the parameters can give, where coverage is 1 and the billow noise at the
+  // top of its range (erosion, furrows and cauliflower only take away), must be a float: voxels
+  // beyond it would overflow. The stored grids are floats, so refuse rather than saturate.
+  const double f_max = p.gas.sine ? 1.0 : 1.0 + p.billow * (double(billow_->range().hi) - mean_) * inv_sd_ - threshold_;
+  const double peak = std::pow(std::max(f_max, 0.0) * double(p.gas.max_density), double(p.gas.exponent));
+  if (!(peak <= double(std::numeric_limits<float>::max()))) {
+    std::ostringstream m;
+    m << "density " << p.gas.max_density << " with exponent " << p.gas.exponent << " gives densities up to "
+      << peak << ", beyond the float range (" << std::numeric_limits<float>::max() << ")";
+    throw std::invalid_argument(m.str());
+  }
 }
 
 int CloudModel::octaves_used() const { return billow_->data().octaves; }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "nimbus/base/atomic_file.hpp"
+#include "nimbus/base/input_limits.hpp"
 
 namespace nimbus::volume {
 namespace {
@@ -20,15 +21,19 @@ std::string range_text(double lo, double hi) {
 }  // namespace
 
 nlohmann::json read_json_file(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(what + " '" + path + "': cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_regular_file(path, what);  // size and file kind limits
+  check_json_depth(text, what + " '" + path + "'");         // before the recursive parser sees it
   try {
-    return nlohmann::json::parse(text.str());
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw std::runtime_error(what + " '" + path + "': not JSON (" + e.what() + ")");
   }
+}
+
+std::string json_value_text(const nlohmann::json& v) {
+  if (v.is_array()) return "an array";
+  if (v.is_object()) return "an object";
+  return echo(v.dump());
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& doc, const std::string& what) {
@@ -42,7 +47,7 @@ void write_json_file(const std::string& path, const nlohmann::json& doc, const s
 }
 
 double json_number(const nlohmann::json& v, const std::string& key, double lo, double hi) {
-  if (!v.is_number()) throw std::invalid_argument(key + " must be a number");
+  if (!v.is_number()) throw std::invalid_argument(key + ": expected a number, got " + json_value_text(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) throw std::invalid_argument(key + " must be finite");
   if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
@@ -50,14 +55,15 @@ double json_number(const nlohmann::json& v, const std::string& key, double lo, d
 }
 
 int json_integer(const nlohmann::json& v, const std::string& key, int lo, int hi) {
-  if (!v.is_number_integer()) throw std::invalid_argument(key + " must be a whole number");
+  if (!v.is_number_integer())
+    throw std::invalid_argument(key + ": expected a whole number, got " + json_value_text(v));
   const long long x = v.get<long long>();
   if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
   return static_cast<int>(x);
 }
 
 bool json_bool(const nlohmann::json& v, const std::string& key) {
-  if (!v.is_boolean()) throw std::invalid_argument(key + " must be true or false");
+  if (!v.is_boolean()) throw std::invalid_argument(key + ": expected true or false, got " + json_value_text(v));
   return v.get<bool>();
 }
 

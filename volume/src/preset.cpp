@@ -3,11 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 #include "embedded_json.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/noise/params.hpp"
+#include "nimbus/volume/json_io.hpp"
 
 namespace nimbus::volume {
 
@@ -26,15 +27,20 @@ json parse(const std::string& text, const std::string& source) {
   }
 }
 
+// "<key>: expected <what>, got null" (or "abc", an array, ...).
+[[noreturn]] void expected(const std::string& key, const std::string& what, const json& got) {
+  bad(key + ": expected " + what + ", got " + json_value_text(got));
+}
+
 double number(const json& j, const std::string& key) {
-  if (!j.is_number()) bad(key + " must be a number");
+  if (!j.is_number()) expected(key, "a number", j);
   const double v = j.get<double>();
   if (!std::isfinite(v)) bad(key + " must be finite");
   return v;
 }
 
 glm::dvec3 vec3(const json& j, const std::string& key) {
-  if (!j.is_array() || j.size() != 3) bad(key + " must be an array of 3 numbers");
+  if (!j.is_array() || j.size() != 3) expected(key, "an array of 3 numbers", j);
   return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
 }
 
@@ -49,7 +55,11 @@ const char* kind_name(ShapeKind k) {
 }
 
 Shape shape_from_json(const json& j, const std::string& where) {
-  if (!j.is_object()) bad(where + " must be an object");
+  if (!j.is_object()) expected(where, "an object", j);
+  // A shape is where gas is: without its kind, centre and size it would be a default 1 m ball at
+  // the origin, which at cloud voxel sizes is no voxel at all.
+  for (const char* k : {"kind", "center", "size"})
+    if (!j.contains(k)) bad(where + "." + k + ": missing (a shape needs kind, center and size)");
   Shape s;
   for (const auto& [k, v] : j.items()) {
     const std::string key = where + "." + k;
@@ -59,7 +69,7 @@ Shape shape_from_json(const json& j, const std::string& where) {
       else if (n == "capsule") s.kind = ShapeKind::Capsule;
       else if (n == "slab") s.kind = ShapeKind::Slab;
       else if (n == "lens") s.kind = ShapeKind::Lens;
-      else bad(key + " must be ellipsoid, capsule, slab or lens");
+      else expected(key, "ellipsoid, capsule, slab or lens", v);
     } else if (k == "center") s.center = vec3(v, key);
     else if (k == "size") s.size = vec3(v, key);
     else if (k == "end") s.end = vec3(v, key);
@@ -68,7 +78,7 @@ Shape shape_from_json(const json& j, const std::string& where) {
     else if (k == "fade_up") s.fade_up = number(v, key);
     else if (k == "roughness") s.roughness = number(v, key);
     else if (k == "roughness_seed") {
-      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       s.roughness_seed = v.get<uint32_t>();
     }
     else bad(key + ": unknown key");
@@ -114,12 +124,12 @@ json load_preset(std::string_view name) {
 }
 
 glm::dvec2 vec2(const json& j, const std::string& key) {
-  if (!j.is_array() || j.size() != 2) bad(key + " must be an array of 2 numbers");
+  if (!j.is_array() || j.size() != 2) expected(key, "an array of 2 numbers", j);
   return {number(j[0], key + "[0]"), number(j[1], key + "[1]")};
 }
 
 CloudFieldParams field_from_json(const json& j, const std::string& where) {
-  if (!j.is_object()) bad(where + " must be an object");
+  if (!j.is_object()) expected(where, "an object", j);
   CloudFieldParams f;
   for (const auto& [k, v] : j.items()) {
     const std::string key = where + "." + k;
@@ -132,7 +142,7 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
     else if (k == "depth_scale") f.depth_scale = number(v, key);
     else if (k == "roughness") f.roughness = number(v, key);
     else if (k == "seed") {
-      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       f.seed = v.get<uint32_t>();
     } else if (k == "species") {
       if (!v.is_object() || v.empty()) bad(key + " must be an object of species shares, e.g. {\"humilis\": 0.6}");
@@ -159,25 +169,25 @@ json field_to_json(const CloudFieldParams& f) {
 }
 
 CloudParams cloud_from_json(const json& c, const std::string& where) {
-  if (!c.is_object()) bad(where + " must be an object");
+  if (!c.is_object()) expected(where, "an object", c);
   CloudParams p;
   for (const auto& [k, v] : c.items()) {
     const std::string key = where + "." + k;
     if (k == "shapes") {
-      if (!v.is_array()) bad(key + " must be an array of shapes");
+      if (!v.is_array()) expected(key, "an array of shapes", v);
       for (size_t i = 0; i < v.size(); ++i) p.shapes.push_back(shape_from_json(v[i], key + "[" + std::to_string(i) + "]"));
     } else if (k == "noise") {
       const auto kind = v.is_string() ? noise::parse_kind(v.get<std::string>()) : std::nullopt;
-      if (!kind) bad(key + " must be value, gradient, wavelet or worley");
+      if (!kind) expected(key, "value, gradient, wavelet or worley", v);
       p.noise = *kind;
     } else if (k == "octaves") {
-      if (!v.is_number_integer()) bad(key + " must be an integer");
+      if (!v.is_number_integer()) expected(key, "an integer", v);
       p.octaves = v.get<int>();
     } else if (k == "seed") {
-      if (!v.is_number_unsigned()) bad(key + " must be an integer >= 0");
+      if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       p.seed = v.get<uint32_t>();
     } else if (k == "sine") {
-      if (!v.is_boolean()) bad(key + " must be true or false");
+      if (!v.is_boolean()) expected(key, "true or false", v);
       p.gas.sine = v.get<bool>();
     } else if (k == "field") p.field = field_from_json(v, key);
     else if (k == "shear") p.shear = vec2(v, key);
@@ -252,6 +262,16 @@ json cloud_to_json(const CloudParams& p) {
   return j;
 }
 
+// A JSON null would delete a parameter (merge_patch) or reach a check as a wrong type: refused,
+// naming where it is ("--params 'p.json': cloud.coverage: null is not a value"); `where` ends in ": ".
+static void refuse_nulls(const json& j, const std::string& where, const std::string& path = "") {
+  if (j.is_null()) bad(where + (path.empty() ? "" : path + ": ") + "null is not a value (give a value, or leave the key out)");
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) refuse_nulls(v, where, path.empty() ? k : path + "." + k);
+  if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i) refuse_nulls(j[i], where, path + "[" + std::to_string(i) + "]");
+}
+
 void set_key(json& cloud, std::string_view key_eq_value) {
   const size_t eq = key_eq_value.find('=');
   if (eq == std::string_view::npos || eq == 0) bad("--set '" + std::string(key_eq_value) + "': expected key=value");
@@ -259,10 +279,16 @@ void set_key(json& cloud, std::string_view key_eq_value) {
   const std::string text(key_eq_value.substr(eq + 1));
   json value;
   try {
+    check_json_depth(text, "--set " + key);
+  } catch (const std::runtime_error& e) {
+    bad(e.what());
+  }
+  try {
     value = json::parse(text);
   } catch (const json::exception&) {
     value = text;  // a plain string, e.g. noise=wavelet
   }
+  refuse_nulls(value, "--set " + key + ": ");
   json* node = &cloud;
   size_t start = 0;
   while (true) {
@@ -284,11 +310,17 @@ void set_key(json& cloud, std::string_view key_eq_value) {
 }
 
 void merge_params_file(json& preset, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) bad("--params " + path + ": cannot read the file");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const json j = parse(text, "--params " + path);
-  if (!j.is_object()) bad("--params " + path + ": must hold a JSON object");
+  std::string text;
+  try {
+    text = read_regular_file(path, "--params");  // a regular file within the size limit
+    check_json_depth(text, "--params '" + path + "'");
+  } catch (const std::runtime_error& e) {
+    bad(e.what());
+  }
+  const json j = parse(text, "--params '" + path + "'");
+  if (!j.is_object()) bad("--params '" + path + "': must hold a JSON object");
+  refuse_nulls(j, "--params '" + path + "': ");
+  if (j.contains("cloud") && !j["cloud"].is_object()) expected("--params '" + path + "': cloud", "an object", j["cloud"]);
   if (j.contains("cloud")) {
     preset.merge_patch(j);
   } else {

@@ -13,7 +13,8 @@ struct GasParams {
   bool sine = false;         // apply the sine variant first
 };
 
-// turb <= 0 gives 0 (never NaN); the result is finite and >= 0 for finite input.
+// turb <= 0 gives 0 (never NaN); the result is finite and >= 0 for finite input: an overflow
+// saturates at the largest float, never 0.
 float gas_density(float turb, const GasParams& g);
 
 }  // namespace nimbus::volume

@@ -9,8 +9,13 @@
 
 namespace nimbus::volume {
 
-// The file parsed. std::runtime_error "<what> '<path>': cannot be read" or "...: not JSON (...)".
+// The file parsed. std::runtime_error "<what> '<path>': cannot be read", "...: not JSON (...)",
+// or a refusal under the input limits (nimbus/base/input_limits.hpp: a regular file of at most
+// 16 MiB, nested at most 64 deep), checked before the parser runs.
 nlohmann::json read_json_file(const std::string& path, const std::string& what);
+// A value as an error message shows what was found instead: null, true, "abc" (at most 40
+// characters, then ...), 3.5, an array, an object.
+std::string json_value_text(const nlohmann::json& v);
 // Two-space indented, newline-terminated, atomically; std::runtime_error naming the file.
 void write_json_file(const std::string& path, const nlohmann::json& doc, const std::string& what);
 

@@ -1,0 +1,28 @@
+// A command's output files, checked before any work and written all or nothing.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "nimbus/render/core/image.hpp"
+#include "nimbus/render/image/image_io.hpp"
+
+namespace nimbus::cli {
+
+// A path given on the command line, and the flag that gave it ("-o", "--preview", "FILE").
+struct PathArg {
+  std::string flag, path;
+};
+
+// Before any work: UsageError when an output is also an input or another output (compared as
+// files: links and other spellings of one file are the same); std::runtime_error naming the flag
+// and path when an output could not be written (check_output_path: not a regular file, no
+// writable directory). Entries with an empty path (a flag not given) are skipped.
+void check_outputs(const std::vector<PathArg>& outputs, const std::vector<PathArg>& inputs = {});
+
+// The render's EXR and, when `preview` is not empty, its PNG preview: both or neither. Each is
+// written to a temporary, and only when both are complete are they renamed into place.
+void write_image_files(const std::string& exr, const std::string& preview, const render::Image& image,
+                       const render::PreviewOptions& preview_options);
+
+}  // namespace nimbus::cli

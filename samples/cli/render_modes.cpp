@@ -1,0 +1,39 @@
+// The table of `nimbus render`'s flags and the modes they apply to (render_modes.hpp).
+#include "render_modes.hpp"
+
+#include "flag_checks.hpp"
+
+namespace nimbus::cli {
+
+void check_render_flags(const CLI::App& render, RenderMode mode) {
+  constexpr unsigned all = kRenderScene | kRenderClouds | kRenderViewState;
+  constexpr unsigned scene = kRenderScene, clouds = kRenderClouds, view = kRenderViewState;
+  constexpr unsigned placed = kRenderScene | kRenderClouds;  // a scene or clouds the flags place
+  static const std::vector<FlagModes> table = {
+      // Every mode: the image and its preview.
+      {"--output", all}, {"--res", all}, {"--preview", all}, {"--exposure", all},
+      {"--view-state", view},
+      // A scene, alone or under clouds, and the camera the flags place.
+      {"--scene", placed}, {"--method", placed}, {"--no-surface-airlight", placed},
+      {"--eye", placed}, {"--look-at", placed}, {"--up", placed}, {"--fov", placed},
+      // The light-shaft renderer of a scene alone (under clouds the scene's method is --shafts).
+      {"--jitter", scene}, {"--shadow-res", scene}, {"--extinction", scene}, {"--albedo", scene},
+      {"--phase", scene}, {"--hide-bulbs", scene},
+      // Clouds (add_cloud_render_options).
+      {"file", clouds}, {"--preset", clouds}, {"--grid", clouds}, {"--up-axis", clouds}, {"--level-set-to-fog", clouds},
+      {"--voxel-size", clouds}, {"--time", clouds}, {"--frames", clouds}, {"--fps", clouds},
+      {"--many-frames", clouds}, {"--sun", clouds}, {"--lamp", clouds}, {"--lamp-intensity", clouds},
+      {"--spot", clouds}, {"--spot-cone", clouds}, {"--max-lights", clouds}, {"--slices", clouds},
+      {"--light-res", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
+      {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},
+      {"--ambient", clouds}, {"--multiple", clouds}, {"--ms-method", clouds}, {"--ms-grid", clouds},
+      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
+      {"--no-jitter", clouds}, {"--ms-occlusion", clouds}, {"--ms-contribution", clouds},
+      {"--ms-eccentricity", clouds}, {"--spp", clouds}, {"--bounces", clouds}, {"--seed", clouds},
+  };
+  static const std::vector<std::string> names = {"a scene alone", "clouds (FILE.vdb or --preset)",
+                                                 "a view state (--view-state)"};
+  check_flags_apply(render, table, mode, names);
+}
+
+}  // namespace nimbus::cli

@@ -1,0 +1,255 @@
+// Hostile input to the nimbus command line (issue 15): each case is a table row of arguments,
+// stdin and the expected refusal. Every run must exit with the expected code, print exactly one
+// line on stderr that holds the expected words, print nothing on stdout, and leave the case's
+// directory exactly as it was (no output written, replaced or half-written, no temporaries).
+// Every refusal comes before any rendering, so the whole table runs in seconds.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "support/run_split.hpp"
+#include "support/vdb_fixtures.hpp"
+
+namespace nimbus::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Case {
+  std::vector<std::string> args;  // "{d}" stands for the fixture directory
+  int code;                       // 2: usage error, 1: runtime error
+  std::string mentions;           // words the single stderr line must hold
+  std::string stdin_path = "/dev/null";
+};
+
+// The fixture directory as its entries stand: kind, size, inode and change time of each, so a
+// file written, replaced (a new inode) or created shows up, without reading FIFOs or big files.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> entries;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    struct stat st {};
+    ::lstat(e.path().c_str(), &st);
+    entries[e.path().string()] = std::to_string(st.st_mode) + " " + std::to_string(st.st_size) + " " +
+                                 std::to_string(st.st_ino) + " " + std::to_string(st.st_mtim.tv_sec) + "." +
+                                 std::to_string(st.st_mtim.tv_nsec);
+  }
+  return entries;
+}
+
+class HostileCli : public ::testing::Test {
+ protected:
+  // Inputs for every case, made once (none by the program under test).
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / ("nimbus_hostile_" + std::to_string(::getpid())));
+    const fs::path& d = *dir_;
+    fs::remove_all(d);
+    fs::create_directories(d / "sub");
+    write_bytes(d / "p.json", R"({"coverage": 0.5})");
+    write_bytes(d / "big.json", "{\"x\": \"" + std::string(17u << 20, 'a') + "\"}");  // over 16 MiB
+    write_bytes(d / "deep.json", std::string(100000, '[') + std::string(100000, ']'));
+    write_bytes(d / "null_cloud.json", R"({"cloud": null})");
+    write_bytes(d / "null_coverage.json", R"({"coverage": null})");
+    write_bytes(d / "abc_coverage.json", R"({"coverage": "abc"})");
+    write_bytes(d / "abc_voxel.json", R"({"voxel_size": "abc", "cloud": {}})");
+    write_bytes(d / "script.json", R"({"frames": 1})");
+    write_bytes(d / "file", "a regular file, not a directory");
+    write_bytes(d / "long_field.csv", "1,1,1,1," + std::string(100, 'x') + "\n");
+    std::string rows;
+    for (int i = 0; i <= 1000000; ++i) rows += "1,1,1,1,1\n";
+    write_bytes(d / "many_rows.csv", rows);
+    ::mkfifo((d / "fifo").c_str(), 0600);
+    fs::create_symlink("/dev/null", d / "null.vdb");
+    openvdb::io::File file((d / "cloud.vdb").string());
+    file.write({make_ball(6, 0.1)});
+    file.close();
+    fs::copy_file(d / "cloud.vdb", d / "cloud.exr");  // a VDB named as an image: an input -o may name
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+
+  static std::string in_dir(std::string text) {
+    for (std::size_t at; (at = text.find("{d}")) != std::string::npos;) text.replace(at, 3, dir_->string());
+    return text;
+  }
+
+  static void expect_refused(const std::vector<Case>& cases) {
+    for (const Case& c : cases) {
+      std::vector<std::string> args;
+      std::string shown;
+      for (const std::string& arg : c.args) {
+        const std::string a = in_dir(arg);
+        shown += (shown.empty() ? "" : " ") + (a.empty() ? std::string("''") : a);
+        args.push_back(a);
+      }
+      const std::string in = in_dir(c.stdin_path), mentions = in_dir(c.mentions);
+      const auto before = snapshot(*dir_);
+      const SplitResult r = run_nimbus_split(args, in);
+      SCOPED_TRACE("nimbus " + shown + (in == "/dev/null" ? "" : " < " + in));
+      EXPECT_EQ(r.code, c.code) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_EQ(r.err.empty() ? '\n' : r.err.back(), '\n') << r.err;
+      EXPECT_NE(r.err.find(mentions), std::string::npos) << "wanted: " << mentions << "\n" << r.err;
+      EXPECT_EQ(r.out, "");
+      EXPECT_EQ(snapshot(*dir_), before) << "the run changed its directory";
+    }
+  }
+
+  static fs::path* dir_;
+};
+fs::path* HostileCli::dir_ = nullptr;
+
+const std::vector<std::string> kGenerate = {"generate", "--preset", "steam", "--voxel-size", "0.02"};
+const std::vector<std::string> kCumulus = {"generate", "--preset", "cumulus-humilis", "--voxel-size", "100"};
+const std::vector<std::string> kTinyScene = {"render", "--scene", "lamps", "--method", "analytic", "--res", "16x16"};
+const std::vector<std::string> kTinyClouds = {"render", "--preset", "steam", "--voxel-size", "0.05",
+                                              "--scene",  "none",   "--res",  "8x8"};
+
+std::vector<std::string> with(std::vector<std::string> head, const std::vector<std::string>& tail) {
+  head.insert(head.end(), tail.begin(), tail.end());
+  return head;
+}
+
+TEST_F(HostileCli, InputFilesHaveSizeDepthAndKindLimits) {
+  expect_refused({
+      {with(kGenerate, {"--params", "{d}/big.json", "-o", "{d}/o.vdb"}), 2, "larger than the limit of 16 MiB"},
+      {with(kGenerate, {"--params", "{d}/deep.json", "-o", "{d}/o.vdb"}), 2, "nested deeper than 64 levels"},
+      {with(kGenerate, {"--set", "coverage=" + std::string(100000, '['), "-o", "{d}/o.vdb"}), 2,
+       "nested deeper than 64 levels"},
+      {with(kGenerate, {"--params", "{d}/sub", "-o", "{d}/o.vdb"}), 2, "--params '{d}/sub': is a directory"},
+      {with(kGenerate, {"--params", "{d}/fifo", "-o", "{d}/o.vdb"}), 2, "--params '{d}/fifo': is a FIFO"},
+      {with(kGenerate, {"--params", "/dev/zero", "-o", "{d}/o.vdb"}), 2, "is a character device"},
+      {{"render", "--view-state", "{d}/deep.json", "-o", "{d}/v.exr"}, 1, "nested deeper than 64 levels"},
+      {{"render", "--view-state", "{d}/big.json", "-o", "{d}/v.exr"}, 1, "larger than the limit of 16 MiB"},
+      {{"render", "--view-state", "{d}/fifo", "-o", "{d}/v.exr"}, 1, "is a FIFO"},
+      {{"view", "--headless", "--script", "{d}/deep.json"}, 1, "nested deeper than 64 levels"},
+      {{"info", "{d}/fifo"}, 1, "FILE '{d}/fifo': is a FIFO"},
+      {{"info", "{d}/sub"}, 1, "FILE '{d}/sub': is a directory"},
+      {{"render", "{d}/fifo", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 1, "FILE '{d}/fifo': is a FIFO"},
+      {{"compare", "/dev/zero", "{d}/cloud.exr"}, 1, "TEST '/dev/zero': is a character device"},
+  });
+}
+
+TEST_F(HostileCli, StdinHasLineRowAndEchoLimits) {
+  expect_refused({
+      {{"airlight"}, 2, "stdin line 1: longer than 4096 bytes", "/dev/zero"},
+      {{"airlight"}, 2, "stdin: more than 1000000 rows", "{d}/many_rows.csv"},
+      {{"airlight"}, 2, "'" + std::string(40, 'x') + "...' is not a number", "{d}/long_field.csv"},
+  });
+}
+
+TEST_F(HostileCli, EveryFlagMustApplyToWhatWasAsked) {
+  const std::string clouds_only = "applies to clouds (FILE.vdb or --preset), not to a scene alone";
+  expect_refused({
+      {with(kTinyScene, {"--sun", "nan,1,1", "-o", "{d}/s.exr"}), 2, "--sun: " + clouds_only},
+      {with(kTinyScene, {"--slices", "-5", "-o", "{d}/s.exr"}), 2, "--slices: " + clouds_only},
+      {with(kTinyScene, {"--multiple", "99", "-o", "{d}/s.exr"}), 2, "--multiple: " + clouds_only},
+      {with(kTinyScene, {"--frames", "1-2", "--fps", "0", "-o", "{d}/s.exr"}), 2, clouds_only},
+      {with(kTinyScene, {"--cloud-extinction", "5", "-o", "{d}/s.exr"}), 2, "--cloud-extinction: " + clouds_only},
+      {with(kTinyClouds, {"--hide-bulbs", "-o", "{d}/c.exr"}), 2, "--hide-bulbs: applies to a scene alone, not to clouds"},
+      {with(kTinyClouds, {"--jitter", "none", "-o", "{d}/c.exr"}), 2, "--jitter: applies to a scene alone"},
+      {with(kTinyClouds, {"--shadow-res", "64", "-o", "{d}/c.exr"}), 2, "--shadow-res: applies to a scene alone"},
+      {with(kTinyClouds, {"--extinction", "0.1", "-o", "{d}/c.exr"}), 2, "--extinction: applies to a scene alone"},
+      {with(kTinyClouds, {"--albedo", "0.5", "-o", "{d}/c.exr"}), 2, "--albedo: applies to a scene alone"},
+      {with(kTinyClouds, {"--phase", "rayleigh", "-o", "{d}/c.exr"}), 2, "--phase: applies to a scene alone"},
+      {{"render", "--view-state", "{d}/p.json", "--slices", "8", "-o", "{d}/v.exr"}, 2,
+       "--slices: applies to clouds (FILE.vdb or --preset), not to a view state"},
+  });
+}
+
+TEST_F(HostileCli, EmptyValuesAreRefused) {
+  expect_refused({
+      {with(kTinyScene, {"--eye", "", "-o", "{d}/s.exr"}), 2, "--eye: the value is empty"},
+      {{"render", "--scene", "lamps", "--res", "", "-o", "{d}/s.exr"}, 2, "--res: the value is empty"},
+      {with(kTinyScene, {"--preview", "", "-o", "{d}/s.exr"}), 2, "--preview: the value is empty"},
+      {{"noise", "--res", "4", "--simd", "", "-o", "{d}/n.vdb"}, 2, "--simd: the value is empty"},
+      {with(kGenerate, {"--set", "", "-o", "{d}/o.vdb"}), 2, "--set: the value is empty"},
+      {{"info", ""}, 2, "file: the value is empty"},
+      {{"info", "{d}/cloud.vdb", "--grid", ""}, 2, "--grid: the value is empty"},
+  });
+}
+
+TEST_F(HostileCli, JsonNullsAndWrongTypesNameTheKey) {
+  expect_refused({
+      {with(kGenerate, {"--params", "{d}/null_cloud.json", "-o", "{d}/o.vdb"}), 2, "cloud: null is not a value"},
+      {with(kGenerate, {"--params", "{d}/null_coverage.json", "-o", "{d}/o.vdb"}), 2, "coverage: null is not a value"},
+      {with(kGenerate, {"--params", "{d}/abc_coverage.json", "-o", "{d}/o.vdb"}), 2,
+       "coverage: expected a number, got \"abc\""},
+      {with(kGenerate, {"--params", "{d}/abc_voxel.json", "-o", "{d}/o.vdb"}), 2, "voxel_size: expected a number"},
+      {with(kGenerate, {"--set", "coverage=null", "-o", "{d}/o.vdb"}), 2, "--set coverage: null is not a value"},
+      {with(kGenerate, {"--set", "coverage=[1]", "-o", "{d}/o.vdb"}), 2, "coverage: expected a number, got an array"},
+      {with(kGenerate, {"--set", "shapes=[{}]", "-o", "{d}/o.vdb"}), 2, "shapes[0].kind: missing"},
+      // A shape far smaller than a voxel gives an empty grid, which is no result to write.
+      {with(kGenerate, {"--set", R"(shapes=[{"kind": "ellipsoid", "center": [0, 0, 0], "size": [1e-4, 1e-4, 1e-4]}])",
+                        "-o", "{d}/o.vdb"}),
+       1, "the cloud has no voxel"},
+  });
+}
+
+TEST_F(HostileCli, RangesAreSaneBeforeAnyWork) {
+  expect_refused({
+      {with(kGenerate, {"--frames", "1-1000000", "-o", "{d}/o.vdb"}), 2, "add --many-frames"},
+      {with(kTinyClouds, {"--frames", "1-20000", "-o", "{d}/c.exr"}), 2, "add --many-frames"},
+      {{"render", "{d}/cloud.vdb", "--scene", "none", "--res", "8x8", "--frames", "1-2", "-o", "{d}/c.exr"}, 2,
+       "--frames: every frame would render the same FILE"},
+      {{"render", "{d}/cloud.vdb", "--grid", "nope", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 2,
+       "--grid"},
+      {{"info", "{d}/cloud.vdb", "--grid", "nope"}, 2, "--grid"},
+      // The wind carries the cloud 10^13 m away: the time is at fault, and the message says so.
+      {with(kCumulus, {"--time", "1e12", "-o", "{d}/o.vdb"}), 2, "at t = 1e+12 s (--time"},
+  });
+}
+
+TEST_F(HostileCli, OutputsAreCheckedBeforeTheWork) {
+  expect_refused({
+      {with(kGenerate, {"--params", "{d}/p.json", "-o", "{d}/p.json"}), 2, "-o '{d}/p.json': is also --params"},
+      {with(kGenerate, {"--params", "{d}/p.json", "-o", "{d}/sub/../p.json"}), 2, "is also --params '{d}/p.json'"},
+      {{"render", "{d}/cloud.exr", "--scene", "none", "--res", "8x8", "-o", "{d}/cloud.exr"}, 2, "is also FILE"},
+      {{"view", "--headless", "--script", "{d}/script.json", "--state-out", "{d}/script.json"}, 2,
+       "--state-out '{d}/script.json': is also --script"},
+      {{"noise", "--res", "4", "-o", "{d}/fifo"}, 1, "-o '{d}/fifo': is a FIFO; only a regular file is replaced"},
+      {{"noise", "--res", "4", "-o", "{d}/null.vdb"}, 1, "is a symbolic link; only a regular file is replaced"},
+      {{"noise", "--res", "4", "-o", "{d}/sub"}, 1, "-o '{d}/sub': is a directory"},
+      {with(kGenerate, {"-o", "{d}/file/o.vdb"}), 1, "-o '{d}/file/o.vdb': {d}/file is not a directory"},
+      // A scene render whose preview cannot be written: refused before rendering, so no EXR is
+      // left behind (it used to be written, and then the preview failed).
+      {with(kTinyScene, {"-o", "{d}/s.exr", "--preview", "{d}/file/s.png"}), 1, "--preview '{d}/file/s.png'"},
+      {with(kTinyClouds, {"-o", "{d}/c.exr", "--preview", "{d}/file/c.png"}), 1, "--preview '{d}/file/c.png'"},
+  });
+}
+
+// Values whose floats overflow on the GPU became NaN pixels reported by an internal stage ("cloud
+// slices: pixel (6, 2) channel R is NaN"), or, for the sun, a light volume that never finished:
+// now each flag is refused up front, naming itself.
+TEST_F(HostileCli, ExtremeValuesAreRefusedBeforeTheyBecomeNaN) {
+  expect_refused({
+      {with(kTinyClouds, {"--cloud-extinction", "1e300", "-o", "{d}/c.exr"}), 2, "--cloud-extinction: must be at most 1e12"},
+      {with(kTinyClouds, {"--ambient", "1e300,1,1", "-o", "{d}/c.exr"}), 2, "--ambient: '1e300,1,1' must be three numbers within +-1e12"},
+      {with(kTinyClouds, {"--lamp", "0,0.1,0", "--lamp-intensity", "1e38", "-o", "{d}/c.exr"}), 2,
+       "--lamp-intensity: '1e38' must be within +-1e12"},
+      {with(kTinyClouds, {"--sun", "1e300,1,1", "-o", "{d}/c.exr"}), 2, "--sun: '1e300,1,1' must be three numbers within +-1e12"},
+      {with(kTinyClouds, {"--eye", "1e300,0,0", "-o", "{d}/c.exr"}), 2, "--eye: '1e300,0,0' must be three numbers within +-1e12"},
+      {{"render", "--scene", "lamps", "--method", "raymarch:8", "--res", "16x16", "--extinction", "1e300", "-o", "{d}/s.exr"}, 2,
+       "--extinction: must be at most 1e12"},
+      {with(kTinyScene, {"--exposure", "1e300", "--preview", "{d}/s.png", "-o", "{d}/s.exr"}), 2,
+       "--exposure: must be in [-64, 64] stops"},
+  });
+}
+
+TEST_F(HostileCli, FloatOverflowIsRefusedNotDropped) {
+  expect_refused({
+      // cumulus-humilis has exponent 1.3: (1e30 x its peak)^1.3 is beyond a float; such voxels
+      // were written as 0, a hollow cloud.
+      {with(kCumulus, {"--set", "density=1e30", "--float", "-o", "{d}/o.vdb"}), 2, "density 1e+30 with exponent 1.3"},
+      {with(kCumulus, {"--set", "density=1e38", "--float", "-o", "{d}/o.vdb"}), 2, "beyond the float range"},
+  });
+}
+
+}  // namespace
+}  // namespace nimbus::test

@@ -75,7 +75,11 @@ int run_generate(const GenerateArgs& a) {
   }
 
   volume::GenerateOptions opt;
-  opt.voxel_size = doc.contains("voxel_size") ? volume::json_number(doc["voxel_size"], "voxel_size", 1e-9, 1e9) : 25.0;
+  try {
+    opt.voxel_size = volume::preset_voxel_size(doc, a.preset);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   if (a.voxel_size) opt.voxel_size = *a.voxel_size;
   // The model itself refuses what its parameters cannot give (densities beyond the float range).
   const volume::Aabb bounds = volume::CloudModel(params, opt.voxel_size, 0.0).bounds();

@@ -1,6 +1,6 @@
 // Fuzz target: the JSON parameter path of `nimbus generate --preset NAME --params FILE --set K=V`
 // (samples/cli/cmd_generate.cpp): load_preset, merge_params_file, set_key on "cloud",
-// cloud_from_json(doc.at("cloud")), doc.value("voxel_size", 25.0); and, for parameters that
+// cloud_from_json(doc.at("cloud")), preset_voxel_size(doc, preset); and, for parameters that
 // were accepted, cloud_to_json read back by cloud_from_json.
 //
 // Input layout (every byte sequence is valid):
@@ -34,7 +34,11 @@ using nimbus::fuzz::one_line;
 void expect_named(const std::invalid_argument& e, const std::string& step, std::string_view prefix) {
   const std::string_view what = e.what();
   if (!one_line(what)) contract_failure(step + ": the message is not one line: " + std::string(what));
-  if (what.substr(0, prefix.size()) != prefix)
+  // "--params FILE" or "--params 'FILE'": the file named, quoted or not.
+  std::string quoted(prefix);
+  if (const size_t space = quoted.find(' '); space != std::string::npos && quoted.rfind("--", 0) == 0)
+    quoted = quoted.substr(0, space + 1) + "'" + quoted.substr(space + 1) + "'";
+  if (what.substr(0, prefix.size()) != prefix && what.substr(0, quoted.size()) != quoted)
     contract_failure(step + ": the message does not start with '" + std::string(prefix) + "': " + std::string(what));
 }
 
@@ -99,13 +103,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   volume::CloudParams params;
   try {
     params = volume::cloud_from_json(doc.at("cloud"), preset);
-    const double voxel_size = doc.value("voxel_size", 25.0);  // as cmd_generate reads it
+    const double voxel_size = volume::preset_voxel_size(doc, preset);  // as cmd_generate reads it
     (void)voxel_size;
   } catch (const std::invalid_argument& e) {
     expect_named(e, "cloud_from_json", preset);
     return 0;
   } catch (const std::exception& e) {
-    wrong_type("cloud_from_json(doc.at(\"cloud\")) or doc.value(\"voxel_size\")", e);
+    wrong_type("cloud_from_json(doc.at(\"cloud\")) or preset_voxel_size", e);
   }
 
   // Accepted parameters written back as JSON (nimbus presets NAME, view states) read back.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "embedded_json.hpp"
@@ -16,6 +17,22 @@ namespace nimbus::volume {
 namespace {
 
 using json = nlohmann::json;
+
+// A key from a file as an error message may quote it: control characters escaped, at most 200
+// characters, so the message stays one readable line.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text.substr(0, 200)) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return text.size() > 200 ? out + "..." : out;
+}
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
 
@@ -81,7 +98,7 @@ Shape shape_from_json(const json& j, const std::string& where) {
       if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       s.roughness_seed = v.get<uint32_t>();
     }
-    else bad(key + ": unknown key");
+    else bad(printable(key) + ": unknown key");
   }
   validate(s, where);
   return s;
@@ -153,7 +170,7 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
         s.share = number(share, key + "." + name);
         f.species.push_back(s);
       }
-    } else bad(key + ": unknown key");
+    } else bad(printable(key) + ": unknown key");
   }
   validate(f, where);
   return f;
@@ -166,6 +183,11 @@ json field_to_json(const CloudFieldParams& f) {
           {"coverage", f.coverage}, {"size_exponent", f.size_exponent},
           {"min_diameter", f.min_diameter_m}, {"max_diameter", f.max_diameter_m},
           {"depth_scale", f.depth_scale}, {"roughness", f.roughness}, {"seed", f.seed}, {"species", species}};
+}
+
+double preset_voxel_size(const json& doc, const std::string& where) {
+  if (!doc.is_object() || !doc.contains("voxel_size")) return 25.0;
+  return json_number(doc["voxel_size"], where + ": voxel_size", 1e-6, 1e6);
 }
 
 CloudParams cloud_from_json(const json& c, const std::string& where) {
@@ -215,7 +237,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "evolution") p.evolution = number(v, key);
     else if (k == "temperature_base") p.temperature_base = number(v, key);
     else if (k == "temperature_height") p.temperature_height = number(v, key);
-    else bad(key + ": unknown key");
+    else bad(printable(key) + ": unknown key");
   }
   try {
     validate(p);
@@ -297,9 +319,9 @@ void set_key(json& cloud, std::string_view key_eq_value) {
     json* next = nullptr;
     if (node->is_object() && node->contains(part)) {
       next = &(*node)[part];
-    } else if (node->is_array() && !part.empty() && part.find_first_not_of("0123456789") == std::string::npos &&
-               std::stoul(part) < node->size()) {
-      next = &(*node)[std::stoul(part)];
+    } else if (node->is_array() && !part.empty() && part.size() <= 9 &&
+               part.find_first_not_of("0123456789") == std::string::npos && std::stoul(part) < node->size()) {
+      next = &(*node)[std::stoul(part)];  // at most 9 digits: no index can overflow
     }
     if (!next) bad("--set " + key + ": unknown key '" + part + "'");
     node = next;

@@ -4,10 +4,12 @@
 #include <openvdb/tools/ChangeBackground.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <variant>
 
+#include "nimbus/base/memory.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/up_axis.hpp"
@@ -55,7 +57,26 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
 
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
                             const CloudFileOptions& options) {
-  return make_cloud_volume(*load_cloud_grid(path, grid, up, nullptr, options), optics, path);
+  const openvdb::FloatGrid::Ptr g = load_cloud_grid(path, grid, up, nullptr, options);
+  // The grid's own errors (a box too large to copy densely, a frustum transform...) name the file.
+  CloudVolume c;
+  try {
+    c = make_cloud_volume(*g, optics, path);
+  } catch (const OutOfMemoryRequest& e) {
+    throw OutOfMemoryRequest(path + ": " + e.what());
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    throw std::invalid_argument(what.find(path) == std::string::npos ? path + ": " + what : what);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  // World extents a camera can frame: a voxel of 1e300 m once reached the camera as Inf.
+  constexpr double kMaxWorld = 1e8;  // metres
+  for (int a = 0; a < 3; ++a)
+    if (!(std::abs(c.world_min[a]) < kMaxWorld && std::abs(c.world_max[a]) < kMaxWorld))
+      throw std::runtime_error(path + ": its grid reaches beyond 1e8 m from the origin (voxel size " +
+                               std::to_string(g->voxelSize()[0]) + " m); not a cloud nimbus can frame");
+  return c;
 }
 
 PresetCloud load_preset_cloud(const std::string& name) {
@@ -63,7 +84,7 @@ PresetCloud load_preset_cloud(const std::string& name) {
   PresetCloud p;
   p.name = name;
   p.params = volume::cloud_from_json(doc.at("cloud"), name);
-  p.voxel_size_m = doc.value("voxel_size", 25.0);
+  p.voxel_size_m = volume::preset_voxel_size(doc, name);
   return p;
 }
 

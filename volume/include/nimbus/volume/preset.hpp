@@ -28,6 +28,10 @@ nlohmann::json load_preset(std::string_view name);
 // CloudParams from a "cloud" object. Every key must be known; a wrong type or range throws
 // std::invalid_argument naming the key (prefixed by `where`).
 CloudParams cloud_from_json(const nlohmann::json& cloud, const std::string& where);
+
+// A preset document's "voxel_size" in metres (25 when absent); std::invalid_argument naming
+// `where` unless it is a number in [1e-6, 1e6].
+double preset_voxel_size(const nlohmann::json& doc, const std::string& where);
 nlohmann::json cloud_to_json(const CloudParams& p);
 
 // --set key=value on a "cloud" object: key is a dot path (coverage, gas.exponent, wind,

@@ -18,10 +18,9 @@ std::string mib(std::uintmax_t bytes) { return std::to_string(bytes >> 20) + " M
 
 }  // namespace
 
-std::string read_regular_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
-  const std::string where = what + " '" + path + "'";
+std::string read_regular_file(const std::string& path, const std::string& where, std::uintmax_t max_bytes) {
   struct stat st {};
-  if (path.empty()) throw std::runtime_error(what + ": the file name is empty");
+  if (path.empty()) throw std::runtime_error(where + ": the file name is empty");
   if (::stat(path.c_str(), &st) != 0) throw std::runtime_error(where + ": cannot be read (" + std::strerror(errno) + ")");
   if (!S_ISREG(st.st_mode)) throw std::runtime_error(where + ": is " + file_kind(st.st_mode) + ", not a regular file");
   if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)

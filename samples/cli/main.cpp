@@ -2,10 +2,22 @@
 // naming the bad input.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli.hpp"
 #include "flag_checks.hpp"
 #include "nimbus/base/memory.hpp"
+
+namespace {
+
+// Every error is one line on stderr, whatever it quotes (a key or argument holding a line break).
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"nimbus: procedural cloud and gas volumes, and their renderer", "nimbus"};
@@ -38,23 +50,23 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "nimbus: %s\n", e.what());
+    std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;
   }
   try {
     nimbus::cli::refuse_empty_values(app);
     return action ? action() : 0;
   } catch (const nimbus::cli::UsageError& e) {
-    std::fprintf(stderr, "nimbus: %s\n", e.what());
+    std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;
   } catch (const nimbus::OutOfMemoryRequest& e) {
-    std::fprintf(stderr, "nimbus: %s\n", e.what());
+    std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;
   } catch (const std::invalid_argument& e) {  // parameter validation
-    std::fprintf(stderr, "nimbus: %s\n", e.what());
+    std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "nimbus: error: %s\n", e.what());
+    std::fprintf(stderr, "nimbus: error: %s\n", one_line(e.what()).c_str());
     return 1;
   }
 }

@@ -56,6 +56,7 @@ class HostileCli : public ::testing::Test {
     write_bytes(d / "null_coverage.json", R"({"coverage": null})");
     write_bytes(d / "abc_coverage.json", R"({"coverage": "abc"})");
     write_bytes(d / "abc_voxel.json", R"({"voxel_size": "abc", "cloud": {}})");
+    write_bytes(d / "key_break.json", R"({"a\nb": 1})");  // a key holding a line break
     write_bytes(d / "script.json", R"({"frames": 1})");
     write_bytes(d / "file", "a regular file, not a directory");
     write_bytes(d / "long_field.csv", "1,1,1,1," + std::string(100, 'x') + "\n");
@@ -122,8 +123,8 @@ TEST_F(HostileCli, InputFilesHaveSizeDepthAndKindLimits) {
       {with(kGenerate, {"--params", "{d}/deep.json", "-o", "{d}/o.vdb"}), 2, "nested deeper than 64 levels"},
       {with(kGenerate, {"--set", "coverage=" + std::string(100000, '['), "-o", "{d}/o.vdb"}), 2,
        "nested deeper than 64 levels"},
-      {with(kGenerate, {"--params", "{d}/sub", "-o", "{d}/o.vdb"}), 2, "--params '{d}/sub': is a directory"},
-      {with(kGenerate, {"--params", "{d}/fifo", "-o", "{d}/o.vdb"}), 2, "--params '{d}/fifo': is a FIFO"},
+      {with(kGenerate, {"--params", "{d}/sub", "-o", "{d}/o.vdb"}), 2, "--params {d}/sub: is a directory"},
+      {with(kGenerate, {"--params", "{d}/fifo", "-o", "{d}/o.vdb"}), 2, "--params {d}/fifo: is a FIFO"},
       {with(kGenerate, {"--params", "/dev/zero", "-o", "{d}/o.vdb"}), 2, "is a character device"},
       {{"render", "--view-state", "{d}/deep.json", "-o", "{d}/v.exr"}, 1, "nested deeper than 64 levels"},
       {{"render", "--view-state", "{d}/big.json", "-o", "{d}/v.exr"}, 1, "larger than the limit of 16 MiB"},
@@ -183,6 +184,9 @@ TEST_F(HostileCli, JsonNullsAndWrongTypesNameTheKey) {
        "coverage: expected a number, got \"abc\""},
       {with(kGenerate, {"--params", "{d}/abc_voxel.json", "-o", "{d}/o.vdb"}), 2, "voxel_size: expected a number"},
       {with(kGenerate, {"--set", "coverage=null", "-o", "{d}/o.vdb"}), 2, "--set coverage: null is not a value"},
+      {with(kGenerate, {"--params", "{d}/key_break.json", "-o", "{d}/o.vdb"}), 2, "steam.a?b: unknown key"},
+      {with(kGenerate, {"--set", "shapes.99999999999999999999=1", "-o", "{d}/o.vdb"}), 2,
+       "--set shapes.99999999999999999999: unknown key '99999999999999999999'"},
       {with(kGenerate, {"--set", "coverage=[1]", "-o", "{d}/o.vdb"}), 2, "coverage: expected a number, got an array"},
       {with(kGenerate, {"--set", "shapes=[{}]", "-o", "{d}/o.vdb"}), 2, "shapes[0].kind: missing"},
       // A shape far smaller than a voxel gives an empty grid, which is no result to write.

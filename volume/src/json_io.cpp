@@ -21,7 +21,7 @@ std::string range_text(double lo, double hi) {
 }  // namespace
 
 nlohmann::json read_json_file(const std::string& path, const std::string& what) {
-  const std::string text = read_regular_file(path, what);  // size and file kind limits
+  const std::string text = read_regular_file(path, what + " '" + path + "'");  // size and file kind limits
   check_json_depth(text, what + " '" + path + "'");         // before the recursive parser sees it
   try {
     return nlohmann::json::parse(text);

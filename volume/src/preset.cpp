@@ -2,6 +2,7 @@
 #include "nimbus/volume/preset.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -79,7 +80,7 @@ Shape shape_from_json(const json& j, const std::string& where) {
     if (!j.contains(k)) bad(where + "." + k + ": missing (a shape needs kind, center and size)");
   Shape s;
   for (const auto& [k, v] : j.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);  // a key read from a file: short, one line
     if (k == "kind") {
       const std::string n = v.is_string() ? v.get<std::string>() : "";
       if (n == "ellipsoid") s.kind = ShapeKind::Ellipsoid;
@@ -149,7 +150,7 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
   if (!j.is_object()) expected(where, "an object", j);
   CloudFieldParams f;
   for (const auto& [k, v] : j.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);  // a key read from a file: short, one line
     if (k == "center") f.center_m = vec2(v, key);
     else if (k == "size") f.size_m = vec2(v, key);
     else if (k == "coverage") f.coverage = number(v, key);
@@ -166,8 +167,8 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
       f.species.clear();
       for (const auto& [name, share] : v.items()) {
         SpeciesShare s;
-        if (!parse_species(name, &s.species)) bad(key + "." + name + ": unknown species (humilis, mediocris, congestus)");
-        s.share = number(share, key + "." + name);
+        if (!parse_species(name, &s.species)) bad(key + "." + echo(name) + ": unknown species (humilis, mediocris, congestus)");
+        s.share = number(share, key + "." + echo(name));
         f.species.push_back(s);
       }
     } else bad(printable(key) + ": unknown key");
@@ -194,7 +195,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
   if (!c.is_object()) expected(where, "an object", c);
   CloudParams p;
   for (const auto& [k, v] : c.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);  // a key read from a file: short, one line
     if (k == "shapes") {
       if (!v.is_array()) expected(key, "an array of shapes", v);
       for (size_t i = 0; i < v.size(); ++i) p.shapes.push_back(shape_from_json(v[i], key + "[" + std::to_string(i) + "]"));
@@ -285,11 +286,11 @@ json cloud_to_json(const CloudParams& p) {
 }
 
 // A JSON null would delete a parameter (merge_patch) or reach a check as a wrong type: refused,
-// naming where it is ("--params 'p.json': cloud.coverage: null is not a value"); `where` ends in ": ".
+// naming where it is ("--params p.json: cloud.coverage: null is not a value"); `where` ends in ": ".
 static void refuse_nulls(const json& j, const std::string& where, const std::string& path = "") {
   if (j.is_null()) bad(where + (path.empty() ? "" : path + ": ") + "null is not a value (give a value, or leave the key out)");
   if (j.is_object())
-    for (const auto& [k, v] : j.items()) refuse_nulls(v, where, path.empty() ? k : path + "." + k);
+    for (const auto& [k, v] : j.items()) refuse_nulls(v, where, path.empty() ? echo(k) : path + "." + echo(k));
   if (j.is_array())
     for (std::size_t i = 0; i < j.size(); ++i) refuse_nulls(j[i], where, path + "[" + std::to_string(i) + "]");
 }
@@ -319,9 +320,11 @@ void set_key(json& cloud, std::string_view key_eq_value) {
     json* next = nullptr;
     if (node->is_object() && node->contains(part)) {
       next = &(*node)[part];
-    } else if (node->is_array() && !part.empty() && part.size() <= 9 &&
-               part.find_first_not_of("0123456789") == std::string::npos && std::stoul(part) < node->size()) {
-      next = &(*node)[std::stoul(part)];  // at most 9 digits: no index can overflow
+    } else if (node->is_array()) {
+      std::size_t index = 0;
+      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), index);
+      if (!part.empty() && ec == std::errc() && end == part.data() + part.size() && index < node->size())
+        next = &(*node)[index];  // an index too large for any array, or for this one, is unknown
     }
     if (!next) bad("--set " + key + ": unknown key '" + part + "'");
     node = next;
@@ -332,17 +335,22 @@ void set_key(json& cloud, std::string_view key_eq_value) {
 }
 
 void merge_params_file(json& preset, const std::string& path) {
+  const std::string where = "--params " + path;  // every refusal starts so (tests/fuzz/fuzz_params.cpp)
   std::string text;
   try {
-    text = read_regular_file(path, "--params");  // a regular file within the size limit
-    check_json_depth(text, "--params '" + path + "'");
+    text = read_regular_file(path, where);  // a regular file within the size limit
+    check_json_depth(text, where);
   } catch (const std::runtime_error& e) {
     bad(e.what());
   }
-  const json j = parse(text, "--params '" + path + "'");
-  if (!j.is_object()) bad("--params '" + path + "': must hold a JSON object");
-  refuse_nulls(j, "--params '" + path + "': ");
-  if (j.contains("cloud") && !j["cloud"].is_object()) expected("--params '" + path + "': cloud", "an object", j["cloud"]);
+  const json j = parse(text, where);
+  if (!j.is_object()) bad(where + ": must hold a JSON object");
+  refuse_nulls(j, where + ": ");
+  if (j.contains("cloud") && !j["cloud"].is_object()) expected(where + ": cloud", "an object", j["cloud"]);
+  // A whole preset document: its voxel size is read as a number (nimbus generate), so check it here.
+  if (j.contains("cloud") && j.contains("voxel_size") &&
+      !(j["voxel_size"].is_number() && std::isfinite(j["voxel_size"].get<double>()) && j["voxel_size"].get<double>() > 0))
+    expected(where + ": voxel_size", "a number > 0 (metres)", j["voxel_size"]);
   if (j.contains("cloud")) {
     preset.merge_patch(j);
   } else {

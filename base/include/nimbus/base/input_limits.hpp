@@ -24,11 +24,12 @@ inline constexpr std::size_t kMaxStdinBytes = std::size_t{64} << 20;
 // A value echoed in an error message: at most this many characters, then "...".
 inline constexpr std::size_t kEchoChars = 40;
 
-// The whole of the regular file `path`. std::runtime_error "<what> '<path>': ..." when it is
-// missing, not a regular file (a directory, FIFO, device or socket: refused before it is
-// opened, so a FIFO cannot block), unreadable, or larger than `max_bytes` (checked from its size
-// before reading, and again while reading, for a file that grows).
-std::string read_regular_file(const std::string& path, const std::string& what,
+// The whole of the regular file `path`. std::runtime_error "<where>: ..." (`where` names the
+// file as its caller's messages do: "--params p.json", "sky file 'p.json'") when it is missing,
+// not a regular file (a directory, FIFO, device or socket: refused before it is opened, so a
+// FIFO cannot block), unreadable, or larger than `max_bytes` (checked from its size before
+// reading, and again while reading, for a file that grows).
+std::string read_regular_file(const std::string& path, const std::string& where,
                               std::uintmax_t max_bytes = kMaxInputFileBytes);
 
 // std::runtime_error "<what> '<path>': is a FIFO, not a regular file" when `path` exists and is

@@ -79,10 +79,22 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
     render::CloudFileOptions fo;
     fo.level_set_to_fog = a.level_set_to_fog;
     fo.warn = [](const std::string& text) { std::fprintf(stderr, "nimbus: warning: %s\n", text.c_str()); };
+    // Each error names the file it is about (some of the reader's do not: "a dense copy of grid
+    // 'density' ... exceeds any memory"), keeping its kind and so its exit code.
+    const auto named = [&](const std::exception& e) {
+      const std::string what = e.what();
+      return what.find(path) != std::string::npos ? what : "FILE '" + path + "': " + what;
+    };
     try {
       clouds.push_back(render::load_cloud_file(path, a.grid, up, optics, fo));
     } catch (const volume::GridNotFound& e) {
       throw UsageError(std::string("--grid: ") + e.what());  // as nimbus info reports it
+    } catch (const OutOfMemoryRequest& e) {
+      throw OutOfMemoryRequest(named(e));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(named(e));
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(named(e));
     }
   }
   for (const render::PresetCloud& preset : presets) {
@@ -442,14 +454,22 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     // Camera: framed on the clouds unless the flags place it, or the scene is made for its gas
     // (steam-lamp: its camera is aimed where the steam rises).
     render::Camera camera = base;
-    if (camera_args.eye.empty() && camera_args.look_at.empty() && !scene.cloud_extinction_per_m) {
+    const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !scene.cloud_extinction_per_m;
+    if (framed) {
       CameraArgs size_only;
       size_only.res = camera_args.res;
       size_only.fov_deg = camera_args.fov_deg;
       camera = render::frame_clouds(apply_camera_args(size_only, base), renderer.clouds(),
                                     !no_scene && scene.ground.has_value());
     }
-    camera = apply_camera_args(camera_args, camera);
+    try {
+      camera = apply_camera_args(camera_args, camera);
+    } catch (const UsageError& e) {
+      // A camera framed on clouds no camera can frame (a file whose voxels are 1e300 m) fails
+      // here: the file is at fault, not the flags.
+      if (!framed || !camera_args.up.empty()) throw;
+      throw std::runtime_error("framing the camera on " + describe_clouds(a, frame, sequence) + ": " + e.what());
+    }
     if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, renderer.clouds());
 
     if (render::is_cpu_method(fs.method))

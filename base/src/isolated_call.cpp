@@ -70,6 +70,9 @@ bool write_all(int fd, const char* data, size_t size) {
   timer.it_value.tv_sec = time_t(limits.seconds);
   timer.it_value.tv_usec = suseconds_t((limits.seconds - std::floor(limits.seconds)) * 1e6);
   if (timer.it_value.tv_sec == 0 && timer.it_value.tv_usec == 0) timer.it_value.tv_usec = 1;
+  // A crash ends the child plainly, for the parent to report: crash handlers inherited from the
+  // parent (a sanitizer's, a fuzzer's that saves the input as a "finding") must not run here.
+  for (const int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGTRAP}) signal(sig, SIG_DFL);
   signal(SIGALRM, SIG_DFL);
   signal(SIGXCPU, SIG_DFL);
   signal(SIGXFSZ, SIG_DFL);

@@ -30,10 +30,20 @@ nlohmann::json read_json_file(const std::string& path, const std::string& what) 
   }
 }
 
+namespace {
+
+// A value as a message quotes it; a string from a file or --set may hold bytes that are not
+// UTF-8, which nlohmann's plain dump() throws on (type_error.316): they are shown as U+FFFD.
+std::string quoted(const nlohmann::json& v) {
+  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+}  // namespace
+
 std::string json_value_text(const nlohmann::json& v) {
   if (v.is_array()) return "an array";
   if (v.is_object()) return "an object";
-  return echo(v.dump());
+  return echo(quoted(v));
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& doc, const std::string& what) {
@@ -50,7 +60,7 @@ double json_number(const nlohmann::json& v, const std::string& key, double lo, d
   if (!v.is_number()) throw std::invalid_argument(key + ": expected a number, got " + json_value_text(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) throw std::invalid_argument(key + " must be finite");
-  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
+  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + echo(quoted(v)));
   return x;
 }
 
@@ -58,7 +68,7 @@ int json_integer(const nlohmann::json& v, const std::string& key, int lo, int hi
   if (!v.is_number_integer())
     throw std::invalid_argument(key + ": expected a whole number, got " + json_value_text(v));
   const long long x = v.get<long long>();
-  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + v.dump());
+  if (x < lo || x > hi) throw std::invalid_argument(key + " must be in " + range_text(lo, hi) + ", got " + echo(quoted(v)));
   return static_cast<int>(x);
 }
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "embedded_json.hpp"
@@ -18,22 +17,6 @@ namespace nimbus::volume {
 namespace {
 
 using json = nlohmann::json;
-
-// A key from a file as an error message may quote it: control characters escaped, at most 200
-// characters, so the message stays one readable line.
-std::string printable(const std::string& text) {
-  std::string out;
-  for (const char c : text.substr(0, 200)) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return text.size() > 200 ? out + "..." : out;
-}
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
 
@@ -99,7 +82,7 @@ Shape shape_from_json(const json& j, const std::string& where) {
       if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       s.roughness_seed = v.get<uint32_t>();
     }
-    else bad(printable(key) + ": unknown key");
+    else bad(key + ": unknown key");
   }
   validate(s, where);
   return s;
@@ -171,7 +154,7 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
         s.share = number(share, key + "." + echo(name));
         f.species.push_back(s);
       }
-    } else bad(printable(key) + ": unknown key");
+    } else bad(key + ": unknown key");
   }
   validate(f, where);
   return f;
@@ -238,7 +221,7 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "evolution") p.evolution = number(v, key);
     else if (k == "temperature_base") p.temperature_base = number(v, key);
     else if (k == "temperature_height") p.temperature_height = number(v, key);
-    else bad(printable(key) + ": unknown key");
+    else bad(key + ": unknown key");
   }
   try {
     validate(p);

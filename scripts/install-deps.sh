@@ -12,6 +12,7 @@ packages=(
   libopenvdb-tools python3-openvdb
   libpng-dev openexr
   libimgui-dev xvfb xauth xdotool
+  munge slurmctld slurmd slurm-client
 )
 
 missing=()

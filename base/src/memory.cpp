@@ -55,4 +55,10 @@ void ensure_fits_in_memory(uint64_t count, uint64_t bytes_per_element, const std
   }
 }
 
+uint64_t peak_resident_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
 }  // namespace nimbus

@@ -24,6 +24,8 @@ void add_render_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_airlight_command(CLI::App& app, Action& action);
 void add_view_command(CLI::App& app, Action& action);
+void add_merge_command(CLI::App& app, Action& action);
+void add_farm_command(CLI::App& app, Action& action);
 
 // Benchmarks, each a `nimbus bench NAME` subcommand.
 void add_bench_noise(CLI::App& bench, Action& action);

@@ -12,6 +12,9 @@
 
 #include "cli.hpp"
 #include "frame_range.hpp"
+#include "sequence_path.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/volume/brick.hpp"
 #include "nimbus/base/memory.hpp"
 #include "outputs.hpp"
 #include "progress.hpp"
@@ -28,10 +31,8 @@ struct GenerateArgs {
   std::optional<uint32_t> seed;
   std::optional<double> voxel_size;
   std::optional<int> res;
-  std::optional<double> time;
-  std::string frames;
-  double fps = 24.0;
-  bool many_frames = false;
+  FrameArgs frame;
+  std::string brick;  // "I/N" or "I/AxBxC"
   std::vector<std::string> sets;
   std::string params;
   std::string up = "z";
@@ -39,12 +40,18 @@ struct GenerateArgs {
   std::string output;
 };
 
-// "name.vdb" + frame 12 -> "name.0012.vdb" (the frame number right before the extension).
-std::string frame_path(const std::string& out, int frame) {
-  const std::string stem = out.size() > 4 && out.substr(out.size() - 4) == ".vdb" ? out.substr(0, out.size() - 4) : out;
+// "--brick I/N": the brick's index and the layout text (N or AxBxC); UsageError when malformed.
+std::pair<int, std::string> parse_brick(const std::string& text) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,4})/(\d{1,4}(?:x\d{1,4}x\d{1,4})?))")))
+    throw UsageError("--brick: '" + echo(text) + "' must be I/N or I/AxBxC (brick I, 0-based, of N; e.g. 3/4 or 3/2x2x1)");
+  return {std::stoi(m[1]), m[2]};
+}
+
+std::string mib(double bytes) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, ".%04d.vdb", frame);
-  return stem + buf;
+  std::snprintf(buf, sizeof buf, "%.0f MiB", bytes / (1 << 20));
+  return buf;
 }
 
 int run_generate(const GenerateArgs& a) {
@@ -54,9 +61,17 @@ int run_generate(const GenerateArgs& a) {
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
   if (a.res && (*a.res < 1 || *a.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
-  const FrameRange range = parse_frames(a.time, a.frames, a.fps, a.many_frames);
+  const FrameRange range = parse_frames(a.frame);
   const int first = range.first, last = range.last;
   const bool sequence = range.sequence;
+  check_sequence_pattern("-o", a.output);
+  if (!sequence && has_frame_field(a.output))
+    throw UsageError("-o: '" + echo(a.output) + "' holds a frame field but no --frames was given");
+  std::optional<std::pair<int, std::string>> brick;
+  if (!a.brick.empty()) {
+    if (sequence) throw UsageError("--brick: a brick is of one time (--time), not of --frames");
+    brick = parse_brick(a.brick);
+  }
 
   nlohmann::json doc;
   try {
@@ -87,20 +102,46 @@ int run_generate(const GenerateArgs& a) {
     const glm::dvec3 e = bounds.hi - bounds.lo;
     opt.voxel_size = std::max({e.x, e.y, e.z}) / *a.res;
   }
+  // A brick: the field's index box at this time, cut as --brick asks.
+  std::optional<volume::BrickTag> tag;
+  if (brick) {
+    volume::BrickTag t;
+    opt.time = range.time(first);
+    try {
+      t.layout = volume::make_brick_layout(volume::density_index_box(params, opt.voxel_size, range.time(first)), brick->second);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--brick: ") + e.what() + " (at voxel size " + std::to_string(opt.voxel_size) + " m)");
+    }
+    if (brick->first >= t.layout.size())
+      throw UsageError("--brick: brick " + std::to_string(brick->first) + " of " + t.layout.text() + " does not exist (0-" +
+                       std::to_string(t.layout.size() - 1) + ")");
+    t.index = brick->first;
+    t.half_float = !a.full_float;
+    t.field_id = volume::field_identity(params, opt, a.up[0], t.half_float);
+    opt.clip = volume::brick_box(t.layout, t.index);
+    tag = t;
+  }
   std::vector<PathArg> outputs;
-  for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? frame_path(a.output, frame) : a.output});
+  for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
   check_outputs(outputs, {{"--params", a.params}});
+  if (tag) {
+    const openvdb::Coord d = opt.clip->dim();
+    std::printf("brick %d of %s: index box [%d %d %d .. %d %d %d], %d x %d x %d voxels, at most %s as dense floats\n",
+                tag->index, tag->layout.text().c_str(), opt.clip->min().x(), opt.clip->min().y(), opt.clip->min().z(),
+                opt.clip->max().x(), opt.clip->max().y(), opt.clip->max().z(), d.x(), d.y(), d.z(),
+                mib(double(d.x()) * d.y() * d.z() * sizeof(float)).c_str());
+  }
 
   volume::ExportInfo info;
   info.preset = a.preset;
   info.seed = params.seed;
   info.up_axis = a.up[0];
-  if (sequence) info.fps = a.fps;
+  if (sequence) info.fps = range.fps;
   volume::ExportOptions eo;
   eo.half_float = !a.full_float;
 
   for (int frame = first; frame <= last; ++frame) {
-    const double t = sequence ? frame / a.fps : a.time.value_or(0.0);
+    const double t = range.time(frame);
     opt.time = t;
     volume::GenerateStats stats;
     const auto start = std::chrono::steady_clock::now();
@@ -113,12 +154,13 @@ int run_generate(const GenerateArgs& a) {
     openvdb::FloatGrid::Ptr density;
     try {
       density = volume::generate_density(params, opt, &stats);
-    } catch (const OutOfMemoryRequest&) {
-      throw;
+    } catch (const OutOfMemoryRequest& e) {
+      if (tag) throw;
+      throw OutOfMemoryRequest(std::string(e.what()) + "; cut the field into bricks with --brick I/N (docs/farm.md)");
     } catch (const std::invalid_argument& e) {  // the parameters passed at time 0: the time is at fault
       throw UsageError("at " + time_text(t) + " (--time, --frames/--fps): " + e.what());
     }
-    if (stats.active_voxels == 0)
+    if (stats.active_voxels == 0 && !tag)
       throw std::runtime_error((sequence ? "frame " + std::to_string(frame) + ": " : std::string()) +
                                "the cloud has no voxel of density >= 1e-6 at voxel size " + std::to_string(opt.voxel_size) +
                                " m (shapes smaller than a voxel, or coverage, weight or density leave nothing); nothing written");
@@ -126,12 +168,16 @@ int run_generate(const GenerateArgs& a) {
     if (auto temperature = volume::generate_temperature(params, *density)) grids.push_back(temperature);
     info.time = t;
     info.frame = sequence ? frame : 0;
-    const std::string path = sequence ? frame_path(a.output, frame) : a.output;
+    if (tag) info.extra = volume::brick_metadata(*tag);
+    const std::string path = sequence ? sequence_path(a.output, frame) : a.output;
     volume::write_volume_vdb(path, grids, info, eo);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("wrote %s: %s, voxel %g m, %lld active voxels%s, t = %g s, octaves %d of %d, %.2f s\n",
                 path.c_str(), a.preset.c_str(), opt.voxel_size, static_cast<long long>(stats.active_voxels),
                 grids.size() > 1 ? " + temperature" : "", t, stats.octaves_used, stats.octaves_requested, secs);
+    if (tag)
+      std::printf("brick %d of %s: peak memory %s (resident, the whole process)\n", tag->index, tag->layout.text().c_str(),
+                  mib(double(peak_resident_bytes())).c_str());
   }
   return 0;
 }
@@ -145,10 +191,10 @@ void add_generate_command(CLI::App& app, Action& action) {
   cmd->add_option("--seed", a->seed, "random seed (default: the preset's)");
   cmd->add_option("--voxel-size", a->voxel_size, "voxel size in metres (default: the preset's)");
   cmd->add_option("--res", a->res, "voxels across the cloud's largest extent (instead of --voxel-size)");
-  cmd->add_option("--time", a->time, "time in seconds (wind and evolution)");
-  cmd->add_option("--frames", a->frames, "frames A-B, written as OUT.%04d.vdb; time = frame / fps");
-  cmd->add_option("--fps", a->fps, "frames per second for --frames")->capture_default_str();
-  cmd->add_flag("--many-frames", a->many_frames, "allow --frames to span more than 10000 frames");
+  add_frame_options(cmd, a->frame, "name.%04d.vdb");
+  cmd->add_option("--brick", a->brick,
+                  "only brick I (0-based) of N, or of AxBxC along x, y, z: 128-voxel-aligned boxes that nimbus merge "
+                  "joins (docs/farm.md)");
   cmd->add_option("--set", a->sets, "override a parameter: key=value (repeatable; nimbus presets show NAME)");
   cmd->add_option("--params", a->params, "JSON file of parameter overrides");
   cmd->add_option("--up", a->up, "up axis of the written file: z (Blender) or y (Houdini)")->capture_default_str();

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "frame_range.hpp"
+#include "sequence_path.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
@@ -30,26 +31,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// "name.exr" -> "name.0007.exr"; a pattern with a printf field ("name.%04d.exr") is used as is.
+// A sequence's file of `frame` (sequence_path.hpp); the name as it is for a single picture.
 std::string frame_path(const std::string& pattern, int frame, bool sequence) {
-  if (!sequence) return pattern;
-  char buf[4096];
-  if (pattern.find('%') != std::string::npos) {
-    std::snprintf(buf, sizeof buf, pattern.c_str(), frame);
-    return buf;
-  }
-  const std::size_t dot = pattern.rfind('.');
-  const std::size_t slash = pattern.rfind('/');
-  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
-  std::snprintf(buf, sizeof buf, ".%04d", frame);
-  return has_ext ? pattern.substr(0, dot) + buf + pattern.substr(dot) : pattern + buf;
-}
-
-void check_pattern(const std::string& flag, const std::string& p) {
-  const std::size_t n = std::count(p.begin(), p.end(), '%');
-  if (n == 0) return;
-  if (n != 1 || !std::regex_search(p, std::regex(R"(%0?\d*d)")))
-    throw UsageError(flag + ": '" + p + "' may hold one frame-number field such as %04d, and no other %");
+  return sequence ? sequence_path(pattern, frame) : pattern;
 }
 
 glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
@@ -71,11 +55,12 @@ glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
 // The clouds of one frame (library calls): files as they are, turned y-up, presets generated at
 // the frame's time, with their progress on stderr.
 std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std::vector<render::PresetCloud>& presets,
-                                             const render::CloudOptics& optics, int frame, bool sequence) {
+                                             const render::CloudOptics& optics, const FrameRange& range, int frame) {
+  const bool sequence = range.sequence;
   std::vector<render::CloudVolume> clouds;
   const render::UpAxis up = render::parse_up_axis(a.up);
   for (const std::string& pattern : a.files) {
-    const std::string path = frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos);
+    const std::string path = frame_path(pattern, frame, sequence && has_frame_field(pattern));
     render::CloudFileOptions fo;
     fo.level_set_to_fog = a.level_set_to_fog;
     fo.warn = [](const std::string& text) { std::fprintf(stderr, "nimbus: warning: %s\n", text.c_str()); };
@@ -100,7 +85,7 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
   for (const render::PresetCloud& preset : presets) {
     Progress progress("generating " + preset.name);
     std::mutex m;
-    const double time = sequence ? frame / a.fps : a.time.value_or(0.0);
+    const double time = range.time(frame);
     try {
       clouds.push_back(render::generate_preset_cloud(preset, a.voxel_size, time, optics, [&](double x) {
         std::lock_guard<std::mutex> lock(m);
@@ -120,7 +105,7 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
 std::string describe_clouds(const CloudRenderArgs& a, int frame, bool sequence) {
   std::string text;
   for (const std::string& f : a.files)
-    text += (text.empty() ? "" : ", ") + frame_path(f, frame, sequence && f.find('%') != std::string::npos);
+    text += (text.empty() ? "" : ", ") + frame_path(f, frame, sequence && has_frame_field(f));
   for (const std::string& p : a.presets) text += (text.empty() ? "--preset " : ", --preset ") + p;
   return text + (sequence ? " (frame " + std::to_string(frame) + ")" : "");
 }
@@ -136,10 +121,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_flag("--level-set-to-fog", a.level_set_to_fog,
                 "A level set (signed distance) in a file becomes a fog volume: 1 inside, 0 outside (else it is refused)");
   cmd->add_option("--voxel-size", a.voxel_size, "Voxel size of generated presets, metres (default: the preset's)");
-  cmd->add_option("--time", a.time, "Time of generated presets, seconds");
-  cmd->add_option("--frames", a.frames, "Frame range A-B: a sequence name.%04d.exr (presets at frame/fps)");
-  cmd->add_option("--fps", a.fps, "Frames per second of a sequence")->capture_default_str();
-  cmd->add_flag("--many-frames", a.many_frames, "Allow a sequence of more than 10000 frames");
+  add_frame_options(cmd, a.frame, "name.%04d.exr (presets generated at each frame's time)");
   cmd->add_option("--sun", a.sun, "Direction towards the sun X,Y,Z (replaces the scene's; adds one if it has none)");
   cmd->add_option("--lamp", a.lamps,
                   "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which light "
@@ -261,16 +243,16 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
   if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
     throw UsageError("--voxel-size: must be finite and > 0 (metres)");
-  const FrameRange range = parse_frames(a.time, a.frames, a.fps, a.many_frames);
+  const FrameRange range = parse_frames(a.frame);
   const int first = range.first, last = range.last;
   const bool sequence = range.sequence;
-  if (last > first && a.presets.empty() &&
+  if (range.whole_last > range.whole_first && a.presets.empty() &&
       std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
     throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
                      "name.%04d.vdb, or --preset (generated at each frame's time)");
-  check_pattern("-o", output);
-  if (!preview.empty()) check_pattern("--preview", preview);
-  for (const std::string& f : a.files) check_pattern("file", f);
+  check_sequence_pattern("-o", output);
+  if (!preview.empty()) check_sequence_pattern("--preview", preview);
+  for (const std::string& f : a.files) check_sequence_pattern("file", f);
   check_exposure(exposure);
   if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
 
@@ -425,7 +407,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     outputs.push_back({"-o", frame_path(output, frame, sequence)});
     if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, sequence)});
     for (const std::string& pattern : a.files)
-      inputs.push_back({"FILE", frame_path(pattern, frame, sequence && pattern.find('%') != std::string::npos)});
+      inputs.push_back({"FILE", frame_path(pattern, frame, sequence && has_frame_field(pattern))});
   }
   for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
   check_outputs(outputs, inputs);
@@ -449,7 +431,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
 
   for (int frame = first; frame <= last; ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    renderer.set_clouds(load_clouds(a, presets, optics, frame, sequence));
+    renderer.set_clouds(load_clouds(a, presets, optics, range, frame));
     const std::size_t n_clouds = renderer.clouds().size();
     // Camera: framed on the clouds unless the flags place it, or the scene is made for its gas
     // (steam-lamp: its camera is aimed where the steam rises).
@@ -487,7 +469,8 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (sequence) {
       image.metadata["frame"] = std::to_string(frame);
-      image.metadata["fps"] = std::to_string(a.fps);
+      image.metadata["fps"] = std::to_string(range.fps);
+      image.metadata["start_frame"] = std::to_string(range.start_frame);
     }
     const std::string out = frame_path(output, frame, sequence);
     render::PreviewOptions po;

@@ -1,6 +1,8 @@
 // "--frames A-B" (or one frame number) as the commands that write sequences read it.
 #pragma once
 #include <cmath>
+#include <cstdlib>
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <regex>
@@ -34,28 +36,106 @@ inline std::pair<int, int> parse_frame_range(const std::string& text) {
   return {first, last};
 }
 
-// --time T | --frames A-B [--fps F] as the sequence-writing commands take them: UsageError
-// naming the flag for a non-finite time, a bad fps, a bad range, a time with a range, or more
-// than kMaxFramesUnforced frames without `many_frames` (--many-frames).
-struct FrameRange {
-  int first = 0, last = 0;
-  bool sequence = false;  // --frames was given
+// How a sequence-writing command (generate, render) is told its frames:
+//   --time T                       one picture at T seconds, or
+//   --frames A-B [--fps F]         frames A..B, frame n at time (n - S) / F, where S is
+//   [--start-frame S]              --start-frame (default 0; 1001 is common in film work);
+//   [--frame-from-env VAR]         only the frames of task $VAR of a job array (0-based), each
+//   [--chunk K]                    task taking K consecutive frames (default 1).
+// Frame n depends on (parameters, seed, n) alone, so any task order gives the same files.
+struct FrameArgs {
+  std::optional<double> time;
+  std::string frames;
+  double fps = 24.0;
+  bool many_frames = false;
+  int start_frame = 0;
+  std::string frame_from_env;  // name of the environment variable holding the task id
+  int chunk = 1;
 };
-inline FrameRange parse_frames(const std::optional<double>& time, const std::string& frames, double fps,
-                               bool many_frames) {
-  if (time && !std::isfinite(*time)) throw UsageError("--time: must be finite (seconds)");
-  if (!(std::isfinite(fps) && fps > 0)) throw UsageError("--fps: must be finite and > 0");
+
+// The frames this run writes.
+struct FrameRange {
+  int first = 0, last = 0;  // this run's frames (a task's chunk, or all of --frames)
+  int whole_first = 0, whole_last = 0;  // all of --frames
+  bool sequence = false;    // --frames was given
+  int start_frame = 0;
+  double fps = 24.0;
+  double single_time = 0.0;  // --time (no sequence)
+  // Seconds of `frame`'s picture.
+  double time(int frame) const { return sequence ? double(frame - start_frame) / fps : single_time; }
+};
+
+// How many tasks of `chunk` frames cover first..last.
+inline long task_count(int first, int last, int chunk) { return (long(last) - first + chunk) / chunk; }
+
+// The task id in environment variable `var`: UsageError naming it when unset, empty or not a
+// non-negative integer.
+inline long task_id_from_env(const std::string& var) {
+  const char* v = std::getenv(var.c_str());
+  if (!v || !*v)
+    throw UsageError("--frame-from-env: " + var + " is not set (run this inside a job array task, or drop the flag)");
+  const std::string text(v);
+  if (text.size() > 9 || !std::regex_match(text, std::regex(R"(\d+)")))
+    throw UsageError("--frame-from-env: " + var + "='" + text.substr(0, 40) + "' is not a task id (an integer >= 0)");
+  return std::stol(text);
+}
+
+// UsageError naming the flag for a non-finite time, a bad fps, a bad range, a time with a range,
+// more than kMaxFramesUnforced frames without --many-frames, --frame-from-env or --chunk without
+// --frames, a chunk below 1, or a task id beyond the range's tasks.
+inline FrameRange parse_frames(const FrameArgs& a) {
+  if (a.time && !std::isfinite(*a.time)) throw UsageError("--time: must be finite (seconds)");
+  if (!(std::isfinite(a.fps) && a.fps > 0)) throw UsageError("--fps: must be finite and > 0");
+  if (a.chunk < 1) throw UsageError("--chunk: must be at least 1 frame");
+  if (std::abs(a.start_frame) > 9999999) throw UsageError("--start-frame: must be within +-9999999");
   FrameRange r;
-  r.sequence = !frames.empty();
-  if (r.sequence) {
-    if (time) throw UsageError("--time and --frames: give one, not both");
-    std::tie(r.first, r.last) = parse_frame_range(frames);
-    const long count = long(r.last) - r.first + 1;
-    if (count > kMaxFramesUnforced && !many_frames)
-      throw UsageError("--frames: " + frames + " is " + std::to_string(count) + " frames, more than " +
-                       std::to_string(kMaxFramesUnforced) + "; add --many-frames to write that many");
+  r.sequence = !a.frames.empty();
+  r.fps = a.fps;
+  r.start_frame = a.start_frame;
+  r.single_time = a.time.value_or(0.0);
+  if (!r.sequence) {
+    if (!a.frame_from_env.empty()) throw UsageError("--frame-from-env: needs --frames A-B (the whole sequence)");
+    if (a.chunk != 1) throw UsageError("--chunk: needs --frames A-B and --frame-from-env");
+    if (a.start_frame != 0) throw UsageError("--start-frame: needs --frames A-B");
+    return r;
   }
+  if (a.time) throw UsageError("--time and --frames: give one, not both");
+  std::tie(r.first, r.last) = parse_frame_range(a.frames);
+  r.whole_first = r.first;
+  r.whole_last = r.last;
+  const long count = long(r.last) - r.first + 1;
+  if (count > kMaxFramesUnforced && !a.many_frames)
+    throw UsageError("--frames: " + a.frames + " is " + std::to_string(count) + " frames, more than " +
+                     std::to_string(kMaxFramesUnforced) + "; add --many-frames to write that many");
+  if (a.frame_from_env.empty()) {
+    if (a.chunk != 1) throw UsageError("--chunk: needs --frame-from-env (a task of a job array)");
+    return r;
+  }
+  const long tasks = task_count(r.first, r.last, a.chunk);
+  const long task = task_id_from_env(a.frame_from_env);
+  if (task >= tasks)
+    throw UsageError("--frame-from-env: " + a.frame_from_env + "=" + std::to_string(task) + " is beyond the " +
+                     std::to_string(tasks) + " tasks of --frames " + a.frames + " in chunks of " +
+                     std::to_string(a.chunk) + " (task ids 0-" + std::to_string(tasks - 1) + ")");
+  const long first = r.first + task * a.chunk;
+  r.last = int(std::min<long>(r.last, first + a.chunk - 1));
+  r.first = int(first);
   return r;
+}
+
+// Registers --time, --frames, --fps, --many-frames, --start-frame, --frame-from-env and --chunk.
+inline void add_frame_options(CLI::App* cmd, FrameArgs& a, const std::string& what) {
+  cmd->add_option("--time", a.time, "time in seconds (wind and evolution)");
+  cmd->add_option("--frames", a.frames, "frames A-B, written as a sequence " + what +
+                                            " (a %04d field, or the frame before the extension)");
+  cmd->add_option("--fps", a.fps, "frames per second: frame n is at time (n - start frame) / fps")
+      ->capture_default_str();
+  cmd->add_flag("--many-frames", a.many_frames, "allow --frames to span more than 10000 frames");
+  cmd->add_option("--start-frame", a.start_frame, "the frame at time 0 (1001 is common)")->capture_default_str();
+  cmd->add_option("--frame-from-env", a.frame_from_env,
+                  "only the frames of the job-array task whose 0-based id is in this environment variable "
+                  "(e.g. SLURM_ARRAY_TASK_ID)");
+  cmd->add_option("--chunk", a.chunk, "frames per task with --frame-from-env")->capture_default_str();
 }
 
 }  // namespace nimbus::cli

@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   nimbus::cli::add_compare_command(app, action);
   nimbus::cli::add_airlight_command(app, action);
   nimbus::cli::add_view_command(app, action);
+  nimbus::cli::add_merge_command(app, action);
+  nimbus::cli::add_farm_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known |= sub->check_name(argv[1]);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "frame_range.hpp"
 #include "render_args.hpp"
 
 namespace nimbus::cli {
@@ -18,10 +19,7 @@ struct CloudRenderArgs {
   std::string up = "auto";           // up axis of the files: auto (their metadata, else y), y or z
   bool level_set_to_fog = false;     // a level set in a file becomes a fog volume (else refused)
   std::optional<double> voxel_size;  // metres, presets
-  std::optional<double> time;        // seconds, presets
-  std::string frames;                // A-B
-  double fps = 24.0;
-  bool many_frames = false;          // allow more than kMaxFramesUnforced frames
+  FrameArgs frame;                   // --time or --frames (presets at each frame's time)
   std::string sun;                   // direction towards the sun X,Y,Z
   std::vector<std::string> lamps;    // X,Y,Z of each lamp on the clouds (joins a scene's point lights)
   std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp

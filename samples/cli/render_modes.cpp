@@ -22,7 +22,8 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       // Clouds (add_cloud_render_options).
       {"file", clouds}, {"--preset", clouds}, {"--grid", clouds}, {"--up-axis", clouds}, {"--level-set-to-fog", clouds},
       {"--voxel-size", clouds}, {"--time", clouds}, {"--frames", clouds}, {"--fps", clouds},
-      {"--many-frames", clouds}, {"--sun", clouds}, {"--lamp", clouds}, {"--lamp-intensity", clouds},
+      {"--many-frames", clouds}, {"--start-frame", clouds},
+      {"--frame-from-env", clouds}, {"--chunk", clouds}, {"--sun", clouds}, {"--lamp", clouds}, {"--lamp-intensity", clouds},
       {"--spot", clouds}, {"--spot-cone", clouds}, {"--max-lights", clouds}, {"--slices", clouds},
       {"--light-res", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
       {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},

@@ -30,6 +30,16 @@ int64_t to_index(double world, double voxel, bool up) {
 
 }  // namespace
 
+openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time) {
+  const Aabb b = CloudModel(params, voxel_size, time).bounds();
+  openvdb::Coord lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = int(to_index(b.lo[a], voxel_size, false));
+    hi[a] = int(to_index(b.hi[a], voxel_size, true));
+  }
+  return {lo, hi};
+}
+
 openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& o,
                                          GenerateStats* stats) {
   static std::once_flag once;

@@ -168,14 +168,15 @@ void FrameRenderer::set_settings(const FrameSettings& settings) {
 
 namespace {
 
-// The image metadata's "light_volume": its grid, photons, seed, lobes, fits and build time.
+// The image metadata's "light_volume": its grid, photons, seed, lobes and fits. No build time: a
+// frame's file depends on its inputs alone, byte for byte, whoever renders it when (docs/farm.md).
 std::string describe_light_volume(const LightVolume& v) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
-                "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, %d lobe orders, %s, built on the CPU in %.3f s",
+                "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, %d lobe orders, %s, built on the CPU",
                 v.size[0], v.size[1], v.size[2], v.cell_m.x, v.cell_m.y, v.cell_m.z, static_cast<long long>(v.photons),
                 static_cast<unsigned long long>(v.seed), v.lobes.empty() ? 0 : v.lobe_orders,
-                v.gradient.empty() ? "no fits" : "linear fits", v.build_seconds);
+                v.gradient.empty() ? "no fits" : "linear fits");
   return buf;
 }
 

@@ -15,6 +15,9 @@ struct OutOfMemoryRequest : std::invalid_argument {
 // more than its address-space limit (RLIMIT_AS) leaves it.
 uint64_t available_memory_bytes();
 
+// The most resident memory this process has held so far, bytes (getrusage's ru_maxrss).
+uint64_t peak_resident_bytes();
+
 // Throws OutOfMemoryRequest naming `what` when `bytes` exceeds 80 % of available memory, or
 // when the element count overflows.
 void ensure_fits_in_memory(uint64_t count, uint64_t bytes_per_element, const std::string& what);

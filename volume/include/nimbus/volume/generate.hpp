@@ -45,6 +45,11 @@ struct GenerateStats {
 openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& options,
                                          GenerateStats* stats = nullptr);
 
+// The index box (inclusive) that generate_density fills before any clip: every voxel whose centre
+// lies in the model's bounds at `time`, at `voxel_size` metres (octaves limited as the options'
+// default). Throws std::invalid_argument for bad parameters or an index beyond 2^30.
+openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time);
+
 // The temperature grid "temperature" of a hot gas, on exactly the density grid's active
 // voxels and transform (see CloudParams::temperature_height); nullptr when the parameters
 // ask for none. Values in [0, 1].

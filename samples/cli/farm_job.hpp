@@ -1,0 +1,52 @@
+// A farm job: a nimbus command cut into job-array tasks (frames in chunks, or bricks), the
+// files each task must leave, and the scripts a scheduler runs. `nimbus farm slurm` writes and
+// submits it; `nimbus farm check` reads it back and lists what is missing or unreadable.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace nimbus::cli {
+
+struct FarmTask {
+  std::vector<std::string> outputs;  // files the task writes, as the command names them
+  std::string what;                  // "frames 1001-1004", "brick 3 of 2x2x1"
+};
+
+struct FarmJob {
+  std::string kind;                  // "frames" or "bricks"
+  std::string nimbus;                // absolute path of the nimbus program the tasks run
+  std::string workdir;               // absolute; relative paths in the command are from here
+  std::string dir;                   // absolute job directory: scripts, job.json, logs/, bricks/
+  std::vector<std::string> command;  // the nimbus command and its arguments, as given
+  int chunk = 1;                     // frames per task
+  std::string bricks;                // layout text for --brick, bricks only ("4", "2x2x1")
+  std::string merge_output;          // bricks only: the joined file (the command's -o)
+  std::vector<FarmTask> tasks;
+};
+
+// The job for `command` (generate or render with --frames A-B; or generate with `bricks` set).
+// Throws UsageError naming what is wrong: another command, no -o, no --frames for frames,
+// --frames with bricks, or flags the farm sets itself (--frame-from-env, --chunk, --brick).
+FarmJob plan_farm_job(const std::vector<std::string>& command, int chunk, const std::string& bricks,
+                      const std::filesystem::path& dir);
+
+// job.json in the job directory: written atomically; read back with every field checked
+// (std::runtime_error naming the file).
+void write_farm_job(const FarmJob& job);
+FarmJob read_farm_job(const std::filesystem::path& dir);
+
+// The task's command line: the frames of task $SLURM_ARRAY_TASK_ID, or its brick, as arguments.
+std::vector<std::string> task_arguments(const FarmJob& job);
+
+// What is wrong with task `index`'s outputs: one line per missing, empty or unreadable file
+// (VDB: nimbus's seal and grids; EXR: the whole image; PNG: its signature). Empty when complete.
+std::vector<std::string> check_task_outputs(const FarmJob& job, int index);
+
+// A path of the job as the tasks see it: absolute ones as they are, others from job.workdir.
+std::filesystem::path job_path(const FarmJob& job, const std::string& path);
+
+// Single-quoted for a POSIX shell.
+std::string shell_quote(const std::string& text);
+
+}  // namespace nimbus::cli

@@ -135,6 +135,13 @@ int run_slurm(const SlurmArgs& a) {
   for (const auto& [flag, v] : {std::pair{"--partition", a.partition}, {"--mem", a.mem}, {"--time-limit", a.time_limit}})
     if (v.find_first_of(" \t\n'\"\\$`;") != std::string::npos)
       throw UsageError(std::string(flag) + ": '" + echo(v) + "' holds a character Slurm options do not");
+  // Paths go into #SBATCH lines, which split at white space and read % as a file-name pattern.
+  auto sbatch_safe = [](const std::string& p) { return p.find_first_of(" \t\n\r%'\"\\$`") == std::string::npos; };
+  if (!sbatch_safe(a.dir))
+    throw UsageError("--dir: '" + echo(a.dir) + "' holds white space, %, a quote, \\, $ or `, which #SBATCH lines cannot carry");
+  if (!sbatch_safe(std::filesystem::current_path().string()))
+    throw UsageError("the working directory '" + echo(std::filesystem::current_path().string()) +
+                     "' holds white space, %, a quote, \\, $ or `, which #SBATCH --chdir cannot carry; run from another");
   const FarmJob job = plan_farm_job(a.command, a.chunk, a.bricks, a.dir);
   const std::filesystem::path dir(job.dir);
   std::filesystem::create_directories(dir / "logs");

@@ -225,6 +225,11 @@ TEST(FarmCli, CommandsTheFarmCannotCutAreUsageErrors) {
     EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(d / "job"));
+  const auto spaced = run_nimbus("farm slurm --dry-run --dir '" + (d / "a job").string() +
+                                 "' -- generate --preset cumulus-humilis --frames 1-2 -o f.vdb");
+  EXPECT_EQ(spaced.code, 2) << spaced.output;
+  EXPECT_NE(spaced.output.find("--dir: '"), std::string::npos) << spaced.output;
+  EXPECT_FALSE(fs::exists(d / "a job"));
   const auto r = run_nimbus("farm check " + (d / "nothing").string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("job.json"), std::string::npos) << r.output;

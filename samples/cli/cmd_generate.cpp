@@ -110,7 +110,9 @@ int run_generate(const GenerateArgs& a) {
     try {
       t.layout = volume::make_brick_layout(volume::density_index_box(params, opt.voxel_size, range.time(first)), brick->second);
     } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--brick: ") + e.what() + " (at voxel size " + std::to_string(opt.voxel_size) + " m)");
+      char vs[32];
+      std::snprintf(vs, sizeof vs, "%g", opt.voxel_size);
+      throw UsageError(std::string("--brick: ") + e.what() + " (at voxel size " + vs + " m)");
     }
     if (brick->first >= t.layout.size())
       throw UsageError("--brick: brick " + std::to_string(brick->first) + " of " + t.layout.text() + " does not exist (0-" +

@@ -1,0 +1,16 @@
+// What a sanitized build changes for tests of memory limits.
+#pragma once
+
+namespace nimbus::test {
+
+// Under AddressSanitizer a failed operator new aborts the process (SIGABRT with the tests'
+// ASAN_OPTIONS abort_on_error=1) where glibc's throws std::bad_alloc, whatever
+// allocator_may_return_null says (google/sanitizers#295). A child stopped at its memory limit then
+// ends as a crash rather than as an out-of-memory answer: stopped all the same.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kFailedNewAborts = true;
+#else
+inline constexpr bool kFailedNewAborts = false;
+#endif
+
+}  // namespace nimbus::test

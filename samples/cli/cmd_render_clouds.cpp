@@ -253,6 +253,9 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   check_sequence_pattern("-o", output);
   if (!preview.empty()) check_sequence_pattern("--preview", preview);
   for (const std::string& f : a.files) check_sequence_pattern("file", f);
+  if (!sequence)  // a frame field is filled only in a sequence; alone it would name a file "%04d"
+    for (const auto& [flag, p] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
+      if (has_frame_field(p)) throw UsageError(flag + ": '" + echo(p) + "' holds a frame field but no --frames was given");
   check_exposure(exposure);
   if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
 

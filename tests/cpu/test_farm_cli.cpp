@@ -57,6 +57,10 @@ TEST(FarmCli, GenerateAndRenderNameSequencesAlike) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(d / "r.0007.exr"));
   EXPECT_TRUE(fs::exists(d / "p.0007.exr"));
+  // A frame field without --frames would name a file "%04d": refused by both commands.
+  r = run_nimbus("render --preset cumulus-humilis --voxel-size 40 --res 32x24 -o " + (d / "one.%04d.exr").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("holds a frame field but no --frames"), std::string::npos) << r.output;
   int files = 0;
   for (const auto& e : fs::directory_iterator(d)) {
     EXPECT_EQ(e.path().filename().string().find('%'), std::string::npos) << e.path();

@@ -171,6 +171,9 @@ FarmJob read_farm_job(const std::filesystem::path& dir) {
 
 std::vector<std::string> check_task_outputs(const FarmJob& job, int index) {
   std::vector<std::string> problems;
+  // job.json is written when the job is submitted: an output older than it is from an earlier run.
+  std::error_code job_ec;
+  const auto submitted = std::filesystem::last_write_time(std::filesystem::path(job.dir) / "job.json", job_ec);
   for (const std::string& out : job.tasks.at(std::size_t(index)).outputs) {
     const std::filesystem::path p = job_path(job, out);
     std::error_code ec;
@@ -180,6 +183,10 @@ std::vector<std::string> check_task_outputs(const FarmJob& job, int index) {
     }
     if (std::filesystem::file_size(p, ec) == 0) {
       problems.push_back("empty " + out);
+      continue;
+    }
+    if (!job_ec && std::filesystem::last_write_time(p, ec) < submitted) {
+      problems.push_back("stale " + out + " (written before this job)");
       continue;
     }
     const std::string ext = p.extension().string();

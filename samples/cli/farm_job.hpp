@@ -39,8 +39,9 @@ FarmJob read_farm_job(const std::filesystem::path& dir);
 // The task's command line: the frames of task $SLURM_ARRAY_TASK_ID, or its brick, as arguments.
 std::vector<std::string> task_arguments(const FarmJob& job);
 
-// What is wrong with task `index`'s outputs: one line per missing, empty or unreadable file
-// (VDB: nimbus's seal and grids; EXR: the whole image; PNG: its signature). Empty when complete.
+// What is wrong with task `index`'s outputs: one line per missing, empty, stale (older than the
+// job's job.json: left by an earlier run) or unreadable file (VDB: nimbus's seal and grids; EXR:
+// the whole image; PNG: its signature). Empty when complete.
 std::vector<std::string> check_task_outputs(const FarmJob& job, int index);
 
 // A path of the job as the tasks see it: absolute ones as they are, others from job.workdir.

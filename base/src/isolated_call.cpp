@@ -1,6 +1,6 @@
-// A forked, rlimited child for untrusted parsing (isolated_call.hpp). The answer travels through
-// an anonymous memory file (memfd): the child writes it whole and exits, the parent reads it
-// after waitpid, so neither side waits on the other's pipe.
+// The caller's side of an isolated call (isolated_call.hpp): fork, then only system calls until
+// exec. The answer travels through an anonymous memory file (memfd): the program writes it whole
+// and exits, the caller reads it after waitpid, so neither side waits on the other's pipe.
 #include "nimbus/base/isolated_call.hpp"
 
 #include <fcntl.h>
@@ -16,90 +16,95 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <new>
 
+#include "isolated_protocol.hpp"
 #include "nimbus/base/memory.hpp"
 
 namespace nimbus {
 namespace {
 
-// Status byte that starts the child's memory file.
-constexpr char kAnswer = 'K', kError = 'E', kNoMemory = 'M';
+using namespace isolated;
 
-uint64_t address_space_in_use() {
-  std::ifstream in("/proc/self/statm");
-  uint64_t pages = 0;
-  in >> pages;
-  return pages * uint64_t(sysconf(_SC_PAGE_SIZE));
+// Lowers a limit, never raises it: a limit the process inherited (ulimit, a batch system) stays.
+bool lower(int resource, rlim_t value) {
+  rlimit r{};
+  if (getrlimit(resource, &r) != 0) return false;
+  if (r.rlim_max != RLIM_INFINITY && r.rlim_max < value) value = r.rlim_max;
+  if (r.rlim_cur != RLIM_INFINITY && r.rlim_cur < value) value = r.rlim_cur;
+  r.rlim_cur = value;
+  return setrlimit(resource, &r) == 0;
 }
 
-bool write_all(int fd, const char* data, size_t size) {
-  while (size > 0) {
-    const ssize_t n = write(fd, data, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    data += n;
-    size -= size_t(n);
-  }
-  return true;
+// Reports errno through the answer file and ends the forked child.
+[[noreturn]] void not_started(int answer_fd, int err) {
+  char text[16];
+  int n = 0;
+  for (int e = err > 0 ? err : 0; n == 0 || e > 0; e /= 10) text[n++] = char('0' + e % 10);
+  const char status = kExecFailed;
+  (void)!write(answer_fd, &status, 1);
+  while (n > 0) (void)!write(answer_fd, &text[--n], 1);
+  _exit(127);
 }
 
-[[noreturn]] void run_child(int fd, const IsolationLimits& limits, uint64_t address_space,
-                            const std::function<void(std::string&)>& work) {
-  // Quiet: the parent prints the one error line. OpenVDB's warnings would add more.
-  const int null = open("/dev/null", O_WRONLY);
-  if (null >= 0) {
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDERR_FILENO);
+// The forked child: async-signal-safe calls only (the caller's other threads may hold any lock),
+// then the program. Anything that fails before exec is reported through the answer file.
+[[noreturn]] void start_program(int answer_fd, const char* program, char* const* argv, const IsolationLimits& limits) {
+  const auto fail = [&](int err) { not_started(answer_fd, err); };
+  // Quiet: the caller prints the one error line. OpenVDB's warnings would add more.
+  const int null = open("/dev/null", O_RDWR);
+  if (null < 0 || dup2(null, STDIN_FILENO) < 0 || dup2(null, STDOUT_FILENO) < 0 || dup2(null, STDERR_FILENO) < 0)
+    fail(errno);
+  if (answer_fd == kAnswerFd ? fcntl(answer_fd, F_SETFD, 0) < 0 : dup2(answer_fd, kAnswerFd) < 0) fail(errno);
+  answer_fd = kAnswerFd;
+  // Nothing else of the caller's reaches the program: files, sockets, pipes.
+  if (close_range(kAnswerFd + 1, ~0U, 0) != 0) {
+    rlimit files{};
+    getrlimit(RLIMIT_NOFILE, &files);
+    for (rlim_t fd = kAnswerFd + 1; fd < std::min<rlim_t>(files.rlim_cur, 1 << 20); ++fd) close(int(fd));
   }
-  // Only ever lowered: a limit the process inherited (ulimit, a batch system) stays in force.
-  const auto lower = [](int resource, rlim_t value) {
-    rlimit r{};
-    if (getrlimit(resource, &r) != 0) return false;
-    if (r.rlim_max != RLIM_INFINITY && r.rlim_max < value) value = r.rlim_max;
-    if (r.rlim_cur != RLIM_INFINITY && r.rlim_cur < value) value = r.rlim_cur;
-    r.rlim_cur = value;
-    return setrlimit(resource, &r) == 0;
-  };
-  if (!lower(RLIMIT_AS, address_space + limits.memory_bytes) || !lower(RLIMIT_FSIZE, limits.memory_bytes + 4096) ||
-      !lower(RLIMIT_CPU, rlim_t(std::ceil(limits.seconds)) + 1))
-    _exit(5);
-  itimerval timer{};
+  if (!lower(RLIMIT_FSIZE, limits.memory_bytes + 4096) || !lower(RLIMIT_CPU, rlim_t(std::ceil(limits.seconds)) + 1) ||
+      !lower(RLIMIT_CORE, 0))
+    fail(errno);
+  // A crash, the timer and the limits end the program plainly, for the caller to report, even if
+  // the caller ignores or blocks these signals (exec keeps both).
+  struct sigaction plain {};
+  plain.sa_handler = SIG_DFL;
+  for (int sig = 1; sig < NSIG; ++sig)
+    if (sig != SIGKILL && sig != SIGSTOP) sigaction(sig, &plain, nullptr);
+  sigset_t none;
+  sigemptyset(&none);
+  sigprocmask(SIG_SETMASK, &none, nullptr);
+  itimerval timer{};  // kept across exec
   timer.it_value.tv_sec = time_t(limits.seconds);
   timer.it_value.tv_usec = suseconds_t((limits.seconds - std::floor(limits.seconds)) * 1e6);
   if (timer.it_value.tv_sec == 0 && timer.it_value.tv_usec == 0) timer.it_value.tv_usec = 1;
-  // A crash ends the child plainly, for the parent to report: crash handlers inherited from the
-  // parent (a sanitizer's, a fuzzer's that saves the input as a "finding") must not run here.
-  for (const int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGTRAP}) signal(sig, SIG_DFL);
-  signal(SIGALRM, SIG_DFL);
-  signal(SIGXCPU, SIG_DFL);
-  signal(SIGXFSZ, SIG_DFL);
-  setitimer(ITIMER_REAL, &timer, nullptr);
-
-  std::string answer, error;
-  char status = kAnswer;
-  try {
-    work(answer);
-  } catch (const std::bad_alloc&) {
-    status = kNoMemory;
-  } catch (const std::exception& e) {
-    status = kError;
-    error = e.what();
-  } catch (...) {
-    status = kError;
-    error = "unknown error";
-  }
-  if (status != kAnswer) answer = std::string();
-  const std::string& body = status == kError ? error : answer;
-  _exit(write_all(fd, &status, 1) && write_all(fd, body.data(), body.size()) ? 0 : 4);
+  if (setitimer(ITIMER_REAL, &timer, nullptr) != 0) fail(errno);
+  execv(program, argv);
+  not_started(answer_fd, errno);
 }
 
 std::string gib(uint64_t bytes) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2g GiB", double(bytes) / double(uint64_t(1) << 30));
   return buf;
+}
+
+std::string read_answer(int fd) {
+  std::string bytes;
+  struct stat st {};
+  if (fstat(fd, &st) != 0 || st.st_size <= 0) return bytes;
+  bytes.resize(size_t(st.st_size));
+  size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t n = pread(fd, bytes.data() + got, bytes.size() - got, off_t(got));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += size_t(n);
+  }
+  bytes.resize(got);
+  return bytes;
 }
 
 }  // namespace
@@ -110,21 +115,32 @@ uint64_t isolation_memory_for_file(uint64_t file_bytes) {
   return std::max(uint64_t(256) << 20, std::min(want, available_memory_bytes() / 3));
 }
 
-std::string call_isolated(const IsolationLimits& limits, const std::function<void(std::string& answer)>& work) {
+std::string call_isolated(const IsolationLimits& limits, const std::filesystem::path& program,
+                          const std::vector<std::string>& args) {
   if (!(limits.seconds > 0.0 && limits.seconds < 1e7) || limits.memory_bytes == 0)
     throw std::invalid_argument("isolated call: the limits must be > 0");
-  const int fd = memfd_create("nimbus-isolated-answer", MFD_CLOEXEC);
+  // Everything the child needs is made here: after fork it may not allocate.
+  std::vector<std::string> words{program.string(), kMarker, std::to_string(limits.memory_bytes)};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+
+  int fd = memfd_create("nimbus-isolated-answer", MFD_CLOEXEC);
   if (fd < 0) throw std::runtime_error(std::string("cannot create the reader's memory file: ") + std::strerror(errno));
-  const uint64_t address_space = address_space_in_use();
-  std::fflush(stdout);
-  std::fflush(stderr);
+  if (fd <= STDERR_FILENO) {  // the child's standard streams must not land on it
+    const int moved = fcntl(fd, F_DUPFD_CLOEXEC, kAnswerFd);
+    close(fd);
+    if (moved < 0) throw std::runtime_error(std::string("cannot place the reader's memory file: ") + std::strerror(errno));
+    fd = moved;
+  }
   const pid_t pid = fork();
   if (pid < 0) {
     const int err = errno;
     close(fd);
     throw std::runtime_error(std::string("cannot start the reader's process: ") + std::strerror(err));
   }
-  if (pid == 0) run_child(fd, limits, address_space, work);
+  if (pid == 0) start_program(fd, words[0].c_str(), argv.data(), limits);
 
   int wstatus = 0;
   while (waitpid(pid, &wstatus, 0) < 0)
@@ -132,22 +148,12 @@ std::string call_isolated(const IsolationLimits& limits, const std::function<voi
       close(fd);
       throw std::runtime_error(std::string("lost the reader's process: ") + std::strerror(errno));
     }
-  std::string bytes;
-  struct stat st {};
-  if (fstat(fd, &st) == 0 && st.st_size > 0) {
-    bytes.resize(size_t(st.st_size));
-    size_t got = 0;
-    while (got < bytes.size()) {
-      const ssize_t n = pread(fd, bytes.data() + got, bytes.size() - got, off_t(got));
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      got += size_t(n);
-    }
-    bytes.resize(got);
-  }
+  std::string bytes = read_answer(fd);
   close(fd);
 
   using R = IsolatedCallFailed::Reason;
+  if (!bytes.empty() && bytes[0] == kExecFailed)
+    throw std::runtime_error("cannot start " + program.string() + ": " + std::strerror(std::atoi(bytes.c_str() + 1)));
   const std::string limit_text = " (the reader's limits: " + gib(limits.memory_bytes) + ", " +
                                  std::to_string(int(std::ceil(limits.seconds))) + " s)";
   if (WIFSIGNALED(wstatus)) {

@@ -1,14 +1,18 @@
-// The isolated child (base/isolated_call.hpp): whatever the work does (crash, abort, allocate
-// without end, loop for ever, throw), the caller gets its answer or a clear IsolatedCallFailed
-// with the right reason, and goes on.
+// The isolated call (base/isolated_call.hpp): whatever the program does (crash, abort, allocate
+// without end, loop for ever, throw, write to its output), the caller gets its answer or a clear
+// IsolatedCallFailed with the right reason, and goes on. The program is a fresh process: nothing
+// of the caller's (descriptors, blocked or ignored signals, raised limits) reaches it. The
+// program here is tests/programs/isolated_probe.cpp.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <csignal>
-#include <fstream>
 #include <cstdlib>
+#include <fstream>
 #include <vector>
 
 #include "nimbus/base/isolated_call.hpp"
@@ -29,10 +33,14 @@ IsolationLimits small_limits(double seconds = 60.0) {
   return l;
 }
 
-// Runs `work` isolated and returns the failure's reason and message; fails the test if it answered.
-std::pair<Reason, std::string> failure_of(const IsolationLimits& limits, const std::function<void(std::string&)>& work) {
+std::string probe(const IsolationLimits& limits, const std::vector<std::string>& args) {
+  return call_isolated(limits, NIMBUS_ISOLATED_PROBE, args);
+}
+
+// Runs the probe and returns the failure's reason and message; fails the test if it answered.
+std::pair<Reason, std::string> failure_of(const IsolationLimits& limits, const std::vector<std::string>& args) {
   try {
-    call_isolated(limits, work);
+    probe(limits, args);
   } catch (const IsolatedCallFailed& e) {
     return {e.reason, e.what()};
   }
@@ -42,34 +50,27 @@ std::pair<Reason, std::string> failure_of(const IsolationLimits& limits, const s
 
 TEST(IsolatedCall, AnswerComesBackWhole) {
   // 8 MiB of every byte value, including NUL and the status bytes the protocol uses.
-  const std::string answer = call_isolated(small_limits(), [](std::string& out) {
-    out.resize(size_t(8) << 20);
-    for (size_t i = 0; i < out.size(); ++i) out[i] = char((i * 2654435761u) >> 13);
-  });
+  const std::string answer = probe(small_limits(), {"pattern", std::to_string(size_t(8) << 20)});
   ASSERT_EQ(answer.size(), size_t(8) << 20);
   for (size_t i = 0; i < answer.size(); i += 4099) ASSERT_EQ(answer[i], char((i * 2654435761u) >> 13)) << i;
-  EXPECT_EQ(call_isolated(small_limits(), [](std::string&) {}), "");
+  EXPECT_EQ(probe(small_limits(), {"empty"}), "");
 }
 
 TEST(IsolatedCall, ASegfaultIsReportedAsACrash) {
-  const auto [reason, message] = failure_of(small_limits(), [](std::string&) { std::raise(SIGSEGV); });
+  const auto [reason, message] = failure_of(small_limits(), {"segv"});
   EXPECT_EQ(reason, Reason::Crashed);
   EXPECT_NE(message.find("SIGSEGV"), std::string::npos) << message;
 }
 
 TEST(IsolatedCall, AnAbortIsReportedAsACrash) {
-  const auto [reason, message] = failure_of(small_limits(), [](std::string&) { std::abort(); });
+  const auto [reason, message] = failure_of(small_limits(), {"abort"});
   EXPECT_EQ(reason, Reason::Crashed);
   EXPECT_NE(message.find("SIGABRT"), std::string::npos) << message;
 }
 
 TEST(IsolatedCall, RunawayAllocationStopsAtTheMemoryLimit) {
   // 64 MiB blocks, touched, until something gives: the limit (256 MiB), not the machine.
-  const auto [reason, message] = failure_of(small_limits(), [](std::string& out) {
-    std::vector<std::vector<char>> blocks;
-    for (int i = 0; i < 4096; ++i) blocks.emplace_back(size_t(64) << 20, char(i));
-    out = "allocated 256 GiB";
-  });
+  const auto [reason, message] = failure_of(small_limits(), {"allocate"});
   if (nimbus::test::kFailedNewAborts) {  // stopped at the limit by ASan's abort (sanitizer.hpp)
     EXPECT_EQ(reason, Reason::Crashed) << message;
     EXPECT_NE(message.find("SIGABRT"), std::string::npos) << message;
@@ -81,36 +82,69 @@ TEST(IsolatedCall, RunawayAllocationStopsAtTheMemoryLimit) {
 }
 
 TEST(IsolatedCall, AnEndlessLoopStopsAtTheTimeLimit) {
-  const auto [reason, message] = failure_of(small_limits(0.3), [](std::string&) {
-    volatile uint64_t n = 0;
-    for (;;) n = n + 1;
-  });
+  const auto [reason, message] = failure_of(small_limits(0.3), {"spin"});
   EXPECT_EQ(reason, Reason::TimedOut);
   EXPECT_NE(message.find("too long"), std::string::npos) << message;
+}
+
+TEST(IsolatedCall, TheTimerFiresEvenIfTheCallerBlocksOrIgnoresItsSignal) {
+  // A caller (a render loop, a batch wrapper) may block SIGALRM or ignore it; exec keeps both.
+  EXPECT_EXIT(
+      {
+        std::signal(SIGALRM, SIG_IGN);
+        sigset_t alarm;
+        sigemptyset(&alarm);
+        sigaddset(&alarm, SIGALRM);
+        sigaddset(&alarm, SIGXCPU);
+        sigprocmask(SIG_BLOCK, &alarm, nullptr);
+        bool timed_out = false;
+        try {
+          probe(small_limits(0.3), {"spin"});
+        } catch (const IsolatedCallFailed& e) {
+          timed_out = e.reason == Reason::TimedOut;
+        }
+        _exit(timed_out ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(IsolatedCall, AnAnswerLargerThanTheLimitIsRefused) {
   IsolationLimits l = small_limits();
   l.memory_bytes = uint64_t(96) << 20;  // the answer may hold at most this
-  const auto [reason, message] = failure_of(l, [](std::string& out) { out.assign(size_t(120) << 20, 'x'); });
+  const auto [reason, message] = failure_of(l, {"bytes", std::to_string(size_t(120) << 20)});
   EXPECT_EQ(reason, nimbus::test::kFailedNewAborts ? Reason::Crashed : Reason::OutOfMemory) << message;
 }
 
-TEST(IsolatedCall, AnExceptionInTheChildKeepsItsMessage) {
-  const auto [reason, message] = failure_of(small_limits(), [](std::string&) { throw std::runtime_error("bad header"); });
+TEST(IsolatedCall, AnExceptionInTheProgramKeepsItsMessage) {
+  const auto [reason, message] = failure_of(small_limits(), {"throw", "bad header"});
   EXPECT_EQ(reason, Reason::ChildError);
   EXPECT_EQ(message, "bad header");
 }
 
-TEST(IsolatedCall, TheChildsWritesDoNotReachTheParent) {
-  // The child's memory is its own: what it changes here is lost when it ends.
-  static int touched = 0;
-  call_isolated(small_limits(), [](std::string&) { touched = 42; });
-  EXPECT_EQ(touched, 0);
+TEST(IsolatedCall, TheProgramsOutputDoesNotReachTheCaller) {
+  // The caller prints one error line; OpenVDB's warnings in the reader would add more.
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  const std::string answer = probe(small_limits(), {"chatter"});
+  const std::string out = testing::internal::GetCapturedStdout();
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(answer, "ok");
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+}
+
+TEST(IsolatedCall, NoDescriptorOfTheCallerReachesTheProgram) {
+  // A file the caller holds open without close-on-exec (an output being written, a socket).
+  const int held = open("/proc/self/statm", O_RDONLY);
+  ASSERT_GE(held, 0);
+  const std::string answer = probe(small_limits(), {"limits"});
+  close(held);
+  // Standard streams (to /dev/null) and the answer file, nothing else; no core files either.
+  EXPECT_EQ(answer.substr(answer.find(' ') + 1), "0 0,1,2,3") << answer;
 }
 
 TEST(IsolatedCall, LimitsTheProcessInheritedAreKeptNotRaised) {
-  // A batch system's hard CPU limit below the call's time: the child must not try to raise it
+  // A batch system's hard CPU limit below the call's time: the program must not try to raise it
   // (EPERM made every foreign file "damaged"). Run in a death-test child: hard limits stick.
   EXPECT_EXIT(
       {
@@ -118,17 +152,35 @@ TEST(IsolatedCall, LimitsTheProcessInheritedAreKeptNotRaised) {
         getrlimit(RLIMIT_CPU, &cpu);
         cpu.rlim_cur = cpu.rlim_max = 100;
         setrlimit(RLIMIT_CPU, &cpu);
-        IsolationLimits l = small_limits(300.0);
-        // The answer: the hard CPU limit the work ran under (root could raise it; it must not).
-        const std::string answer = call_isolated(l, [](std::string& out) {
-          rlimit r{};
-          getrlimit(RLIMIT_CPU, &r);
-          out = std::to_string(r.rlim_max);
-        });
-        const bool ok = answer == "100";
-        _exit(ok ? 0 : 1);  // no static destructors: a forked child has no TBB workers to join
+        // The answer starts with the hard CPU limit the program ran under (root could raise it).
+        const std::string answer = probe(small_limits(300.0), {"limits"});
+        _exit(answer.rfind("100 ", 0) == 0 ? 0 : 1);
       },
       ::testing::ExitedWithCode(0), "");
+}
+
+TEST(IsolatedCall, TheProgramMayUseThreads) {
+  // A fresh process has a whole runtime (a forked copy had only the forking thread).
+  EXPECT_EQ(probe(small_limits(), {"threads"}), "ok");
+}
+
+TEST(IsolatedCall, AProgramThatCannotStartIsAClearErrorNotACrash) {
+  try {
+    call_isolated(small_limits(), "/nonexistent/reader", {});
+    ADD_FAILURE() << "a missing program answered";
+  } catch (const IsolatedCallFailed& e) {
+    ADD_FAILURE() << "reported as the input's fault: " << e.what();
+  } catch (const std::runtime_error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("/nonexistent/reader"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("No such file"), std::string::npos) << msg;
+  }
+}
+
+TEST(IsolatedCall, TheProgramRunByHandSaysWhatItIsFor) {
+  const int code = std::system((std::string(NIMBUS_ISOLATED_PROBE) + " pattern 5 2>/dev/null").c_str());
+  ASSERT_TRUE(WIFEXITED(code));
+  EXPECT_EQ(WEXITSTATUS(code), 2);
 }
 
 TEST(IsolatedCall, AvailableMemoryHonoursTheAddressSpaceLimit) {
@@ -159,10 +211,10 @@ TEST(IsolatedCall, AvailableMemoryHonoursTheAddressSpaceLimit) {
 TEST(IsolatedCall, BadLimitsAreRefused) {
   IsolationLimits l = small_limits();
   l.seconds = 0.0;
-  EXPECT_THROW(call_isolated(l, [](std::string&) {}), std::invalid_argument);
+  EXPECT_THROW(probe(l, {"empty"}), std::invalid_argument);
   l = small_limits();
   l.memory_bytes = 0;
-  EXPECT_THROW(call_isolated(l, [](std::string&) {}), std::invalid_argument);
+  EXPECT_THROW(probe(l, {"empty"}), std::invalid_argument);
 }
 
 }  // namespace

@@ -76,17 +76,7 @@ GridSummary summarize(const openvdb::GridBase& grid) {
 FileSummary summarize_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid,
                           const VdbReadLimits& limits) {
   const std::string file = path.string();
-  detail::GridsRead r = detail::read_grids(
-      path,
-      [&](const std::vector<GridInfo>& grids) {
-        if (grid && std::none_of(grids.begin(), grids.end(), [&](const GridInfo& g) { return g.name == *grid; }))
-          throw GridNotFound(file + ": no grid named '" + *grid + "' (grids: " + detail::list_grids(grids) + ")");
-        std::vector<std::string> names;
-        for (const GridInfo& g : grids)
-          if (!grid || g.name == *grid) names.push_back(g.name);
-        return names;
-      },
-      limits);
+  detail::GridsRead r = detail::read_grids(path, {detail::GridRequest::Kind::Every, grid}, limits);
   FileSummary out;
   out.metadata = std::move(r.metadata);
   out.checksum_verified = r.checksum_verified;

@@ -1,19 +1,11 @@
-// Reading grids from untrusted VDB files in a child process (vdb_isolated.hpp).
-//
-// The child's answer: one kind byte, then
-//   'K': u8 checksum_verified, u32 metadata count, per entry (str key, u8 type, value),
-//        u32 grid count, per grid (str name, str value type), then OpenVDB's stream of the
-//        chosen grids (io::Stream, active-mask compression, half floats kept as stored);
-//   'G': a GridNotFound message;   'R': any other error message.
-// Strings are u32 length + bytes; numbers little-endian as in memory (same machine).
+// Reading grids from untrusted VDB files in the isolated reader program (vdb_isolated.hpp).
 #include "vdb_isolated.hpp"
 
-#include <openvdb/io/Stream.h>
+#include <unistd.h>
 
 #include <cstdlib>
-#include <cstring>
-#include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "nimbus/base/isolated_call.hpp"
 #include "vdb_common.hpp"
@@ -23,98 +15,7 @@
 namespace nimbus::volume::detail {
 namespace {
 
-struct Writer {
-  std::string& out;
-  template <class T>
-  void put(T v) {
-    out.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  void str(const std::string& s) {
-    put(uint32_t(s.size()));
-    out += s;
-  }
-};
-
-struct Reader {
-  const std::string& in;
-  size_t at = 0;
-  void need(size_t n) const {
-    if (n > in.size() - at) throw std::runtime_error("the reader's answer is truncated");
-  }
-  template <class T>
-  T get() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, in.data() + at, sizeof v);
-    at += sizeof v;
-    return v;
-  }
-  std::string str() {
-    const uint32_t n = get<uint32_t>();
-    need(n);
-    std::string s = in.substr(at, n);
-    at += n;
-    return s;
-  }
-};
-
-void encode(const OpenedVdb& vdb, const openvdb::GridPtrVec& read, std::string& out) {
-  Writer w{out};
-  w.put(char('K'));
-  w.put(uint8_t(vdb.checksum_verified));
-  w.put(uint32_t(vdb.metadata.size()));
-  for (const auto& [key, value] : vdb.metadata) {
-    w.str(key);
-    w.put(uint8_t(value.index()));
-    if (const auto* s = std::get_if<std::string>(&value)) w.str(*s);
-    else if (const auto* d = std::get_if<double>(&value)) w.put(*d);
-    else w.put(std::get<int64_t>(value));
-  }
-  w.put(uint32_t(vdb.grids.size()));
-  for (const GridInfo& g : vdb.grids) {
-    w.str(g.name);
-    w.str(g.value_type);
-  }
-  std::ostringstream stream(std::ios::binary);
-  openvdb::io::Stream vdb_stream(stream);
-  vdb_stream.setCompression(openvdb::io::COMPRESS_ACTIVE_MASK);
-  vdb_stream.setGridStatsMetadataEnabled(false);  // its voxel counts run on threads, which a forked child lacks
-  vdb_stream.write(openvdb::GridCPtrVec(read.begin(), read.end()));
-  out += stream.str();
-}
-
-GridsRead decode(const std::string& answer, const std::string& file) {
-  if (answer.empty()) throw std::runtime_error(file + ": the reader's answer is empty");
-  // The child's messages quote the file's own names and bytes: one line, bounded.
-  if (answer[0] == 'G') throw GridNotFound(one_line(answer.substr(1, 4096)));
-  if (answer[0] == 'R') throw std::runtime_error(one_line(answer.substr(1, 4096)));
-  GridsRead out;
-  Reader r{answer, 1};
-  out.checksum_verified = r.get<uint8_t>() != 0;
-  const uint32_t n_meta = r.get<uint32_t>();
-  for (uint32_t i = 0; i < n_meta; ++i) {
-    std::string key = r.str();
-    const uint8_t type = r.get<uint8_t>();
-    MetaValue value;
-    if (type == 0) value = r.str();
-    else if (type == 1) value = r.get<double>();
-    else if (type == 2) value = r.get<int64_t>();
-    else throw std::runtime_error("the reader's answer is malformed");
-    out.metadata.emplace_back(std::move(key), std::move(value));
-  }
-  const uint32_t n_grids = r.get<uint32_t>();
-  for (uint32_t i = 0; i < n_grids; ++i) {
-    GridInfo g;
-    g.name = r.str();
-    g.value_type = r.str();
-    out.grids.push_back(std::move(g));
-  }
-  std::istringstream stream(answer.substr(r.at), std::ios::binary);
-  openvdb::io::Stream vdb_stream(stream);
-  out.read = *vdb_stream.getGrids();
-  out.read_in_child = true;
-  return out;
-}
+constexpr const char* kReaderName = "nimbus-vdb-reader";
 
 // A positive number from the environment, or `fallback`; std::invalid_argument naming it.
 double env_number(const char* name, double fallback) {
@@ -127,16 +28,39 @@ double env_number(const char* name, double fallback) {
   return v;
 }
 
+bool is_program(const std::filesystem::path& p) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(p, ec) && access(p.c_str(), X_OK) == 0;
+}
+
 }  // namespace
 
-GridsRead read_grids(const std::filesystem::path& path, const GridChoice& choose, const VdbReadLimits& limits) {
+std::filesystem::path vdb_reader_program() {
+  if (const char* set = std::getenv("NIMBUS_VDB_READER")) {
+    if (!is_program(set))
+      throw std::invalid_argument(std::string("NIMBUS_VDB_READER: '") + set + "' is not an executable file");
+    return set;
+  }
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path beside = ec ? std::filesystem::path() : self.parent_path() / kReaderName;
+  if (!beside.empty() && is_program(beside)) return beside;
+#ifdef NIMBUS_VDB_READER_BUILD_PATH
+  if (is_program(NIMBUS_VDB_READER_BUILD_PATH)) return NIMBUS_VDB_READER_BUILD_PATH;
+#endif
+  throw std::runtime_error(std::string("cannot find ") + kReaderName + ", the program that reads foreign VDB files (looked beside " +
+                           (beside.empty() ? std::string("this program") : self.string()) +
+                           "); install it there or set NIMBUS_VDB_READER to its path");
+}
+
+GridsRead read_grids(const std::filesystem::path& path, const GridRequest& request, const VdbReadLimits& limits) {
   const std::string file = path.string();
   check_regular_file(path);
   init_openvdb();
   if (check_vdb_seal(path) == Seal::Verified) {  // nimbus's own file, intact: read here
     OpenedVdb vdb = open_vdb(path, /*seal_verified=*/true);
     GridsRead out;
-    for (const std::string& name : choose(vdb.grids)) out.read.push_back(read_grid(vdb, path, name));
+    for (const std::string& name : choose_grids(file, request, vdb.grids)) out.read.push_back(read_grid(vdb, path, name));
     out.metadata = std::move(vdb.metadata);
     out.grids = std::move(vdb.grids);
     out.checksum_verified = vdb.checksum_verified;
@@ -153,31 +77,22 @@ GridsRead read_grids(const std::filesystem::path& path, const GridChoice& choose
   // hostile one kept OpenVDB's readTopology busy for 75 CPU seconds.
   il.seconds = limits.seconds > 0.0 ? limits.seconds
                                     : env_number("NIMBUS_READ_SECONDS", 20.0 + double(ec ? 0 : size) / 5e6);
+  std::vector<std::string> args{file};  // the program starts in this directory: same path, same messages
+  for (std::string& w : request_to_words(request)) args.push_back(std::move(w));
   std::string answer;
   try {
-    answer = call_isolated(il, [&](std::string& out) {
-      try {
-        OpenedVdb vdb = open_vdb(path);
-        openvdb::GridPtrVec read;
-        for (const std::string& name : choose(vdb.grids)) read.push_back(read_grid(vdb, path, name));
-        encode(vdb, read, out);
-      } catch (const GridNotFound& e) {
-        out = std::string("G") + e.what();
-      } catch (const std::bad_alloc&) {
-        throw;  // reported as the limit it is
-      } catch (const std::exception& e) {
-        out = std::string("R") + e.what();
-      }
-    });
+    answer = call_isolated(il, vdb_reader_program(), args);
   } catch (const IsolatedCallFailed& e) {
     using R = IsolatedCallFailed::Reason;
     const char* hint = e.reason == R::OutOfMemory ? "; if the file is sound, raise NIMBUS_READ_MEMORY_GB"
                        : e.reason == R::TimedOut  ? "; if the file is sound, raise NIMBUS_READ_SECONDS"
                                                   : "";
     throw std::runtime_error(file + ": " + one_line(e.what()) + hint);
+  } catch (const std::exception& e) {  // the reader program could not be found or started
+    throw std::runtime_error(file + ": cannot read it: " + one_line(e.what()));
   }
   try {
-    return decode(answer, file);
+    return decode_answer(answer);
   } catch (const GridNotFound&) {
     throw;
   } catch (const std::bad_alloc&) {

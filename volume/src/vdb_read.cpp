@@ -18,33 +18,6 @@ namespace nimbus::volume {
 
 namespace {
 
-// The grid to read: `wanted` if given, else "density" among the float grids, else the first.
-std::vector<std::string> choose_float_grid(const std::string& file, const std::optional<std::string>& wanted,
-                                           const std::vector<GridInfo>& grids) {
-  const std::string float_type = openvdb::typeNameAsString<float>();
-  if (wanted) {
-    bool found = false, is_float = false;
-    for (const GridInfo& g : grids)
-      if (g.name == *wanted) {
-        found = true;
-        is_float |= g.value_type == float_type;
-      }
-    if (!found) throw GridNotFound(file + ": no grid named '" + *wanted + "' (grids: " + detail::list_grids(grids) + ")");
-    if (!is_float)
-      throw std::runtime_error(file + ": grid '" + *wanted + "' does not hold float values (grids: " +
-                               detail::list_grids(grids) + ")");
-    return {*wanted};
-  }
-  std::string chosen;
-  for (const GridInfo& g : grids)
-    if (g.value_type == float_type && (chosen.empty() || g.name == "density")) {
-      chosen = g.name;
-      if (chosen == "density") break;
-    }
-  if (chosen.empty()) throw std::runtime_error(file + ": no float grid to read (grids: " + detail::list_grids(grids) + ")");
-  return {chosen};
-}
-
 // Index-to-world must be finite and keep three dimensions (a zero or repeated axis has no
 // inverse, and every world-to-index lookup would be NaN).
 void check_transform(const std::string& where, const openvdb::math::Transform& t) {
@@ -71,9 +44,8 @@ VolumeFile read_volume_vdb(const std::filesystem::path& path, const std::optiona
 
 VolumeFile read_volume_vdb(const std::filesystem::path& path, const VdbReadOptions& options) {
   const std::string file = path.string();
-  detail::GridsRead r = detail::read_grids(
-      path, [&](const std::vector<GridInfo>& grids) { return choose_float_grid(file, options.grid, grids); },
-      options.limits);
+  detail::GridsRead r =
+      detail::read_grids(path, {detail::GridRequest::Kind::OneFloat, options.grid}, options.limits);
   if (r.read.size() != 1 || !r.read[0]) throw std::runtime_error(file + ": the grid could not be read");
   const std::string where = detail::one_line(file + ": grid '" + r.read[0]->getName().substr(0, 200) + "'");
   VolumeFile out;

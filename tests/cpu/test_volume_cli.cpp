@@ -89,8 +89,10 @@ TEST(VolumeCli, BenchVolumeQuickRunsAndSparseMatchesTheAnchor) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("naive, all octaves (anchor)"), std::string::npos);
   EXPECT_NE(r.output.find("0 (identical)"), std::string::npos);
-  // Reading: sealed files in process, foreign copies in the child, values as OpenVDB reads them.
-  EXPECT_NE(r.output.find("foreign, in a child ms"), std::string::npos);
+  // Reading: sealed files in process, foreign copies by the reader program, values as OpenVDB
+  // reads them; the reader's start is reported.
+  EXPECT_NE(r.output.find("foreign, by the reader program ms"), std::string::npos);
+  EXPECT_NE(r.output.find("The reader program's start"), std::string::npos);
   EXPECT_NE(r.output.find("0 / 0 (identical)"), std::string::npos);
   EXPECT_EQ(r.output.find("NOT"), std::string::npos);
   EXPECT_EQ(run_nimbus("bench volume --res 3").code, 2);

@@ -41,9 +41,11 @@ std::string call_isolated(const IsolationLimits& limits, const std::filesystem::
                           const std::vector<std::string>& args);
 
 // The program's side: its main() returns serve_isolated_call(argc, argv, work). Lowers RLIMIT_AS
-// to what is mapped now + the caller's memory_bytes, calls work(args, answer) and hands the answer
-// back. A failed operator new ends the program at once and is reported as OutOfMemory (so is a
-// std::bad_alloc thrown otherwise); any other exception as ChildError with its message. Run by hand (not by call_isolated), it says so on stderr and returns 2.
+// to what is mapped now (1 MiB of stack grown first) + the caller's memory_bytes, calls
+// work(args, answer) and hands the answer back. A failed operator new ends the program at once and
+// is reported as OutOfMemory (so is a std::bad_alloc thrown otherwise); any other exception as
+// ChildError with its message. Run by hand (not by call_isolated), it says so on stderr and
+// returns 2.
 int serve_isolated_call(int argc, char** argv,
                         const std::function<void(const std::vector<std::string>& args, std::string& answer)>& work);
 

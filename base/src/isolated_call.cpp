@@ -1,4 +1,4 @@
-// The caller's side of an isolated call (isolated_call.hpp): fork, then only system calls until
+// The caller's side of an isolated call (isolated_call.hpp): vfork, then only system calls until
 // exec. The answer travels through an anonymous memory file (memfd): the program writes it whole
 // and exits, the caller reads it after waitpid, so neither side waits on the other's pipe.
 #include "nimbus/base/isolated_call.hpp"
@@ -8,6 +8,7 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -48,7 +49,7 @@ bool lower(int resource, rlim_t value) {
   _exit(127);
 }
 
-// The forked child: async-signal-safe calls only (the caller's other threads may hold any lock),
+// The vforked child: system calls only (the caller's other threads may hold any lock),
 // then the program. Anything that fails before exec is reported through the answer file.
 [[noreturn]] void start_program(int answer_fd, const char* program, char* const* argv, const IsolationLimits& limits) {
   const auto fail = [&](int err) { not_started(answer_fd, err); };
@@ -68,14 +69,18 @@ bool lower(int resource, rlim_t value) {
       !lower(RLIMIT_CORE, 0))
     fail(errno);
   // A crash, the timer and the limits end the program plainly, for the caller to report, even if
-  // the caller ignores or blocks these signals (exec keeps both).
-  struct sigaction plain {};
-  plain.sa_handler = SIG_DFL;
-  for (int sig = 1; sig < NSIG; ++sig)
-    if (sig != SIGKILL && sig != SIGSTOP) sigaction(sig, &plain, nullptr);
-  sigset_t none;
-  sigemptyset(&none);
-  sigprocmask(SIG_SETMASK, &none, nullptr);
+  // the caller ignores or blocks these signals (exec keeps both). Raw system calls: the C
+  // library's and a sanitizer's wrappers keep state in memory this child shares with the caller.
+  struct {
+    void (*handler)(int);
+    unsigned long flags;
+    void (*restorer)();
+    unsigned long mask;
+  } plain{SIG_DFL, 0, nullptr, 0};
+  for (int sig = 1; sig <= 64; ++sig)
+    if (sig != SIGKILL && sig != SIGSTOP) syscall(SYS_rt_sigaction, sig, &plain, nullptr, sizeof(unsigned long));
+  const unsigned long none = 0;
+  syscall(SYS_rt_sigprocmask, SIG_SETMASK, &none, nullptr, sizeof none);
   itimerval timer{};  // kept across exec
   timer.it_value.tv_sec = time_t(limits.seconds);
   timer.it_value.tv_usec = suseconds_t((limits.seconds - std::floor(limits.seconds)) * 1e6);
@@ -134,13 +139,21 @@ std::string call_isolated(const IsolationLimits& limits, const std::filesystem::
     if (moved < 0) throw std::runtime_error(std::string("cannot place the reader's memory file: ") + std::strerror(errno));
     fd = moved;
   }
-  const pid_t pid = fork();
-  if (pid < 0) {
-    const int err = errno;
-    close(fd);
-    throw std::runtime_error(std::string("cannot start the reader's process: ") + std::strerror(err));
-  }
+  // vfork, not fork: fork runs the libraries' atfork handlers in the child (Blosc's frees
+  // memory, and under ASan waited for ever on an allocator lock held by another thread). The
+  // caller's signals are blocked until the child has reset its own, so that no handler of the
+  // caller runs in the child, whose memory is the caller's until exec.
+  sigset_t all, before;
+  sigfillset(&all);
+  pthread_sigmask(SIG_SETMASK, &all, &before);
+  const pid_t pid = vfork();
   if (pid == 0) start_program(fd, words[0].c_str(), argv.data(), limits);
+  const int vfork_errno = errno;
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
+  if (pid < 0) {
+    close(fd);
+    throw std::runtime_error(std::string("cannot start the reader's process: ") + std::strerror(vfork_errno));
+  }
 
   int wstatus = 0;
   while (waitpid(pid, &wstatus, 0) < 0)

@@ -138,6 +138,11 @@ int serve_isolated_call(int argc, char** argv,
   // call once the heap had taken the budget, read as a damaged file.
   grow_stack(size_t(1) << 20);
   uint64_t wanted = address_space_in_use() + memory;
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's own report needs memory (its symbolizer maps module lists): at an exhausted
+  // limit GCC 12's libasan fails that mmap inside its report and waits on its own lock for ever.
+  wanted += uint64_t(256) << 20;
+#endif
   if (as.rlim_max != RLIM_INFINITY && as.rlim_max < wanted) wanted = as.rlim_max;  // only ever lowered
   if (as.rlim_cur == RLIM_INFINITY || as.rlim_cur > wanted) {
     as.rlim_cur = wanted;

@@ -56,6 +56,12 @@ std::vector<std::string> choose_grids(const std::string& file, const GridRequest
                                                      : every(file, request.name, grids);
 }
 
+openvdb::GridPtrVec read_chosen_grids(OpenedVdb& vdb, const std::filesystem::path& path, const GridRequest& request) {
+  openvdb::GridPtrVec read;
+  for (const std::string& name : choose_grids(path.string(), request, vdb.grids)) read.push_back(read_grid(vdb, path, name));
+  return read;
+}
+
 // "one-float" | "every", then "name" NAME or "any".
 std::vector<std::string> request_to_words(const GridRequest& request) {
   std::vector<std::string> words{request.kind == GridRequest::Kind::OneFloat ? "one-float" : "every"};

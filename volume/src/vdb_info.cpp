@@ -75,7 +75,6 @@ GridSummary summarize(const openvdb::GridBase& grid) {
 
 FileSummary summarize_vdb(const std::filesystem::path& path, const std::optional<std::string>& grid,
                           const VdbReadLimits& limits) {
-  const std::string file = path.string();
   detail::GridsRead r = detail::read_grids(path, {detail::GridRequest::Kind::Every, grid}, limits);
   FileSummary out;
   out.metadata = std::move(r.metadata);

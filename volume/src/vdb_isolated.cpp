@@ -60,7 +60,7 @@ GridsRead read_grids(const std::filesystem::path& path, const GridRequest& reque
   if (check_vdb_seal(path) == Seal::Verified) {  // nimbus's own file, intact: read here
     OpenedVdb vdb = open_vdb(path, /*seal_verified=*/true);
     GridsRead out;
-    for (const std::string& name : choose_grids(file, request, vdb.grids)) out.read.push_back(read_grid(vdb, path, name));
+    out.read = read_chosen_grids(vdb, path, request);
     out.metadata = std::move(vdb.metadata);
     out.grids = std::move(vdb.grids);
     out.checksum_verified = vdb.checksum_verified;

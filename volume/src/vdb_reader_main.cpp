@@ -30,10 +30,7 @@ int main(int argc, char** argv) {
     try {
       detail::init_openvdb();
       detail::OpenedVdb vdb = detail::open_vdb(path);
-      openvdb::GridPtrVec read;
-      for (const std::string& name : detail::choose_grids(path.string(), request, vdb.grids))
-        read.push_back(detail::read_grid(vdb, path, name));
-      detail::encode_answer(vdb, read, out);
+      detail::encode_answer(vdb, detail::read_chosen_grids(vdb, path, request), out);
     } catch (const GridNotFound& e) {
       out = detail::grid_not_found_answer(e.what());
     } catch (const std::bad_alloc&) {

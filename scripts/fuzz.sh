@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer harnesses (tests/fuzz, docs/reliability-fuzz.md) for a bounded time each.
 #
-#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; targets: params vdb)
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; every target: params vdb sky view_state)
 #
 # Installs clang and libclang-rt-14-dev when missing (Debian packages, as install-deps.sh does),
 # configures build-fuzz/ with clang, -DNIMBUS_FUZZ=ON and -DNIMBUS_SANITIZE=ON (AddressSanitizer
-# and UndefinedBehaviorSanitizer), builds only the harnesses (with base, noise and volume), and
-# runs each one in libFuzzer's fork mode so that it keeps going after a finding:
-#   - seeds: tests/fuzz/corpus/<target>/ (read, never written), with the dictionary
-#     tests/fuzz/<target>.dict; new inputs go to
-#     build-fuzz/corpus/<target>/, kept between runs;
+# and UndefinedBehaviorSanitizer), builds only the harnesses (with base, noise, volume and
+# render_core), and runs each one in libFuzzer's fork mode so that it keeps going after a finding:
+#   - seeds: tests/fuzz/corpus/<corpus>/ (read, never written), with the dictionary
+#     tests/fuzz/<corpus>.dict (<corpus>: params_json, vdb, sky_json, view_state_json); new
+#     inputs go to build-fuzz/corpus/<target>/, kept between runs;
 #   - findings (crashes, broken contracts, out-of-memory, timeouts): build-fuzz/findings/<target>/,
-#     with the log in build-fuzz/findings/<target>.log. Record one in tests/fuzz/findings/<target>/
+#     with the log in build-fuzz/findings/<target>.log. Record one in tests/fuzz/findings/<corpus>/
 #     (replayed by CTest, Fuzz.*FindingsReplay) and move it to the corpus once fixed.
 # Leaks are not looked for: OpenVDB 10 leaks the nodes it had read when a corrupt file makes it
 # throw (a one-shot command exits right after), and those reports would hide everything else.
@@ -24,13 +24,15 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(params vdb)
+declare -A seeds=([params]=params_json [vdb]=vdb [sky]=sky_json [view_state]=view_state_json)
+all_targets=(params vdb sky view_state)
+[ ${#targets[@]} -eq 0 ] && targets=("${all_targets[@]}")
 if ! [[ "$seconds" =~ ^[1-9][0-9]*$ ]]; then
   echo "fuzz.sh: SECONDS_PER_TARGET must be a whole number > 0, got '$seconds'" >&2
   exit 2
 fi
 for t in "${targets[@]}"; do
-  case "$t" in params | vdb) ;; *) echo "fuzz.sh: unknown target '$t' (params, vdb)" >&2; exit 2 ;; esac
+  [ -n "$t" ] && [ -n "${seeds[$t]+set}" ] || { echo "fuzz.sh: unknown target '$t' (${all_targets[*]})" >&2; exit 2; }
 done
 
 # clang's libFuzzer runtime lives in libclang-rt-14-dev (Debian 12).
@@ -58,7 +60,6 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebI
   { cat "$build/configure.log" >&2; echo "fuzz.sh: configuring $build failed" >&2; exit 1; }
 cmake --build "$build" -j"${NIMBUS_FUZZ_JOBS:-2}" --target "${targets[@]/#/nimbus_fuzz_}"
 
-declare -A seeds=([params]=params_json [vdb]=vdb)
 status=0
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"

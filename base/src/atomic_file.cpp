@@ -2,11 +2,15 @@
 #include "nimbus/base/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <stdexcept>
 #include <string>
+
+#include "nimbus/base/file_kind.hpp"
+#include "nimbus/base/input_limits.hpp"
 
 namespace nimbus {
 namespace {
@@ -31,7 +35,11 @@ void write_atomically(const std::filesystem::path& path,
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw std::runtime_error("cannot create directory " + parent.string() + ": " + ec.message());
-  if (fs::is_directory(path)) throw std::runtime_error(path.string() + " is a directory");
+  // Only a regular file is ever replaced: renaming over a symbolic link, FIFO or device would
+  // put a file in its place (as root, /dev/null itself), and a directory cannot be.
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw std::runtime_error("'" + echo(path.string(), 200) + "' is " + file_kind(st.st_mode) + ", not a regular file: not replaced");
   static std::atomic<unsigned> counter{0};
   const fs::path tmp = parent / ("." + path.filename().string() + ".tmp" +
                                  std::to_string(::getpid()) + "." + std::to_string(counter++));

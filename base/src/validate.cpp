@@ -1,6 +1,8 @@
 // Argument checks and strict number parsing (validate.hpp).
 #include "nimbus/base/validate.hpp"
 
+#include <cstdio>
+
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -9,6 +11,12 @@ namespace nimbus {
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
+}
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 bool all_finite(std::initializer_list<double> values) {

@@ -13,6 +13,14 @@ struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// `nimbus --check-only COMMAND ...`: the command checks every flag, input and output as it would,
+// then stops before its work and exits 0 (nimbus farm slurm checks each task's command this way).
+// Each command that supports it calls checks_done() where its checks end and its work begins.
+struct ChecksPassed {};  // thrown by checks_done() in check-only mode; main() turns it into exit 0
+void set_check_only(bool on);
+bool check_only();
+void checks_done();
+
 // Each subcommand registers itself and sets the action that main() runs after parsing.
 using Action = std::function<int()>;
 void add_noise_command(CLI::App& app, Action& action);

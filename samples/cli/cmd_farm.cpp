@@ -1,6 +1,7 @@
 // `nimbus farm slurm ... -- COMMAND`: a generate or render command cut into a Slurm job array
 // (frames in chunks, or bricks), a dependent check job, and for bricks a merge job after it;
 // `nimbus farm check DIR`: which tasks left missing or unreadable outputs (docs/farm.md).
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -9,8 +10,10 @@
 
 #include "cli.hpp"
 #include "farm_job.hpp"
-#include "nimbus/base/atomic_file.hpp"
+#include "nimbus/base/file_kind.hpp"
 #include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/output_path.hpp"
+#include "nimbus/base/staged_files.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -32,14 +35,76 @@ struct CheckArgs {
   std::string array_job;  // the array's job id, for the log names
 };
 
-void write_script(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out.flush()) throw std::runtime_error("cannot write '" + path.string() + "'");
-  });
-  std::filesystem::permissions(path, std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec,
-                               std::filesystem::perm_options::add);
+// At most the last `max_bytes` of a file, without its trailing empty lines, and from the start of
+// the last line that begins within them: the end of a log, however large the log is.
+std::string log_tail(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size <= 0) return "";
+  const std::streamoff from = size > std::streamoff(max_bytes) ? size - std::streamoff(max_bytes) : 0;
+  in.seekg(from);
+  std::string text(static_cast<std::size_t>(size - from), '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text.substr(text.find_last_of('\n') == std::string::npos ? 0 : text.find_last_of('\n') + 1);
+}
+
+// The job folder's files, written all or nothing: each is refused up front when something other
+// than a regular file stands in its place (a FIFO, a symbolic link, a device), the folders
+// logs/ and bricks/ must be folders, and only when every file is complete are they renamed into
+// place; on any failure nothing of the new job remains (folders made for it are removed).
+void write_job_folder(const FarmJob& job, const std::vector<std::pair<std::string, std::string>>& files) {
+  namespace fs = std::filesystem;
+  const fs::path dir(job.dir);
+  std::vector<fs::path> folders{dir, dir / "logs"};
+  if (job.kind == "bricks") folders.push_back(dir / "bricks");
+  for (const fs::path& f : folders) {
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(f, ec);
+    const bool is_dir_link = fs::is_symlink(st) && f == dir && fs::is_directory(fs::status(f, ec));
+    if (fs::exists(st) && !fs::is_directory(st) && !is_dir_link)
+      throw UsageError("--dir: '" + echo(f.string(), 200) + "' exists and is not a folder; choose another --dir");
+  }
+  // What stands in each file's place first (no probe file touches the folder before a refusal),
+  // then whether the folder takes files.
+  for (const auto& [name, text] : files) {
+    struct stat st {};
+    if (::lstat((dir / name).c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+      throw std::runtime_error("--dir '" + echo((dir / name).string(), 300) + "': is " + file_kind(st.st_mode) +
+                               "; only a regular file is replaced");
+  }
+  for (const auto& [name, text] : files) check_output_path(dir / name, "--dir");
+  std::vector<fs::path> made;  // folders this job created, removed again on failure
+  try {
+    for (const fs::path& f : folders) {
+      std::error_code ec;
+      if (!fs::exists(fs::symlink_status(f, ec))) {
+        fs::create_directories(f);
+        made.push_back(f);
+      }
+    }
+    StagedFiles staged;
+    for (const auto& [name, text] : files) {
+      staged.write(dir / name, [&, &text = text](const fs::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "'");
+        if (name != "job.json")
+          fs::permissions(tmp, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+      });
+    }
+    staged.commit();
+  } catch (...) {
+    for (auto it = made.rbegin(); it != made.rend(); ++it) {
+      std::error_code ec;
+      fs::remove_all(*it, ec);
+    }
+    throw;
+  }
 }
 
 std::string sbatch_header(const SlurmArgs& a, const FarmJob& job, const std::string& name, const std::string& log) {
@@ -118,12 +183,36 @@ std::string job_id(const std::string& sbatch_output, const std::string& what) {
   return id;
 }
 
+// The last non-empty line of a log, read from its last 64 KiB only: a task's log may be huge
+// (or a sparse file of terabytes) and is not read whole.
 std::string last_line(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return echo(last, 300);
+  return echo(log_tail(path, 64 * 1024), 300);
+}
+
+// Runs `nimbus --check-only` on task `index`'s command line, as its job-array task would run it
+// (the same program, working directory and arguments, the task id in SLURM_ARRAY_TASK_ID). A
+// refusal is rethrown with the task's own message: UsageError for its exit 2, else runtime_error.
+void check_task_command(const FarmJob& job, std::size_t index) {
+  std::vector<std::string> args = task_arguments(job);
+  if (job.kind == "bricks")
+    args.insert(args.end(), {"--brick", std::to_string(index) + "/" + job.bricks, "-o", job.tasks[index].outputs[0]});
+  std::string line = "SLURM_ARRAY_TASK_ID=" + std::to_string(index) + " " + shell_quote(job.nimbus) + " --check-only";
+  for (const std::string& arg : args) line += " " + shell_quote(arg);
+  FILE* p = popen((line + " 2>&1 >/dev/null </dev/null").c_str(), "r");
+  if (!p) throw std::runtime_error("cannot run the task's command to check it");
+  std::string said;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, p))
+    if (said.size() < 65536) said.append(buf, n);
+  const int status = pclose(p);
+  const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  if (rc == 0) return;
+  std::string first = said.substr(0, said.find('\n'));
+  if (first.rfind("nimbus: ", 0) == 0) first = first.substr(8);
+  const std::string message = "COMMAND, as task " + std::to_string(index) + " (" + job.tasks[index].what +
+                              ") would run it: " + echo(first, 600);
+  if (rc == 2) throw UsageError(message);
+  throw std::runtime_error(message + " (exit " + std::to_string(rc) + ")");
 }
 
 int run_slurm(const SlurmArgs& a) {
@@ -144,19 +233,23 @@ int run_slurm(const SlurmArgs& a) {
                      "' holds white space, %, a quote, \\, $ or `, which #SBATCH --chdir cannot carry; run from another");
   const FarmJob job = plan_farm_job(a.command, a.chunk, a.bricks, a.dir);
   const std::filesystem::path dir(job.dir);
-  std::filesystem::create_directories(dir / "logs");
-  if (job.kind == "bricks") std::filesystem::create_directories(dir / "bricks");
-  write_farm_job(job);
-  write_script(dir / "task.sh", task_script(a, job));
-  write_script(dir / "check.sh", check_script(a, job));
-  if (job.kind == "bricks") write_script(dir / "merge.sh", merge_script(a, job));
+  // The command as the first and the last task will run it, before anything is written: a flag,
+  // preset, file or range that every task would refuse is refused here, with the task's words.
+  check_task_command(job, 0);
+  if (job.tasks.size() > 1) check_task_command(job, job.tasks.size() - 1);
+  std::vector<std::pair<std::string, std::string>> files{{"job.json", farm_job_json(job)},
+                                                         {"task.sh", task_script(a, job)},
+                                                         {"check.sh", check_script(a, job)}};
+  if (job.kind == "bricks") files.emplace_back("merge.sh", merge_script(a, job));
   // submit.sh: the same submission by hand.
   std::string submit = "#!/bin/bash\n# Submits the job as nimbus farm slurm does (docs/farm.md).\nset -eu\n";
   submit += "array=$(sbatch --parsable " + shell_quote(job.dir + "/task.sh") + ")\narray=${array%%;*}\n";
   submit += "check=$(sbatch --parsable --dependency=afterany:$array " + shell_quote(job.dir + "/check.sh") + " $array)\ncheck=${check%%;*}\n";
   if (job.kind == "bricks")
     submit += "sbatch --parsable --dependency=afterok:$check --kill-on-invalid-dep=yes " + shell_quote(job.dir + "/merge.sh") + "\n";
-  write_script(dir / "submit.sh", submit);
+  files.emplace_back("submit.sh", submit);
+  checks_done();
+  write_job_folder(job, files);
   std::printf("%s job of %zu task(s) (%s ... %s) in %s\n", job.kind.c_str(), job.tasks.size(), job.tasks.front().what.c_str(),
               job.tasks.back().what.c_str(), job.dir.c_str());
   if (a.dry_run) {
@@ -187,8 +280,19 @@ int run_slurm(const SlurmArgs& a) {
   if (!a.wait) return 0;
   // Waited for the last job: show what the check (and merge) said.
   std::printf("--- check (%s/logs/check_%s.log):\n", job.dir.c_str(), check.c_str());
-  std::ifstream log(dir / "logs" / ("check_" + check + ".log"));
-  std::printf("%s", std::string(std::istreambuf_iterator<char>(log), {}).c_str());
+  // The check's report: one line a failed task; a huge log is shown by its last 1 MiB.
+  const std::filesystem::path check_log = dir / "logs" / ("check_" + check + ".log");
+  std::ifstream log(check_log, std::ios::binary);
+  std::string report;
+  std::error_code ec;
+  if (std::filesystem::file_size(check_log, ec) > (1u << 20)) {
+    std::printf("(the last lines of %s)\n", check_log.c_str());
+    log.seekg(-std::streamoff(1u << 20), std::ios::end);
+  }
+  report.resize(1u << 20);
+  log.read(report.data(), std::streamsize(report.size()));
+  report.resize(static_cast<std::size_t>(log.gcount()));
+  std::fwrite(report.data(), 1, report.size(), stdout);
   if (!merge.empty()) std::printf("--- merge: %s\n", last_line(dir / "logs" / ("merge_" + merge + ".log")).c_str());
   return rc == 0 ? 0 : 1;
 }

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "cli.hpp"
+#include "nimbus/base/validate.hpp"
 #include "frame_range.hpp"
 #include "sequence_path.hpp"
 #include "nimbus/base/input_limits.hpp"
@@ -123,9 +124,19 @@ int run_generate(const GenerateArgs& a) {
     opt.clip = volume::brick_box(t.layout, t.index);
     tag = t;
   }
+  // The model at the first and the last frame's time, so that a time it cannot take is refused
+  // before any file is written (as generate_density would refuse it at that frame).
+  for (const int frame : {first, last}) {
+    try {
+      (void)volume::CloudModel(params, opt.voxel_size, range.time(frame)).bounds();
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("at " + time_text(range.time(frame)) + " (--time, --frames/--fps): " + e.what());
+    }
+  }
   std::vector<PathArg> outputs;
   for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
   check_outputs(outputs, {{"--params", a.params}});
+  checks_done();
   if (tag) {
     const openvdb::Coord d = opt.clip->dim();
     std::printf("brick %d of %s: index box [%d %d %d .. %d %d %d], %d x %d x %d voxels, at most %s as dense floats\n",
@@ -164,7 +175,7 @@ int run_generate(const GenerateArgs& a) {
     }
     if (stats.active_voxels == 0 && !tag)
       throw std::runtime_error((sequence ? "frame " + std::to_string(frame) + ": " : std::string()) +
-                               "the cloud has no voxel of density >= 1e-6 at voxel size " + std::to_string(opt.voxel_size) +
+                               "the cloud has no voxel of density >= 1e-6 at voxel size " + number_text(opt.voxel_size) +
                                " m (shapes smaller than a voxel, or coverage, weight or density leave nothing); nothing written");
     std::vector<openvdb::FloatGrid::ConstPtr> grids{density};
     if (auto temperature = volume::generate_temperature(params, *density)) grids.push_back(temperature);

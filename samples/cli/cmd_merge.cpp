@@ -23,10 +23,16 @@ int run_merge(const MergeArgs& a) {
   std::vector<PathArg> inputs;
   for (const std::string& b : a.bricks) inputs.push_back({"BRICKS", b});
   check_outputs({{"-o", a.output}}, inputs);
+  checks_done();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::filesystem::path> files(a.bricks.begin(), a.bricks.end());
   const volume::JoinedField joined = volume::join_bricks(files);
   const auto t1 = std::chrono::steady_clock::now();
+  // As generate refuses a cloud with no voxel, so does the whole it would have written in one go.
+  if (joined.active_voxels == 0)
+    throw std::runtime_error("BRICKS: the " + std::to_string(joined.layout.size()) + " bricks of " + joined.layout.text() +
+                             " hold no voxel of density >= 1e-6 (shapes smaller than a voxel, or coverage, weight or "
+                             "density leave nothing); nothing written");
   std::vector<openvdb::FloatGrid::ConstPtr> grids(joined.grids.begin(), joined.grids.end());
   volume::write_volume_vdb(a.output, grids, joined.info, joined.options);
   const auto t2 = std::chrono::steady_clock::now();

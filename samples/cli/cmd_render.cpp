@@ -66,6 +66,8 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (!a.clouds.files.empty() || !a.clouds.presets.empty()) {
     check_render_flags(cmd, kRenderClouds);
     CloudRenderArgs clouds = a.clouds;
+    for (const CLI::Option* o : cmd.get_options())
+      if (o->count() > 0) clouds.given.insert(o->get_name());
     clouds.surface_airlight = !a.no_surface_airlight;  // the scene's surfaces under the clouds
     return run_render_clouds(clouds, a.scene, a.scene_given, a.method, a.method_given, a.camera, a.output, a.preview,
                              a.exposure);
@@ -106,6 +108,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (a.shadow_res < 16 || a.shadow_res > 8192) throw UsageError("--shadow-res: must be in [16, 8192]");
   check_exposure(a.exposure);
   check_outputs({{"-o", a.output}, {"--preview", a.preview}});
+  checks_done();
 
   const auto start = std::chrono::steady_clock::now();
   render::Image image;
@@ -127,7 +130,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
     render::ShaftRenderer renderer(scene, settings);
     render::ShaftFrameStats stats;
     try {
-      image = renderer.render(camera, method, &stats);
+      image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, method, &stats); });
     } catch (const std::runtime_error& e) {  // a non-finite pixel: name what was rendered, not only the stage
       throw std::runtime_error("rendering scene " + scene.name + " (--method " + a.method + ", flags as given): " + e.what());
     }
@@ -143,6 +146,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
   render::PreviewOptions po;
   if (!a.preview.empty()) po.exposure_stops = a.exposure ? *a.exposure : render::auto_exposure_stops(image);
   write_image_files(a.output, a.preview, image, po);
+  warn_half_float_clipping(image, a.output, "the scene's lights (--scene " + scene.name + ") or --extinction/--albedo");
   std::fputs(gpu_times.c_str(), stderr);
   std::fprintf(stderr, "%s: %s %dx%d, %s, %.2f s on %s\n", a.output.c_str(), scene.name.c_str(), camera.width,
                camera.height, render::to_string(method).c_str(), seconds, device.c_str());
@@ -178,7 +182,8 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
   cmd->add_option("--view-state", a->view_state,
-                  "Render a viewer state (nimbus view's Ctrl+S) at full quality, through the viewer's pipeline; size: --res");
+                  "Render a viewer state (nimbus view's Ctrl+S) at full quality, through the viewer's pipeline: --res times the "
+                  "state's render scale");
   cmd->add_option("-o,--output", a->output, "Output EXR file")->required();
   cmd->callback([&action, a, cmd] {
     a->scene_given = cmd->count("--scene") > 0;

@@ -173,6 +173,12 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
 // --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
 // bad value a UsageError naming its flag. Without the sun the light volume (photons from the sun)
 // is not the default.
+// UsageError "<flag>: <why>" when `flag` was given but what it qualifies is not in effect (it
+// would be ignored without a word).
+static void refuse_if_given_without(const CloudRenderArgs& a, const std::string& flag, bool applies, const std::string& why) {
+  if (a.given.count(flag) && !applies) throw UsageError(flag + ": " + why);
+}
+
 static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
   render::MultipleScattering ms;
   if (a.ms_method.empty()) {
@@ -196,6 +202,15 @@ static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& 
   } else {
     ms.octaves = a.multiple.value_or(0);
   }
+  const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
+  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-seed"})
+    refuse_if_given_without(a, flag, light_volume,
+                            "applies to the light volume (--ms-method light-volume), and the multiple scattering here is "
+                            "the octaves method");
+  for (const char* flag : {"--ms-occlusion", "--ms-contribution", "--ms-eccentricity"})
+    refuse_if_given_without(a, flag, !light_volume && ms.octaves > 0,
+                            "applies to the octaves of multiple scattering (--multiple 1-3 with --ms-method octaves), "
+                            "which this render does not use");
   if (a.ms_grid < 4 || a.ms_grid > 192)
     throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
   if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
@@ -290,6 +305,10 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     const glm::dvec3 at = parse_vec3("--lamp", text);
     lights.push_back(render::point_light(at, parse_colour("--lamp-intensity", a.lamp_intensity)));
   }
+  refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
+  refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
+  for (const char* flag : {"--spp", "--bounces", "--seed"})
+    refuse_if_given_without(a, flag, cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
   if (!a.spot.empty()) {
     if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
     if (!no_scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
@@ -414,6 +433,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   }
   for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
   check_outputs(outputs, inputs);
+  checks_done();
 
   std::unique_ptr<render::GlContext> gl;
   if (fs.method == render::CloudMethod::Slices) {
@@ -462,7 +482,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     render::FrameStats stats;
     render::Image image;
     try {
-      image = renderer.render(camera, &stats);
+      image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, &stats); });
     } catch (const std::invalid_argument& e) {
       // A stage refused what it computed (a NaN pixel): the flags were checked, so say which
       // input it was rendering, and that it is a failure of the render, not of the usage.
@@ -479,6 +499,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     render::PreviewOptions po;
     if (!preview.empty()) po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
     write_image_files(out, preview.empty() ? "" : frame_path(preview, frame, sequence), image, po);
+    warn_half_float_clipping(image, out, "--lamp-intensity, --ambient or the scene's lights");
     std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
                  no_scene ? "nothing" : scene.name.c_str(), camera.width, camera.height, method.c_str(), seconds,
                  stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());

@@ -50,12 +50,6 @@ int brick_count(const std::string& layout) {
   return 0;
 }
 
-std::string four_digits(int i) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%04d", i);
-  return buf;
-}
-
 }  // namespace
 
 std::string shell_quote(const std::string& text) {
@@ -67,6 +61,37 @@ std::string shell_quote(const std::string& text) {
 std::filesystem::path job_path(const FarmJob& job, const std::string& path) {
   const std::filesystem::path p(path);
   return p.is_absolute() ? p : std::filesystem::path(job.workdir) / p;
+}
+
+void make_farm_tasks(FarmJob& job) {
+  job.tasks.clear();
+  if (job.chunk < 1 || job.chunk > 1000000) throw UsageError("--chunk: must be in [1, 1000000] frames");
+  if (job.kind == "bricks") {
+    const int n = brick_count(job.bricks);
+    if (n < 1 || n > 4096) throw UsageError("--bricks: '" + echo(job.bricks) + "' must be N or AxBxC, 1 to 4096 bricks in all");
+    for (int i = 0; i < n; ++i)
+      job.tasks.push_back({{(std::filesystem::path(job.dir) / "bricks" / ("brick." + frame_number_text(i, 4) + ".vdb")).string()},
+                           "brick " + std::to_string(i) + " of " + job.bricks});
+    return;
+  }
+  if (job.kind != "frames") throw UsageError("kind: '" + echo(job.kind) + "' must be frames or bricks");
+  if (job.last < job.first || std::abs(job.first) > 9999999 || std::abs(job.last) > 9999999)
+    throw UsageError("--frames: " + std::to_string(job.first) + "-" + std::to_string(job.last) + " is not a range within +-9999999");
+  const SequencePattern output = check_sequence_pattern("COMMAND -o", job.output);
+  if (!job.preview.empty()) check_sequence_pattern("COMMAND --preview", job.preview);
+  (void)output;
+  const long tasks = task_count(job.first, job.last, job.chunk);
+  if (tasks > 1000000) throw UsageError("--frames: more than 10^6 tasks");
+  for (long t = 0; t < tasks; ++t) {
+    const int a = int(job.first + t * job.chunk), b = int(std::min<long>(job.last, job.first + (t + 1) * job.chunk - 1));
+    FarmTask task;
+    task.what = a == b ? "frame " + std::to_string(a) : "frames " + std::to_string(a) + "-" + std::to_string(b);
+    for (int f = a; f <= b; ++f) {
+      task.outputs.push_back(sequence_path(job.output, f, "COMMAND -o"));
+      if (!job.preview.empty()) task.outputs.push_back(sequence_path(job.preview, f, "COMMAND --preview"));
+    }
+    job.tasks.push_back(std::move(task));
+  }
 }
 
 FarmJob plan_farm_job(const std::vector<std::string>& command, int chunk, const std::string& bricks,
@@ -93,34 +118,19 @@ FarmJob plan_farm_job(const std::vector<std::string>& command, int chunk, const 
     if (has_option(command, "--frames")) throw UsageError("--bricks: a brick job is of one time (--time), not --frames");
     if (chunk != 1) throw UsageError("--chunk: frames only; a brick job has one task per brick");
     if (has_frame_field(output)) throw UsageError("COMMAND -o: the joined file of a brick job has no frame field");
-    const int n = brick_count(bricks);
-    if (n < 1 || n > 4096) throw UsageError("--bricks: '" + echo(bricks) + "' must be N or AxBxC, 1 to 4096 bricks in all");
     job.kind = "bricks";
     job.bricks = bricks;
     job.merge_output = output;
-    for (int i = 0; i < n; ++i)
-      job.tasks.push_back({{(std::filesystem::path(job.dir) / "bricks" / ("brick." + four_digits(i) + ".vdb")).string()},
-                           "brick " + std::to_string(i) + " of " + bricks});
+    make_farm_tasks(job);
     return job;
   }
   const auto [frames, frames_at] = option_value(command, {"--frames"});
   if (frames.empty()) throw UsageError("COMMAND: needs --frames A-B (or give --bricks for a brick job)");
-  const auto [first, last] = parse_frame_range(frames);
-  const auto [preview, preview_at] = option_value(command, {"--preview"});
-  if (!preview.empty()) check_sequence_pattern("COMMAND --preview", preview);
-  const long tasks = task_count(first, last, chunk);
-  if (tasks > 1000000) throw UsageError("--frames: more than 10^6 tasks");
+  std::tie(job.first, job.last) = parse_frame_range(frames);
+  job.output = output;
+  job.preview = option_value(command, {"--preview"}).first;
   job.kind = "frames";
-  for (long t = 0; t < tasks; ++t) {
-    const int a = int(first + t * chunk), b = int(std::min<long>(last, first + (t + 1) * chunk - 1));
-    FarmTask task;
-    task.what = a == b ? "frame " + std::to_string(a) : "frames " + std::to_string(a) + "-" + std::to_string(b);
-    for (int f = a; f <= b; ++f) {
-      task.outputs.push_back(sequence_path(output, f));
-      if (!preview.empty()) task.outputs.push_back(sequence_path(preview, f));
-    }
-    job.tasks.push_back(task);
-  }
+  make_farm_tasks(job);
   return job;
 }
 
@@ -133,39 +143,60 @@ std::vector<std::string> task_arguments(const FarmJob& job) {
   return args;
 }
 
-void write_farm_job(const FarmJob& job) {
+std::string farm_job_json(const FarmJob& job) {
   nlohmann::json j;
+  j["nimbus"] = "farm job";
   j["kind"] = job.kind;
-  j["nimbus"] = job.nimbus;
+  j["program"] = job.nimbus;
   j["workdir"] = job.workdir;
   j["dir"] = job.dir;
   j["command"] = job.command;
   j["chunk"] = job.chunk;
-  j["bricks"] = job.bricks;
-  j["merge_output"] = job.merge_output;
-  for (const FarmTask& t : job.tasks) j["tasks"].push_back({{"what", t.what}, {"outputs", t.outputs}});
-  volume::write_json_file((std::filesystem::path(job.dir) / "job.json").string(), j, "farm job");
+  if (job.kind == "bricks") {
+    j["bricks"] = job.bricks;
+    j["merge_output"] = job.merge_output;
+  } else {
+    j["frames"] = {job.first, job.last};
+    j["output"] = job.output;
+    j["preview"] = job.preview;
+  }
+  // replace: a command's argument that is not UTF-8 is kept readable instead of failing the dump.
+  std::string text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  if (text.size() > kMaxInputFileBytes)
+    throw UsageError("COMMAND: the job's description would take " + std::to_string(text.size() >> 20) +
+                     " MiB, more than the 16 MiB nimbus farm check reads");
+  return text;
 }
 
 FarmJob read_farm_job(const std::filesystem::path& dir) {
   const std::string path = (dir / "job.json").string();
   const nlohmann::json j = volume::read_json_file(path, "farm job");
+  const std::string where = "farm job '" + echo(path, 200) + "'";
   FarmJob job;
   try {
+    if (!j.is_object() || j.value("nimbus", "") != "farm job")
+      throw std::invalid_argument("not a job.json of nimbus farm slurm (no \"nimbus\": \"farm job\")");
     job.kind = j.at("kind").get<std::string>();
-    if (job.kind != "frames" && job.kind != "bricks") throw std::invalid_argument("kind must be frames or bricks");
-    job.nimbus = j.at("nimbus").get<std::string>();
+    job.nimbus = j.at("program").get<std::string>();
     job.workdir = j.at("workdir").get<std::string>();
     job.dir = j.at("dir").get<std::string>();
     job.command = j.at("command").get<std::vector<std::string>>();
-    job.chunk = j.at("chunk").get<int>();
-    job.bricks = j.at("bricks").get<std::string>();
-    job.merge_output = j.at("merge_output").get<std::string>();
-    for (const auto& t : j.at("tasks")) job.tasks.push_back({t.at("outputs").get<std::vector<std::string>>(), t.at("what").get<std::string>()});
-  } catch (const std::exception& e) {
-    throw std::runtime_error("farm job '" + path + "': " + e.what());
+    job.chunk = volume::json_integer(j.at("chunk"), "chunk", 1, 1000000);
+    if (job.kind == "bricks") {
+      job.bricks = j.at("bricks").get<std::string>();
+      job.merge_output = j.at("merge_output").get<std::string>();
+    } else {
+      const nlohmann::json& f = j.at("frames");
+      if (!f.is_array() || f.size() != 2) throw std::invalid_argument("frames must be [first, last]");
+      job.first = volume::json_integer(f[0], "frames[0]", -9999999, 9999999);
+      job.last = volume::json_integer(f[1], "frames[1]", -9999999, 9999999);
+      job.output = j.at("output").get<std::string>();
+      job.preview = j.at("preview").get<std::string>();
+    }
+    make_farm_tasks(job);
+  } catch (const std::exception& e) {  // nlohmann's out_of_range / type_error, or a field's check
+    throw std::runtime_error(where + ": " + echo(e.what(), 300));
   }
-  if (job.tasks.empty()) throw std::runtime_error("farm job '" + path + "': no tasks");
   return job;
 }
 
@@ -178,32 +209,32 @@ std::vector<std::string> check_task_outputs(const FarmJob& job, int index) {
     const std::filesystem::path p = job_path(job, out);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec)) {
-      problems.push_back("missing " + out);
+      problems.push_back("missing " + echo(out, 300));
       continue;
     }
     if (std::filesystem::file_size(p, ec) == 0) {
-      problems.push_back("empty " + out);
+      problems.push_back("empty " + echo(out, 300));
       continue;
     }
     if (!job_ec && std::filesystem::last_write_time(p, ec) < submitted) {
-      problems.push_back("stale " + out + " (written before this job)");
+      problems.push_back("stale " + echo(out, 300) + " (written before this job)");
       continue;
     }
     const std::string ext = p.extension().string();
     try {
       if (ext == ".vdb") {
         const volume::VolumeFile f = volume::read_volume_vdb(p, volume::VdbReadOptions{});
-        if (!f.checksum_verified) problems.push_back("not sealed by nimbus " + out);
+        if (!f.checksum_verified) problems.push_back("not sealed by nimbus " + echo(out, 300));
       } else if (ext == ".exr") {
         render::read_exr(p);
       } else if (ext == ".png") {
         std::ifstream in(p, std::ios::binary);
         char sig[8] = {};
         in.read(sig, 8);
-        if (std::string(sig, 8) != "\x89PNG\r\n\x1a\n") problems.push_back("not a PNG " + out);
+        if (std::string(sig, 8) != "\x89PNG\r\n\x1a\n") problems.push_back("not a PNG " + echo(out, 300));
       }
     } catch (const std::exception& e) {
-      problems.push_back("unreadable " + out + " (" + echo(e.what(), 200) + ")");
+      problems.push_back("unreadable " + echo(out, 300) + " (" + echo(e.what(), 200) + ")");
     }
   }
   return problems;

@@ -22,8 +22,14 @@ struct FarmJob {
   int chunk = 1;                     // frames per task
   std::string bricks;                // layout text for --brick, bricks only ("4", "2x2x1")
   std::string merge_output;          // bricks only: the joined file (the command's -o)
-  std::vector<FarmTask> tasks;
+  int first = 0, last = 0;           // frames only: the command's --frames
+  std::string output, preview;       // frames only: the command's -o and --preview (sequence names)
+  std::vector<FarmTask> tasks;       // made from the fields above (make_farm_tasks), not stored
 };
+
+// The job's tasks from its fields; UsageError when they are inconsistent (a bad pattern, a
+// range past the limits, more than 10^6 tasks, a brick layout outside 1 to 4096 bricks).
+void make_farm_tasks(FarmJob& job);
 
 // The job for `command` (generate or render with --frames A-B; or generate with `bricks` set).
 // Throws UsageError naming what is wrong: another command, no -o, no --frames for frames,
@@ -31,9 +37,11 @@ struct FarmJob {
 FarmJob plan_farm_job(const std::vector<std::string>& command, int chunk, const std::string& bricks,
                       const std::filesystem::path& dir);
 
-// job.json in the job directory: written atomically; read back with every field checked
+// job.json's text: the fields, not the tasks (a million frames stay a few hundred bytes).
+// std::runtime_error when it would exceed the limit read_farm_job enforces (16 MiB).
+std::string farm_job_json(const FarmJob& job);
+// job.json of a job directory read back with every field checked and the tasks made again
 // (std::runtime_error naming the file).
-void write_farm_job(const FarmJob& job);
 FarmJob read_farm_job(const std::filesystem::path& dir);
 
 // The task's command line: the frames of task $SLURM_ARRAY_TASK_ID, or its brick, as arguments.

@@ -17,6 +17,8 @@ namespace nimbus::cli {
 // A sequence longer than this needs --many-frames: a typo such as 1-1000000 would otherwise start
 // writing a million files.
 inline constexpr long kMaxFramesUnforced = 10000;
+// The sky time of any frame of a sequence: at most 1e9 s (31 years) from time 0.
+inline constexpr double kMaxSequenceSeconds = 1e9;
 
 // A time in seconds for a message: "t = 1e+12 s".
 inline std::string time_text(double seconds) {
@@ -103,6 +105,12 @@ inline FrameRange parse_frames(const FrameArgs& a) {
   std::tie(r.first, r.last) = parse_frame_range(a.frames);
   r.whole_first = r.first;
   r.whole_last = r.last;
+  // Every frame's time is checked now, not when its turn comes (--fps 1e-300 put frame 1 at
+  // 1e300 s, after frame 0 was written): the first and last frames bound them all.
+  for (const int f : {r.first, r.last})
+    if (!(std::abs(r.time(f)) <= kMaxSequenceSeconds))
+      throw UsageError("--fps: frame " + std::to_string(f) + " would be at " + time_text(r.time(f)) +
+                       ", beyond +-1e9 s of sky time; raise --fps or move --start-frame");
   const long count = long(r.last) - r.first + 1;
   if (count > kMaxFramesUnforced && !a.many_frames)
     throw UsageError("--frames: " + a.frames + " is " + std::to_string(count) + " frames, more than " +

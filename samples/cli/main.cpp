@@ -10,11 +10,23 @@
 
 namespace {
 
-// Every error is one line on stderr, whatever it quotes (a key or argument holding a line break).
+// Every error is one line on stderr, whatever it quotes: a line break becomes a space, any other
+// control character (an escape sequence from a file's key or name) '?', and a message longer
+// than kMaxErrorChars is cut in its middle, so that both what failed and why stay readable.
+constexpr std::size_t kMaxErrorChars = 1000;
 std::string one_line(std::string text) {
-  for (char& c : text)
+  for (char& c : text) {
     if (c == '\n' || c == '\r') c = ' ';
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  if (text.size() > kMaxErrorChars)
+    text = text.substr(0, kMaxErrorChars / 2) + " [...] " + text.substr(text.size() - kMaxErrorChars / 2);
   return text;
+}
+
+// The commands whose checks end in checks_done(): the ones that write files.
+bool supports_check_only(const std::string& command) {
+  return command == "generate" || command == "render" || command == "view" || command == "merge" || command == "farm";
 }
 
 }  // namespace
@@ -23,6 +35,10 @@ int main(int argc, char** argv) {
   CLI::App app{"nimbus: procedural cloud and gas volumes, and their renderer", "nimbus"};
   app.set_version_flag("--version", std::string("nimbus ") + NIMBUS_VERSION);
   app.require_subcommand(1);
+  bool check_only = false;
+  app.add_flag("--check-only", check_only,
+               "Check every flag, input and output of the command (generate, render, view, merge, farm slurm), "
+               "then exit 0 without doing its work");
   nimbus::cli::Action action;
   nimbus::cli::add_noise_command(app, action);
   nimbus::cli::add_bench_command(app, action);
@@ -35,11 +51,17 @@ int main(int argc, char** argv) {
   nimbus::cli::add_view_command(app, action);
   nimbus::cli::add_merge_command(app, action);
   nimbus::cli::add_farm_command(app, action);
+  for (int i = 1; i < argc && argv[i][0] == '-'; ++i)  // the command after the program's own flags
+    if (std::string(argv[i]) == "--check-only" && i + 1 < argc && argv[i + 1][0] != '-' && !supports_check_only(argv[i + 1])) {
+      std::fprintf(stderr, "nimbus: --check-only: applies to generate, render, view, merge and farm, not to %s\n",
+                   one_line(argv[i + 1]).substr(0, 40).c_str());
+      return 2;
+    }
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known |= sub->check_name(argv[1]);
     if (!known) {
-      std::fprintf(stderr, "nimbus: unknown command '%s' (try nimbus --help)\n", argv[1]);
+      std::fprintf(stderr, "nimbus: unknown command '%s' (try nimbus --help)\n", one_line(argv[1]).substr(0, 40).c_str());
       return 2;
     }
   }
@@ -57,7 +79,10 @@ int main(int argc, char** argv) {
   }
   try {
     nimbus::cli::refuse_empty_values(app);
+    nimbus::cli::set_check_only(check_only);
     return action ? action() : 0;
+  } catch (const nimbus::cli::ChecksPassed&) {
+    return 0;
   } catch (const nimbus::cli::UsageError& e) {
     std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;

@@ -25,4 +25,9 @@ void check_outputs(const std::vector<PathArg>& outputs, const std::vector<PathAr
 void write_image_files(const std::string& exr, const std::string& preview, const render::Image& image,
                        const render::PreviewOptions& preview_options);
 
+// The EXR stores half floats, whose largest value is 65504: brighter radiances are clipped. Prints
+// one warning line on stderr naming `output`, how many values were clipped, the brightest, and
+// `sources` (the flags or keys that set the light, e.g. "--lamp-intensity"), when any are.
+void warn_half_float_clipping(const render::Image& image, const std::string& output, const std::string& sources);
+
 }  // namespace nimbus::cli

@@ -6,6 +6,7 @@
 #include <regex>
 #include <sstream>
 
+#include "nimbus/base/validate.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "progress.hpp"
 
@@ -59,7 +60,11 @@ render::Camera apply_camera_args(const CameraArgs& a, render::Camera c) {
   if (!a.eye.empty()) c.eye = parse_vec3("--eye", a.eye);
   if (!a.look_at.empty()) c.look_at = parse_vec3("--look-at", a.look_at);
   if (!a.up.empty()) c.up = parse_vec3("--up", a.up);
-  if (a.fov_deg) c.fov_deg = *a.fov_deg;
+  if (a.fov_deg) {
+    if (!(*a.fov_deg >= kMinFovDeg && *a.fov_deg <= kMaxFovDeg))
+      throw UsageError("--fov: must be in [1, 179] degrees, got " + number_text(*a.fov_deg));
+    c.fov_deg = *a.fov_deg;
+  }
   if (!a.res.empty()) std::tie(c.width, c.height) = parse_resolution("--res", a.res);
   try {
     render::validate(c);

@@ -10,6 +10,7 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/gl/resources.hpp"
 
 namespace nimbus::cli {
 
@@ -35,6 +36,24 @@ glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
 void check_exposure(const std::optional<double>& stops);
 // "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
+
+// The narrowest and widest --fov, degrees: below 1 degree a framed camera stands hundreds of
+// kilometres from its clouds, beyond the sky's atmosphere (an all-black picture); at 180 the
+// projection has no extent.
+inline constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 179.0;
+
+// Runs a GPU render; a GL_OUT_OF_MEMORY on the way becomes std::runtime_error naming `size_flag`
+// and the size it asked for ("--res 16384x16384: ..."), since the frame's buffers are what grew.
+template <typename F>
+auto naming_gpu_memory(const std::string& size_flag, int width, int height, F&& render) -> decltype(render()) {
+  try {
+    return render();
+  } catch (const render::GlError& e) {
+    if (!e.out_of_memory) throw;
+    throw std::runtime_error(size_flag + " " + std::to_string(width) + "x" + std::to_string(height) +
+                             ": the GPU ran out of memory for the frame's buffers (" + e.what() + "); render smaller");
+  }
+}
 
 // "a,b,,c" -> {"a", "b", "c"}: the comma-separated lists of the benchmarks' flags.
 std::vector<std::string> split_list(const std::string& text);

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,8 @@ struct CloudRenderArgs {
   int spp = 64;                      // pathtrace: samples per pixel
   int bounces = 1000;                // pathtrace: scattering events per path at most
   uint64_t seed = 1;                 // pathtrace
+  std::set<std::string> given;       // the flags given on the command line ("--spot-cone"): a flag that
+                                     // qualifies another one must not be given without it
 };
 
 void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& args);

@@ -7,6 +7,8 @@
 
 #include "cli.hpp"
 #include "outputs.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -19,8 +21,19 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   int width = 960, height = 540;
   if (!camera.res.empty()) std::tie(width, height) = parse_resolution("--res", camera.res);
   check_exposure(exposure);
+  // One picture: a frame field would be written literally (a file named "o.%04d.exr").
+  for (const auto& [flag, p] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
+    if (p.find('%') != std::string::npos)
+      throw UsageError(flag + ": '" + echo(p) + "' holds a %: a view state renders one picture, not a sequence");
   const render::ViewState state = render::load_view_state(path);
+  // The frame is rendered at the state's render scale, as the viewer draws it.
+  const auto [frame_w, frame_h] = render::scaled_frame_size(width, height, state.render_scale);
+  if (frame_w < 1 || frame_h < 1)
+    throw UsageError("--res " + std::to_string(width) + "x" + std::to_string(height) + " at the state's renderer.render_scale " +
+                     number_text(state.render_scale) + " is below one pixel (" + std::to_string(frame_w) + "x" +
+                     std::to_string(frame_h) + "); give a larger --res");
   check_outputs({{"-o", output}, {"--preview", preview}}, {{"--view-state", path}});
+  checks_done();
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<render::GlContext> gl;
   try {
@@ -29,12 +42,19 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
     throw std::runtime_error(std::string("--view-state needs OpenGL: ") + e.what());
   }
   render::SkyRenderer renderer(state);
-  const render::Image image = renderer.render(state, width, height, render::FrameQuality{}, true);
+  render::SkyFrameInfo info;
+  const render::Image image = naming_gpu_memory("--res", width, height, [&] {
+    return renderer.render(state, width, height, render::FrameQuality{}, true, nullptr, &info);
+  });
   render::PreviewOptions po;
   po.exposure_stops = exposure ? *exposure : state.exposure_stops;
   write_image_files(output, preview, image, po);
+  warn_half_float_clipping(image, output, "the state's lights or optics.extinction");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(stderr, "%s: view state %s, %dx%d, %.2f s\n", output.c_str(), path.c_str(), width, height, seconds);
+  std::string size = std::to_string(info.width) + "x" + std::to_string(info.height);
+  if (info.width != width || info.height != height)
+    size += " (--res " + std::to_string(width) + "x" + std::to_string(height) + " at render scale " + number_text(state.render_scale) + ")";
+  std::fprintf(stderr, "%s: view state %s, %s, %.2f s\n", echo(output, 200).c_str(), echo(path, 200).c_str(), size.c_str(), seconds);
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // `nimbus view`: the interactive animated sky (a GLFW window with a Dear ImGui panel), or a
 // scripted run of the same loop in a window or headless (--script, --headless).
 #include <epoxy/gl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/output_path.hpp"
+#include "cli/sequence_path.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -48,12 +51,8 @@ int run_view(const ViewArgs& a) {
   if ((!a.sky.empty()) + (!a.presets.empty()) + (!a.files.empty()) > 1)
     throw UsageError("FILE.vdb, --preset and --sky: give one of them");
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
-  for (const std::string& f : a.files) {
-    const std::size_t n = std::count(f.begin(), f.end(), '%');
-    if (n > 1 || (n == 1 && f.find("%0") == std::string::npos && f.find("%d") == std::string::npos))
-      throw UsageError("FILE: '" + f + "' may hold one frame-number field such as %04d, and no other %");
-    if (n == 0) refuse_special_file(f, "FILE");
-  }
+  for (const std::string& f : a.files)
+    if (!check_sequence_pattern("FILE", f).has_field) refuse_special_file(f, "FILE");
   if (!a.shader_dir.empty() && !std::filesystem::is_directory(a.shader_dir))
     throw UsageError("--shader-dir: '" + a.shader_dir + "' is not a folder");
   for (const std::string& p : a.presets) {
@@ -101,8 +100,34 @@ int run_view(const ViewArgs& a) {
   }
   viewer::Script script;
   if (!a.script.empty()) script = viewer::load_script(a.script);
-  // --state-out may be --state (Ctrl+S saves there by default), but not another input.
-  if (!a.state_out.empty()) check_outputs({{"--state-out", a.state_out}}, {{"--sky", a.sky}, {"--script", a.script}});
+  // Every file the run may write, before any work: none of them an input or each other, each a
+  // regular file (or none yet) in a folder that takes it. --state-out may be --state (Ctrl+S
+  // saves there by default), but not another input.
+  std::vector<PathArg> inputs{{"--sky", a.sky}, {"--script", a.script}};
+  for (const std::string& f : a.files)
+    if (!has_frame_field(f)) inputs.push_back({"FILE", f});
+  std::vector<PathArg> outputs{{"--state-out", a.state_out}};
+  if (!script.record.empty()) outputs.push_back({"script record", script.record});
+  for (const viewer::ScriptEvent& e : script.events)
+    if (e.kind == viewer::ScriptEvent::Kind::SaveSky) outputs.push_back({"script save_sky", e.path});
+  std::vector<PathArg> writes = outputs;  // several save_sky events may name one file, written in turn
+  std::sort(writes.begin(), writes.end(), [](const PathArg& x, const PathArg& y) { return x.path < y.path; });
+  writes.erase(std::unique(writes.begin(), writes.end(), [](const PathArg& x, const PathArg& y) { return x.path == y.path; }),
+               writes.end());
+  // Ctrl+S may rewrite --state (it saves there unless --state-out is given); nothing else may.
+  if (!a.state.empty() && (a.state_out.empty() || file_identity(a.state) != file_identity(a.state_out)))
+    inputs.push_back({"--state", a.state});
+  check_outputs(writes, inputs);
+  // Screenshots (F12, a script's screenshot_every) go to a folder: one that exists or can be made.
+  {
+    std::error_code ec;
+    const auto st = std::filesystem::status(a.screenshot_dir, ec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
+      throw UsageError("--screenshot-dir '" + echo(a.screenshot_dir) + "': is not a folder");
+    check_output_path(std::filesystem::path(a.screenshot_dir) / (".nimbus-probe-" + std::to_string(::getpid())),
+                      "--screenshot-dir");
+  }
+  checks_done();
   viewer::ViewerOptions options;
   options.screenshot_dir = a.screenshot_dir;
   options.shader_dir = a.shader_dir.empty() ? source_shader_dir() : a.shader_dir;
@@ -125,7 +150,13 @@ int run_view(const ViewArgs& a) {
     const int rc = viewer::run_script(script, v, [&] {
       if (window) viewer::present_in_window(*window, v);
     });
-    if (!a.state_out.empty()) v.save_state();
+    if (!a.state_out.empty()) {
+      v.save_state();
+      if (v.failures() > 0 && rc == 0) {
+        std::fprintf(stderr, "nimbus view: --state-out: %s\n", echo(v.message(), 1000).c_str());
+        return 1;
+      }
+    }
     return rc;
   }
   return viewer::run_interactive(*window, v);

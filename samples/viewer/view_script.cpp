@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/volume/json_io.hpp"
 
 namespace nimbus::viewer {
@@ -38,7 +39,7 @@ Script load_script(const std::string& path) {
   if (!doc.is_object()) bad(where + " must be a JSON object");
   Script s;
   for (const auto& [k, v] : doc.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);
     if (k == "size") {
       if (!v.is_array() || v.size() != 2) bad(key + " must be [width, height]");
       s.width = integer(v[0], key + "[0]", 16, 8192);
@@ -77,7 +78,7 @@ Script load_script(const std::string& path) {
         ev.frame = integer(e["frame"], ek + ".frame", 0, 100000);
         int kinds = 0;
         for (const auto& [ik, iv] : e.items()) {
-          const std::string ikey = ek + "." + ik;
+          const std::string ikey = ek + "." + echo(ik);
           if (ik == "frame") continue;
           ++kinds;
           if (ik == "key") {
@@ -118,6 +119,11 @@ Script load_script(const std::string& path) {
       bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, record, camera, events)");
     }
   }
+  // An event after the last frame would never happen: say so rather than skip it.
+  for (std::size_t i = 0; i < s.events.size(); ++i)
+    if (s.events[i].frame >= s.frames)
+      bad(where + ".events[" + std::to_string(i) + "].frame " + std::to_string(s.events[i].frame) +
+          " is past the last frame (" + std::to_string(s.frames - 1) + "; frames: " + std::to_string(s.frames) + ")");
   return s;
 }
 
@@ -149,8 +155,9 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
         case ScriptEvent::Kind::Sun: viewer.set_sun(e.amount.x, e.amount.y); break;
         case ScriptEvent::Kind::SaveSky: viewer.save_sky(e.path); break;
       }
-      if (!viewer.message().empty()) std::fprintf(stderr, "frame %d: %s\n", f, viewer.message().c_str());
-      if (!viewer.shader_error().empty()) std::fprintf(stderr, "frame %d: shader error: %s\n", f, viewer.shader_error().c_str());
+      if (!viewer.message().empty()) std::fprintf(stderr, "frame %d: %s\n", f, echo(viewer.message(), 1000).c_str());
+      if (!viewer.shader_error().empty())
+        std::fprintf(stderr, "frame %d: shader error: %s\n", f, echo(viewer.shader_error(), 2000).c_str());
     }
     if (viewer.quit_requested()) break;
     // The adaptive quality's clock is the script's (f * dt): when it refines does not depend on
@@ -162,7 +169,7 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
       try {
         shot = viewer.report().quality_level == 0 ? viewer.save_frame() : viewer.screenshot(s.width, s.height);
       } catch (const std::exception& e) {
-        std::fprintf(stderr, "nimbus view: screenshot at frame %d: %s\n", f, e.what());
+        std::fprintf(stderr, "nimbus view: screenshot at frame %d: %s\n", f, echo(e.what(), 1000).c_str());
         ++failures;
       }
     }
@@ -189,10 +196,11 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
     try {
       volume::write_json_file(s.record, record, "record");
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "nimbus view: record '%s': %s\n", s.record.c_str(), e.what());
+      std::fprintf(stderr, "nimbus view: record '%s': %s\n", echo(s.record, 200).c_str(), echo(e.what(), 1000).c_str());
       ++failures;
     }
   }
+  failures += viewer.failures();  // saves, loads and screenshots of key and save_sky events
   return failures == 0 ? 0 : 1;
 }
 

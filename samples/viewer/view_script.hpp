@@ -39,12 +39,13 @@ struct Script {
 };
 
 // Throws std::runtime_error naming the file when unreadable or not JSON, std::invalid_argument
-// naming the key for bad contents.
+// naming the key for bad contents (an event past the last frame among them). The files it
+// writes (record, save_sky) are checked by the caller, which knows the run's other files.
 Script load_script(const std::string& path);
 
 // Runs the script on `viewer` (built by the caller, with wait_for_keyframes on). present(frame)
 // shows each frame (the window's display and swap; nothing headless). Returns 0, or 1 when a
-// screenshot or the record could not be written.
+// screenshot, a save, a load or the record failed.
 int run_script(const Script& script, Viewer& viewer, const std::function<void()>& present);
 
 }  // namespace nimbus::viewer

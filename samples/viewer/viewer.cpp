@@ -1,6 +1,8 @@
 // The sky viewer's model (viewer.hpp).
 #include "viewer.hpp"
 
+#include "nimbus/base/staged_files.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -68,6 +70,7 @@ void Viewer::key(Key k) {
         message_ = "saved " + screenshot(std::max(last_width_, 16), std::max(last_height_, 16));
       } catch (const std::exception& e) {
         message_ = std::string("screenshot failed: ") + e.what();
+        ++failures_;
       }
       break;
     case Key::CtrlS:
@@ -164,14 +167,19 @@ std::string Viewer::write_shot(render::Image shot) {
   for (;; ++n) {
     if (n > 9999) throw std::runtime_error("screenshot folder '" + dir.string() + "' already holds nimbus-0001 to 9999");
     std::snprintf(name, sizeof name, "nimbus-%04d", n);
-    if (!fs::exists(dir / (std::string(name) + ".exr")) && !fs::exists(dir / (std::string(name) + ".png"))) break;
+    // symlink_status: a dangling link or a FIFO of that name is taken, not written through.
+    if (!fs::exists(fs::symlink_status(dir / (std::string(name) + ".exr"))) &&
+        !fs::exists(fs::symlink_status(dir / (std::string(name) + ".png"))))
+      break;
   }
   shot.metadata["screenshot"] = name;
   const fs::path exr = dir / (std::string(name) + ".exr");
-  render::write_exr(exr, shot);
   render::PreviewOptions po;
   po.exposure_stops = state_.exposure_stops;
-  render::write_png_preview(dir / (std::string(name) + ".png"), shot, po);
+  StagedFiles files;  // both or neither
+  files.write(exr, [&](const fs::path& tmp) { render::write_exr(tmp, shot); });
+  files.write(dir / (std::string(name) + ".png"), [&](const fs::path& tmp) { render::write_png_preview(tmp, shot, po); });
+  files.commit();
   return exr.string();
 }
 
@@ -206,6 +214,7 @@ void Viewer::save_state() {
     message_ = "saved " + options_.state_path;
   } catch (const std::exception& e) {
     message_ = std::string("save failed: ") + e.what();
+    ++failures_;
   }
 }
 
@@ -215,6 +224,7 @@ void Viewer::save_sky(const std::string& path) {
     message_ = "saved the sky as " + path;
   } catch (const std::exception& e) {
     message_ = std::string("saving the sky failed: ") + e.what();
+    ++failures_;
   }
 }
 
@@ -225,6 +235,7 @@ void Viewer::load_state() {
     message_ = "loaded " + options_.state_path;
   } catch (const std::exception& e) {
     message_ = std::string("load failed: ") + e.what();
+    ++failures_;
   }
 }
 

@@ -46,6 +46,9 @@ class Viewer {
   AdaptiveQuality& adaptive() { return adaptive_; }
   bool fly_mode() const { return fly_; }
   bool quit_requested() const { return quit_; }
+  // How many saves, loads and screenshots have failed so far (each also sets message()): a
+  // scripted run that had any exits 1.
+  int failures() const { return failures_; }
   // The last message for the user (a saved file, an error); shader_error(): the last failed reload.
   const std::string& message() const { return message_; }
   const std::string& shader_error() const { return shader_error_; }
@@ -107,6 +110,7 @@ class Viewer {
   FrameReport report_;
   bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
   int last_width_ = 0, last_height_ = 0;
+  int failures_ = 0;
   std::string message_, shader_error_;
 };
 

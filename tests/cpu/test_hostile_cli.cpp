@@ -5,6 +5,7 @@
 // Every refusal comes before any rendering, so the whole table runs in seconds.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "support/run_split.hpp"
+#include "support/hostile_table.hpp"
 #include "support/vdb_fixtures.hpp"
 
 namespace nimbus::test {
@@ -20,26 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Case {
-  std::vector<std::string> args;  // "{d}" stands for the fixture directory
-  int code;                       // 2: usage error, 1: runtime error
-  std::string mentions;           // words the single stderr line must hold
-  std::string stdin_path = "/dev/null";
-};
-
-// The fixture directory as its entries stand: kind, size, inode and change time of each, so a
-// file written, replaced (a new inode) or created shows up, without reading FIFOs or big files.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> entries;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    struct stat st {};
-    ::lstat(e.path().c_str(), &st);
-    entries[e.path().string()] = std::to_string(st.st_mode) + " " + std::to_string(st.st_size) + " " +
-                                 std::to_string(st.st_ino) + " " + std::to_string(st.st_mtim.tv_sec) + "." +
-                                 std::to_string(st.st_mtim.tv_nsec);
-  }
-  return entries;
-}
+using Case = HostileCase;
 
 class HostileCli : public ::testing::Test {
  protected:
@@ -75,32 +57,7 @@ class HostileCli : public ::testing::Test {
     delete dir_;
   }
 
-  static std::string in_dir(std::string text) {
-    for (std::size_t at; (at = text.find("{d}")) != std::string::npos;) text.replace(at, 3, dir_->string());
-    return text;
-  }
-
-  static void expect_refused(const std::vector<Case>& cases) {
-    for (const Case& c : cases) {
-      std::vector<std::string> args;
-      std::string shown;
-      for (const std::string& arg : c.args) {
-        const std::string a = in_dir(arg);
-        shown += (shown.empty() ? "" : " ") + (a.empty() ? std::string("''") : a);
-        args.push_back(a);
-      }
-      const std::string in = in_dir(c.stdin_path), mentions = in_dir(c.mentions);
-      const auto before = snapshot(*dir_);
-      const SplitResult r = run_nimbus_split(args, in);
-      SCOPED_TRACE("nimbus " + shown + (in == "/dev/null" ? "" : " < " + in));
-      EXPECT_EQ(r.code, c.code) << r.err;
-      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-      EXPECT_EQ(r.err.empty() ? '\n' : r.err.back(), '\n') << r.err;
-      EXPECT_NE(r.err.find(mentions), std::string::npos) << "wanted: " << mentions << "\n" << r.err;
-      EXPECT_EQ(r.out, "");
-      EXPECT_EQ(snapshot(*dir_), before) << "the run changed its directory";
-    }
-  }
+  static void expect_refused(const std::vector<Case>& cases) { test::expect_refused(*dir_, cases); }
 
   static fs::path* dir_;
 };

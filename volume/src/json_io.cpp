@@ -25,7 +25,7 @@ nlohmann::json read_json_file(const std::string& path, const std::string& what) 
   check_json_depth(text, what + " '" + path + "'");         // before the recursive parser sees it
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range.406 for a number such as 1e309
     throw std::runtime_error(what + " '" + path + "': not JSON (" + e.what() + ")");
   }
 }

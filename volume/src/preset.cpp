@@ -121,7 +121,7 @@ json load_preset(std::string_view name) {
       return parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
   std::string known;
   for (const auto& p : list_presets()) known += (known.empty() ? "" : ", ") + p.name;
-  bad("unknown preset '" + std::string(name) + "' (known: " + known + ")");
+  bad("unknown preset '" + echo(name) + "' (known: " + known + ")");
 }
 
 glm::dvec2 vec2(const json& j, const std::string& key) {

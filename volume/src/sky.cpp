@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "embedded_json.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/sequence_pattern.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
 
@@ -26,15 +28,20 @@ SkyCloud cloud_from(const json& c, const std::string& where) {
   SkyCloud out;
   bool has_preset = false;
   for (const auto& [k, v] : c.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);  // a key read from a file: short, one line
     if (k == "preset") {
       if (!v.is_string()) bad(key + " must be a preset name");
       out.preset = v.get<std::string>();
-      load_preset(out.preset);  // unknown -> invalid_argument listing the known ones
+      try {
+        load_preset(out.preset);  // unknown -> invalid_argument listing the known ones
+      } catch (const std::invalid_argument& e) {
+        bad(key + ": " + e.what());
+      }
       has_preset = true;
     } else if (k == "file") {
       if (!v.is_string() || v.get<std::string>().empty()) bad(key + " must be a VDB file or a name.%04d.vdb pattern");
       out.file = v.get<std::string>();
+      SequencePattern::parse(out.file, key);  // one %d or %0Nd frame field at most, named by its key
     } else if (k == "grid") {
       if (!v.is_string()) bad(key + " must be a grid name");
       out.grid = v.get<std::string>();
@@ -67,7 +74,7 @@ void validate(const Sky& s) {
   const glm::dvec3 w = s.wind_m_s;
   if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) || std::abs(w.x) > kMaxWind ||
       std::abs(w.y) > kMaxWind || std::abs(w.z) > kMaxWind)
-    bad("sky wind: each component must be finite and within +-" + std::to_string(kMaxWind) + " m/s");
+    bad("sky wind: each component must be finite and within +-200 m/s");
   if (!(s.evolution_scale >= 0.0 && s.evolution_scale <= 1000.0)) bad("sky evolution: must be in [0, 1000]");
   if (!(s.sun_elevation_deg >= -10.0 && s.sun_elevation_deg <= 90.0)) bad("sky sun.elevation: must be in [-10, 90] degrees");
   if (!(s.sun_azimuth_deg >= 0.0 && s.sun_azimuth_deg < 360.0)) bad("sky sun.azimuth: must be in [0, 360) degrees");
@@ -81,7 +88,7 @@ Sky sky_from_json(const json& doc, const std::string& where) {
   Sky s;
   bool has_clouds = false;
   for (const auto& [k, v] : doc.items()) {
-    const std::string key = where + "." + k;
+    const std::string key = where + "." + echo(k);  // a key read from a file: short, one line
     if (k == "description") {
       if (!v.is_string()) bad(key + " must be text");
     } else if (k == "clouds") {
@@ -102,7 +109,7 @@ Sky sky_from_json(const json& doc, const std::string& where) {
           s.sun_azimuth_deg = number(sv, key + ".azimuth", 0.0, 360.0);
           if (s.sun_azimuth_deg == 360.0) s.sun_azimuth_deg = 0.0;
         } else {
-          bad(key + "." + sk + ": unknown key (known: elevation, azimuth)");
+          bad(key + "." + echo(sk) + ": unknown key (known: elevation, azimuth)");
         }
       }
     } else if (k == "voxel_size") {
@@ -168,10 +175,10 @@ CloudParams sky_cloud_params(const Sky& sky, std::size_t index) {
   const std::string where = "sky clouds[" + std::to_string(index) + "]";
   json cloud = load_preset(c.preset).at("cloud");
   for (const auto& [k, v] : c.overrides.items()) {
-    if (!cloud.contains(k)) bad(where + ".overrides." + k + ": preset '" + c.preset + "' has no such key");
+    if (!cloud.contains(k)) bad(where + ".overrides." + echo(k) + ": preset '" + c.preset + "' has no such key");
     if (cloud[k].is_object() && v.is_object()) {  // a field: its keys one by one
       for (const auto& [kk, vv] : v.items()) {
-        if (!cloud[k].contains(kk)) bad(where + ".overrides." + k + "." + kk + ": preset '" + c.preset + "' has no such key");
+        if (!cloud[k].contains(kk)) bad(where + ".overrides." + echo(k) + "." + echo(kk) + ": preset '" + c.preset + "' has no such key");
         cloud[k][kk] = vv;
       }
     } else {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "nimbus/base/validate.hpp"
 #include "nimbus/volume/up_axis.hpp"
 #include "nimbus/volume/vdb_io.hpp"
 #include "vdb_common.hpp"
@@ -29,7 +30,7 @@ bool storable(float v, bool half_float) {
 
 [[noreturn]] void refuse_value(const std::string& name, float v, const openvdb::Coord& at) {
   if (!std::isfinite(v)) throw std::invalid_argument("grid " + name + ": non-finite value at voxel " + where(at));
-  throw std::invalid_argument("grid " + name + ": value " + std::to_string(v) + " at voxel " + where(at) +
+  throw std::invalid_argument("grid " + name + ": value " + number_text(v) + " at voxel " + where(at) +
                               " is beyond the half-float range (65504); write it as full float");
 }
 

@@ -1,5 +1,6 @@
 // Reading a fog volume's float grid from a VDB file, and its dense active box.
 #include "nimbus/volume/vdb_read.hpp"
+#include "nimbus/base/validate.hpp"
 
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/LevelSetUtil.h>
@@ -29,9 +30,9 @@ void check_transform(const std::string& where, const openvdb::math::Transform& t
   const openvdb::Vec3d vs = t.voxelSize();
   const double det = m.getMat3().det();
   if (!(std::abs(det) > 1e-300) || !(std::abs(det) >= 1e-12 * vs[0] * vs[1] * vs[2]))
-    throw std::runtime_error(where + " has a degenerate transform (voxel size " + std::to_string(vs[0]) + " x " +
-                             std::to_string(vs[1]) + " x " + std::to_string(vs[2]) + ", determinant " +
-                             std::to_string(det) + ")");
+    throw std::runtime_error(where + " has a degenerate transform (voxel size " + number_text(vs[0]) + " x " +
+                             number_text(vs[1]) + " x " + number_text(vs[2]) + ", determinant " +
+                             number_text(det) + ")");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // h-1-y is image row y, i.e. an image read back with glReadPixels (bottom row first) must be
 // flipped vertically before it is stored as an Image (row 0 = top).
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/base/validate.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -51,7 +52,7 @@ void validate(const Camera& c) {
   const double sin_angle = glm::length(glm::cross(view / view_len, c.up / up_len));
   if (!(sin_angle > 1e-9)) fail("up", "must not be parallel to the view direction (look_at - eye)");
   if (!std::isfinite(c.fov_deg) || !(c.fov_deg > 0.0) || !(c.fov_deg < 180.0)) {
-    fail("fov_deg", "must be in (0, 180) degrees, got " + std::to_string(c.fov_deg));
+    fail("fov_deg", "must be in (0, 180) degrees, got " + number_text(c.fov_deg));
   }
   if (c.width <= 0) fail("width", "must be > 0, got " + std::to_string(c.width));
   if (c.height <= 0) fail("height", "must be > 0, got " + std::to_string(c.height));

@@ -19,8 +19,9 @@ void validate_g(double g, const char* field) {
 }  // namespace
 
 void validate(const CloudOptics& o) {
-  require(std::isfinite(o.extinction_per_m) && o.extinction_per_m >= 0.0,
-          "cloud extinction_per_m must be finite and >= 0");
+  // Beyond 1e12 per metre (as the CLI's flags) the slicer's optical depths overflow its floats.
+  require(std::isfinite(o.extinction_per_m) && o.extinction_per_m >= 0.0 && o.extinction_per_m <= 1e12,
+          "cloud extinction_per_m must be in [0, 1e12] per metre");
   for (int c = 0; c < 3; ++c)
     require(std::isfinite(o.albedo[c]) && o.albedo[c] >= 0.0 && o.albedo[c] <= 1.0,
             "cloud albedo must be in [0, 1] per channel");
@@ -29,8 +30,8 @@ void validate(const CloudOptics& o) {
   require(std::isfinite(o.phase.forward_weight) && o.phase.forward_weight >= 0.0 && o.phase.forward_weight <= 1.0,
           "cloud phase forward_weight must be in [0, 1]");
   for (int c = 0; c < 3; ++c)
-    require(std::isfinite(o.ambient_radiance[c]) && o.ambient_radiance[c] >= 0.0,
-            "cloud ambient_radiance must be finite and >= 0 per channel");
+    require(std::isfinite(o.ambient_radiance[c]) && o.ambient_radiance[c] >= 0.0 && o.ambient_radiance[c] <= 1e12,
+            "cloud ambient_radiance must be in [0, 1e12] per channel");
 }
 
 void validate(const MultipleScattering& m) {

@@ -1,13 +1,19 @@
 // Keyframes of a sky's evolution on a background thread (sky_keyframes.hpp).
 #include "nimbus/render/core/sky_keyframes.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/base/file_kind.hpp"
+#include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/memory.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/volume/generate.hpp"
@@ -39,28 +45,29 @@ SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(st
       s.path = sc.file;
       s.grid = sc.grid;
       s.up = static_cast<int>(parse_up_axis(sc.up));
-      if (sc.file.find('%') != std::string::npos) {
+      s.pattern = SequencePattern::parse(sc.file, "sky cloud file");  // checked again: a Sky may be built in code
+      if (s.pattern.has_field) {
         // A sequence: every frame number whose file exists, 0 to 99999.
-        char buf[4096];
         for (int n = 0; n <= 99999; ++n) {
-          std::snprintf(buf, sizeof buf, sc.file.c_str(), n);
           std::error_code ec;
-          if (std::filesystem::is_regular_file(buf, ec)) s.frames.push_back(n);
+          if (std::filesystem::is_regular_file(s.pattern.path(n), ec)) s.frames.push_back(n);
         }
-        if (s.frames.empty()) throw std::runtime_error("sky cloud file '" + sc.file + "': no frame of the sequence exists");
+        if (s.frames.empty())
+          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': no frame of the sequence exists (frames 0 to 99999 as regular files)");
         if (!sequence_timed) {
           // The sequence's own clock: a keyframe per frame, at the fps of its first file.
-          std::snprintf(buf, sizeof buf, sc.file.c_str(), s.frames.front());
           double fps = 24.0;
-          s.file_grid = load_cloud_grid(buf, sc.grid, static_cast<UpAxis>(s.up), &fps);  // kept for keyframe 0
+          s.file_grid = load_cloud_grid(s.pattern.path(s.frames.front()), sc.grid, static_cast<UpAxis>(s.up), &fps);  // kept for keyframe 0
           if (!(fps > 0.0 && fps <= 1000.0)) fps = 24.0;
           interval_s_ = 1.0 / fps;
           sequence_timed = true;
         }
       } else {
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(sc.file, ec))
-          throw std::runtime_error("sky cloud file '" + sc.file + "': no such file");
+        struct stat st {};
+        if (::stat(sc.file.c_str(), &st) != 0)
+          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': " + std::strerror(errno));
+        if (!S_ISREG(st.st_mode))
+          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': is " + file_kind(st.st_mode) + ", not a VDB file");
       }
     } else {
       s.name = sc.preset + " #" + std::to_string(i);
@@ -165,9 +172,7 @@ SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
         grids.push_back(s.file_grid);
         continue;
       }
-      char buf[4096];
-      std::snprintf(buf, sizeof buf, s.path.c_str(), frame);
-      grids.push_back(load_cloud_grid(buf, s.grid, static_cast<UpAxis>(s.up)));
+      grids.push_back(load_cloud_grid(s.pattern.path(frame), s.grid, static_cast<UpAxis>(s.up)));
     }
   }
   return grids;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/validate.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/scene.hpp"
@@ -27,7 +29,7 @@ json to_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 template <typename F>
 void members(const json& v, const std::string& key, F f) {
   if (!v.is_object()) bad(key + " must be an object");
-  for (const auto& [k, x] : v.items()) f(k, x, key + "." + k);
+  for (const auto& [k, x] : v.items()) f(k, x, key + "." + echo(k));  // a key read from a file: short, one line
 }
 
 }  // namespace
@@ -41,13 +43,15 @@ void validate(const ViewState& s) {
     if (std::find(names.begin(), names.end(), s.scene) == names.end()) {
       std::string known;
       for (const std::string& n : names) known += n + ", ";
-      bad("view state scene: unknown name '" + s.scene + "' (known: " + known + "none)");
+      bad("view state scene: unknown name '" + echo(s.scene) + "' (known: " + known + "none)");
     }
   }
   Camera c;
   c.eye = s.eye;
   c.look_at = s.look_at;
   c.fov_deg = s.fov_deg;
+  // Below 1 degree the view holds a speck of sky (the CLI's --fov has the same range).
+  if (!(s.fov_deg >= 1.0 && s.fov_deg <= 179.0)) bad("view state camera.fov: must be in [1, 179] degrees, got " + number_text(s.fov_deg));
   try {
     validate(c);
   } catch (const std::invalid_argument& e) {
@@ -77,7 +81,9 @@ void validate(const ViewState& s) {
   if (s.slices < 8 || s.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
   if (s.light_res < 32 || s.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
   if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192) bad("view state renderer.cloud_shadow_res: must be in [16, 8192]");
-  if (!(s.render_scale > 0.0 && s.render_scale <= 1.0)) bad("view state renderer.render_scale: must be in (0, 1]");
+  // The renderer draws no less than 1 % of the window's size (sky_renderer.cpp); below it the
+  // scale would be silently raised.
+  if (!(s.render_scale >= 0.01 && s.render_scale <= 1.0)) bad("view state renderer.render_scale: must be in [0.01, 1]");
   if (!(s.exposure_stops >= -20.0 && s.exposure_stops <= 20.0)) bad("view state renderer.exposure: must be in [-20, 20] stops");
   try {
     const ShaftMethod m = parse_shaft_method(s.shafts);

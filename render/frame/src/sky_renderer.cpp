@@ -220,8 +220,8 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
     fi.light_volume_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   const double scale = std::clamp(state.render_scale * quality.render_scale, 0.01, 1.0);
-  const int w = std::max(1, static_cast<int>(std::lround(width * scale)));
-  const int h = std::max(1, static_cast<int>(std::lround(height * scale)));
+  const auto [sw, sh] = scaled_frame_size(width, height, scale);
+  const int w = std::max(1, sw), h = std::max(1, sh);
   const Camera camera = state_camera(state, w, h, frame_->clouds());
   Image image = frame_->render(camera, stats);
   fi.keyframe = k;

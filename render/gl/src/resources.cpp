@@ -37,13 +37,15 @@ std::string gl_enum_name(GLenum value) {
 
 void check_gl(const char* where) {
   std::string errors;
+  bool oom = false;
   // glGetError returns one flag per call; a lost context repeats GL_CONTEXT_LOST, hence the bound.
   for (int i = 0; i < 16; ++i) {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) break;
+    oom |= e == GL_OUT_OF_MEMORY;
     errors += (errors.empty() ? "" : ", ") + gl_enum_name(e);
   }
-  if (!errors.empty()) throw GlError("GL error " + errors + " at " + where);
+  if (!errors.empty()) throw GlError("GL error " + errors + " at " + where, oom);
 }
 
 void delete_gl_object(GlKind kind, GLuint id) {

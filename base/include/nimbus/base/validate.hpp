@@ -11,6 +11,10 @@ namespace nimbus {
 // Throws std::invalid_argument(message) unless `ok`.
 void require(bool ok, const std::string& message);
 
+// `v` as a message shows it: at most 6 significant digits ("1e+300", "0.04", "nan"), never the
+// hundreds of digits std::to_string gives a huge double.
+std::string number_text(double v);
+
 // True when every value is finite (no NaN, no infinity).
 bool all_finite(std::initializer_list<double> values);
 

@@ -18,6 +18,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "nimbus/base/sequence_pattern.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/volume/sky.hpp"
@@ -70,6 +71,7 @@ class SkyKeyframes {
     glm::dvec3 position_y{0.0};          // the sky position, y-up
     volume::CloudParams params;          // a preset
     std::string path;                    // a file, or a sequence's pattern
+    SequencePattern pattern;             // `path` parsed: the names of a sequence's frames
     std::string grid;
     int up = 0;                          // UpAxis
     std::vector<int> frames;             // a sequence's frame numbers, ascending; empty: one file

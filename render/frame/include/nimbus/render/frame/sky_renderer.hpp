@@ -8,6 +8,8 @@
 // `nimbus bench view` all draw through it, so a screenshot and an offline render of the same
 // state are the same frame.
 #pragma once
+#include <cmath>
+#include <utility>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -26,6 +28,12 @@ struct FrameQuality {
   double render_scale = 1.0;  // (0, 1], times the state's render_scale
   int slices = 0;             // 0: the state's
 };
+
+// The pixels a frame of width x height is rendered at under a render scale: each side rounded,
+// zero when below half a pixel (callers refuse that rather than draw one pixel).
+inline std::pair<int, int> scaled_frame_size(int width, int height, double scale) {
+  return {static_cast<int>(std::lround(width * scale)), static_cast<int>(std::lround(height * scale))};
+}
 
 struct SkyFrameInfo {
   int64_t keyframe = 0;           // the pair (keyframe, keyframe + 1) drawn

@@ -11,8 +11,11 @@
 namespace nimbus::render {
 
 // glGetError reported an error, or a framebuffer is incomplete; what() names where and which.
+// out_of_memory: GL_OUT_OF_MEMORY was among the errors (buffers too large for the device), which
+// a caller can name as the size it asked for.
 struct GlError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit GlError(const std::string& what, bool oom = false) : std::runtime_error(what), out_of_memory(oom) {}
+  bool out_of_memory = false;
 };
 
 // "GL_INVALID_OPERATION", "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT", ... or "0x1234".

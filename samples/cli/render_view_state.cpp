@@ -9,6 +9,7 @@
 #include "outputs.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/sky_keyframes.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -32,6 +33,7 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
     throw UsageError("--res " + std::to_string(width) + "x" + std::to_string(height) + " at the state's renderer.render_scale " +
                      number_text(state.render_scale) + " is below one pixel (" + std::to_string(frame_w) + "x" +
                      std::to_string(frame_h) + "); give a larger --res");
+  render::check_sky_cloud_files(state.sky);
   check_outputs({{"-o", output}, {"--preview", preview}}, {{"--view-state", path}});
   checks_done();
   const auto start = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@
 #include "nimbus/base/output_path.hpp"
 #include "cli/sequence_path.hpp"
 #include "cli/render_args.hpp"
+#include "nimbus/render/core/sky_keyframes.hpp"
 #include "nimbus/render/core/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -127,6 +128,7 @@ int run_view(const ViewArgs& a) {
     check_output_path(std::filesystem::path(a.screenshot_dir) / (".nimbus-probe-" + std::to_string(::getpid())),
                       "--screenshot-dir");
   }
+  render::check_sky_cloud_files(state.sky);  // the files a sky or --state names, and the FILE arguments
   checks_done();
   viewer::ViewerOptions options;
   options.screenshot_dir = a.screenshot_dir;

@@ -64,7 +64,8 @@ void expect_round_trip(const nimbus::volume::Sky& sky) {
   }
   const std::string second = text_of(again, "the sky read back");
   if (second != first)
-    contract_failure("sky_to_json differs after a round trip:\n  " + first.substr(0, 2000) + "\n  " + second.substr(0, 2000));
+    contract_failure("sky_to_json differs after a round trip:\n  " + first.substr(0, 2000) + "\n  " +
+                     second.substr(0, 2000));
 }
 
 }  // namespace

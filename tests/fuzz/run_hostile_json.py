@@ -15,11 +15,13 @@ limit and beyond it, truncation, garbled bytes, and file names in the document (
 and save_sky, a sky's cloud files, a job's outputs and folders) set to printf patterns
 ("%s%s%s%n", "%99999999d", "x%0s.vdb", "a%099d.vdb"), /dev/zero, a FIFO, a folder or the input
 itself; for jobs also frame ranges ([1, 2000000000], 10^6 tasks...), chunk 0, unknown kinds, brick
-layouts, and hostile task logs (`--array-job`: a FIFO, /dev/zero, a 2.5 GiB sparse file without a
-line break, a folder, escape sequences in the log and in the job folder's name).
+layouts, and hostile task logs (`--array-job`; 6 tasks, one log each: /dev/zero, a 2.5 GiB sparse
+file without a line break, a 4 MB line, escape sequences, a folder, a plain log; an escape sequence
+in the job folder's name; apart, a log that is a FIFO).
 
 Each case runs in its own folder (its working directory), holding the input, tiny.json (a one-frame
-script), a FIFO, a subfolder and, for jobs, damaged outputs and task logs:
+script), plume.0001.vdb (the file cloud of docs/viewer.md's sky), a FIFO, a subfolder and, for
+jobs, damaged outputs and task logs:
   script  nimbus --check-only view --headless --script F
   sky     nimbus --check-only view --headless --script tiny.json --sky F
   state   nimbus --check-only render --view-state F -o DIR/out.exr
@@ -30,14 +32,17 @@ The contract checked on every run:
   - no signal (a crash, an abort, SIGXCPU from --cpu-s, the kill at --timeout), exit 0, 1 or 2;
   - peak resident memory at most --rss-mb (wait4's ru_maxrss), under an address-space limit
     (--mem-mb, RLIMIT_AS, soft) so that a runaway allocation fails inside the process;
-  - on exit 1 or 2: stdout empty and stderr exactly one line that names the input (its path, or
-    the flag that gave it); except that `farm check` reports failed tasks on stdout with exit 1 and
+  - on exit 1 or 2: stdout empty and stderr exactly one line that names the input (its path, the
+    flag that gave it, or the bad file name it holds by its key: "script record '...'", "sky cloud
+    file '...'"); except that `farm check` reports failed tasks on stdout with exit 1 and
     nothing on stderr, a normal outcome;
   - no stderr line over 1100 characters; no control character (bytes below 0x20 but the line
     breaks, and 0x7f) in stderr, nor in farm check's stdout (it echoes paths read from the job);
   - an intact seed (mutation "none") is accepted: exit 0 (farm check: its report, exit 0 or 1);
-  - the case's folder is unchanged (names, kinds, sizes, inodes, mtimes, as
-    tests/support/hostile_table.cpp's snapshot()): --check-only and farm check write nothing.
+  - the case's folder is unchanged (every entry below it: names, kinds, sizes, inodes, mtimes, as
+    tests/support/hostile_table.cpp's snapshot(), which leaves out the folder itself):
+    --check-only and farm check write nothing, not even a probe file made and removed in a
+    subfolder (a subfolder whose mtime alone changed is reported as such).
 
     run_hostile_json.py --nimbus BIN [--count 240] [--seed 1] [--jobs 2] [--mem-mb 4096] [--rss-mb 2048]
                         [--cpu-s 30] [--timeout 20] [--workdir DIR] [--keep] [--report FILE.md]
@@ -218,7 +223,8 @@ PRINTF_PATHS = ["%s%s%s%n", "%99999999d", "x%0s.vdb", "a%099d.vdb", "%n.vdb", "%
 def path_values(ctx):
     return PRINTF_PATHS + ["/dev/zero", ctx["fifo"], "fifo", ctx["sub"], "sub", "sub/", ctx["self"], "", "/", ".", "..",
                            "/proc/self/mem", "/dev/full", "/dev/stdout", "no/such/dir/x.json", "x" * 5000 + ".json",
-                           "a\nb.json", "\x1b[31mred.json", os.path.join(ctx["dir"], "out.exr"), "tiny.json"]
+                           "a\nb.json", "\x1b[31mred.json", os.path.join(ctx["dir"], "out.exr"), "tiny.json",
+                           "sub/x.json", "sub/new/x.json"]
 
 
 def pick_location(doc, rng, want=None):
@@ -508,19 +514,35 @@ def m_job_bricks(doc, rng, ctx):
     return doc, "bricks: %s" % json.dumps(value)
 
 
+LOG_KINDS = ["devzero", "sparse", "long_line", "control", "folder", "plain"]
+
+
 def m_job_logs(doc, rng, ctx):
-    """The job is intact; a task's log (read with --array-job) is hostile."""
-    ctx["log"] = rng.choice(["fifo", "devzero", "sparse", "long_line", "control", "folder", "escape_in_dir"])
-    if ctx["log"] == "escape_in_dir":  # the job's folder (farm slurm --dir) holds an escape sequence
+    """The job is intact, of 6 one-frame tasks whose logs (read with --array-job) are hostile, one
+    kind each in a random order; half the time the job's folder name holds an escape sequence."""
+    doc.update(kind="frames", frames=[1, len(LOG_KINDS)], chunk=1, output="out/sky.%04d.exr",
+               preview="out/sky.%04d.png")
+    ctx["log"] = rng.sample(LOG_KINDS, len(LOG_KINDS))
+    what = "task logs: " + ", ".join(ctx["log"])
+    if rng.random() < 0.5:  # the folder farm slurm --dir made
         doc["dir"] = ctx["logs_in"] = os.path.join(ctx["dir"], "\x1b[31mjob\x1b[0m")
-    return doc, "task 0's log: " + ctx["log"]
+        what += "; the job folder's name holds an escape sequence"
+    return doc, what
+
+
+def m_job_log_fifo(doc, rng, ctx):
+    """The job is intact; one task's log is a FIFO (a reader that opens it waits for a writer)."""
+    doc.update(kind="frames", frames=[1, 3], chunk=1, output="out/sky.%04d.exr", preview="")
+    ctx["log"] = ["plain", "plain", "plain"]
+    ctx["log"][rng.randrange(3)] = "fifo"
+    return doc, "task logs: " + ", ".join(ctx["log"])
 
 
 MUTATIONS = {
     "script": COMMON + [m_script_events, m_script_values],
     "sky": COMMON + [m_sky_clouds],
     "state": COMMON + [m_sky_clouds, m_state_strings],
-    "job": COMMON + [m_job_frames, m_job_chunk, m_job_kind, m_job_bricks, m_job_logs],
+    "job": COMMON + [m_job_frames, m_job_chunk, m_job_kind, m_job_bricks, m_job_logs, m_job_log_fifo],
 }
 
 
@@ -559,6 +581,8 @@ def write_case(c):
     os.mkfifo(os.path.join(d, "fifo"))
     with open(os.path.join(d, "tiny.json"), "w") as f:
         f.write('{"size": [16, 16], "frames": 1}\n')
+    # The first frame of docs/viewer.md's file cloud "plume.%04d.vdb": a small foreign fog volume.
+    shutil.copyfile(os.path.join(HERE, "corpus", "vdb", "fog_small.vdb"), os.path.join(d, "plume.0001.vdb"))
     os.makedirs(os.path.dirname(c["file"]), exist_ok=True)
     with open(c["file"], "wb") as f:
         f.write(c["data"])
@@ -584,28 +608,8 @@ def write_job_files(c):
         f.write(b"\x20\x42\x44\x56\x00\x00\x00\x00" + bytes(range(256)) * 2)  # VDB magic, then garbage
     os.mkfifo(os.path.join(bricks, "brick.0001.vdb"))
     os.symlink(c["file"], os.path.join(bricks, "brick.0002.vdb"))
-    log0 = os.path.join(logs, "task_7_0.log")
-    kind = c["log"]
-    if kind == "fifo":
-        os.mkfifo(log0)
-    elif kind == "devzero":
-        os.symlink("/dev/zero", log0)
-    elif kind == "sparse":
-        with open(log0, "wb") as f:
-            f.truncate(5 << 29)  # 2.5 GiB of NULs, no line break, no disk
-    elif kind == "long_line":
-        with open(log0, "w") as f:
-            f.write("progress " + "#" * (4 << 20) + "\n")
-    elif kind == "control":
-        with open(log0, "wb") as f:
-            f.write(b"nimbus: error: \x1b[31mred\x1b[0m\x07\r\n")
-    elif kind == "folder":
-        os.makedirs(log0)
-    else:
-        with open(log0, "w") as f:
-            f.write("starting\nnimbus: error: the task's last line\n")
-    with open(os.path.join(logs, "task_7_1.log"), "w") as f:
-        f.write("")
+    for index, kind in enumerate(c["log"] or ["plain", "empty"]):
+        write_log(os.path.join(logs, "task_7_%d.log" % index), kind)
     # The job was submitted before its outputs were written: they are this run's, not stale.
     now = time.time()
     os.utime(c["file"], (now - 100, now - 100))
@@ -614,18 +618,39 @@ def write_job_files(c):
             os.utime(os.path.join(folder, n), (now, now), follow_symlinks=False)
 
 
+def write_log(path, kind):
+    """A task's log (logs/task_<array>_<index>.log) of one hostile kind."""
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "devzero":
+        os.symlink("/dev/zero", path)
+    elif kind == "folder":
+        os.makedirs(path)
+    else:
+        with open(path, "wb") as f:
+            if kind == "sparse":
+                f.truncate(5 << 29)  # 2.5 GiB of NULs, no line break, no disk
+            elif kind == "long_line":
+                f.write(b"progress " + b"#" * (4 << 20) + b"\n")
+            elif kind == "control":
+                f.write(b"nimbus: error: \x1b[31mred\x1b[0m\x07\r\n")
+            elif kind == "plain":
+                f.write(b"starting\nnimbus: error: the task's last line\n")
+
+
 def runs_of(c, nimbus):
     """(label, argv, names the stderr line may use for the input, farm) of each run of a case."""
     f, d = c["file"], c["dir"]
     view = [nimbus, "--check-only", "view", "--headless", "--script"]
     if c["kind"] == "script":  # a bad record or save_sky file is named by its key and value
         return [("view --script", view + [f], [f, "--script", "script record '", "script save_sky '"], False)]
+    cloud = "sky cloud file '"  # a cloud's file that is missing or not a regular file, named by its value
     if c["kind"] == "sky":
-        return [("view --sky", view + ["tiny.json", "--sky", f], [f, "--sky"], False)]
+        return [("view --sky", view + ["tiny.json", "--sky", f], [f, "--sky", cloud], False)]
     if c["kind"] == "state":
         return [("render --view-state", [nimbus, "--check-only", "render", "--view-state", f, "-o",
-                                         os.path.join(d, "out.exr")], [f, "--view-state"], False),
-                ("view --state", view + ["tiny.json", "--state", f], [f, "--state"], False)]
+                                         os.path.join(d, "out.exr")], [f, "--view-state", cloud], False),
+                ("view --state", view + ["tiny.json", "--state", f], [f, "--state", cloud], False)]
     jobdir = os.path.dirname(f)
     extra = ["--array-job", "7"] if c["array_job"] or c["log"] else []
     return [("farm check", [nimbus, "farm", "check", jobdir] + extra, [jobdir, f, "farm job"], True)]
@@ -708,7 +733,8 @@ def diff(before, after):
         elif k not in after:
             changes.append("-" + k)
         elif before[k] != after[k]:
-            changes.append("~" + k)
+            probe = stat.S_ISDIR(before[k][0]) and before[k][:3] == after[k][:3]
+            changes.append("~" + k + (" (mtime only: a file made and removed in it)" if probe else ""))
     return changes
 
 
@@ -785,7 +811,7 @@ def table(title, groups):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--nimbus", required=True)
-    ap.add_argument("--count", type=int, default=240, help="cases (4 kinds x up to 21 mutations)")
+    ap.add_argument("--count", type=int, default=240, help="cases (4 kinds x up to 22 mutations)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--mem-mb", type=int, default=4096, help="address-space limit per run (0: none)")

@@ -30,6 +30,33 @@ constexpr int kKeep = 6;  // keyframes held at most (two for the frame, the rest
 
 }  // namespace
 
+std::vector<int> existing_sequence_frames(const std::string& file) {
+  const SequencePattern pattern = SequencePattern::parse(file, "sky cloud file");
+  std::vector<int> frames;
+  for (int n = 0; n <= 99999; ++n) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(pattern.path(n), ec)) frames.push_back(n);
+  }
+  if (frames.empty())
+    throw std::runtime_error("sky cloud file '" + echo(file, 300) + "': no frame of the sequence exists (frames 0 to 99999 as regular files)");
+  return frames;
+}
+
+void require_cloud_file(const std::string& file) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) throw std::runtime_error("sky cloud file '" + echo(file, 300) + "': " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw std::runtime_error("sky cloud file '" + echo(file, 300) + "': is " + file_kind(st.st_mode) + ", not a VDB file");
+}
+
+void check_sky_cloud_files(const volume::Sky& sky) {
+  for (const volume::SkyCloud& c : sky.clouds) {
+    if (c.file.empty()) continue;
+    if (SequencePattern::parse(c.file, "sky cloud file").has_field) existing_sequence_frames(c.file);
+    else require_cloud_file(c.file);
+  }
+}
+
 SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(std::move(sky)), optics_(optics) {
   volume::validate(sky_);
   validate(optics_);
@@ -47,13 +74,7 @@ SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(st
       s.up = static_cast<int>(parse_up_axis(sc.up));
       s.pattern = SequencePattern::parse(sc.file, "sky cloud file");  // checked again: a Sky may be built in code
       if (s.pattern.has_field) {
-        // A sequence: every frame number whose file exists, 0 to 99999.
-        for (int n = 0; n <= 99999; ++n) {
-          std::error_code ec;
-          if (std::filesystem::is_regular_file(s.pattern.path(n), ec)) s.frames.push_back(n);
-        }
-        if (s.frames.empty())
-          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': no frame of the sequence exists (frames 0 to 99999 as regular files)");
+        s.frames = existing_sequence_frames(sc.file);
         if (!sequence_timed) {
           // The sequence's own clock: a keyframe per frame, at the fps of its first file.
           double fps = 24.0;
@@ -63,11 +84,7 @@ SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(st
           sequence_timed = true;
         }
       } else {
-        struct stat st {};
-        if (::stat(sc.file.c_str(), &st) != 0)
-          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': " + std::strerror(errno));
-        if (!S_ISREG(st.st_mode))
-          throw std::runtime_error("sky cloud file '" + echo(sc.file, 300) + "': is " + file_kind(st.st_mode) + ", not a VDB file");
+        require_cloud_file(sc.file);
       }
     } else {
       s.name = sc.preset + " #" + std::to_string(i);

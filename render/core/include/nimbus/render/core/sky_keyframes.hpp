@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -24,6 +25,15 @@
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {
+
+// A sky's file clouds, checked before the work (the checks SkyKeyframes makes): every file is a
+// regular file, every sequence (name.%04d.vdb) has a frame from 0 to 99999 that is one.
+// std::runtime_error naming the file ("is a FIFO, not a VDB file", "no frame of the sequence").
+void check_sky_cloud_files(const volume::Sky& sky);
+// The frames of the sequence `file` that exist as regular files, ascending; the error above when none.
+std::vector<int> existing_sequence_frames(const std::string& file);
+// The error above unless `file` is a regular file.
+void require_cloud_file(const std::string& file);
 
 class SkyKeyframes {
  public:

@@ -38,6 +38,9 @@ struct CheckArgs {
 // At most the last `max_bytes` of a file, without its trailing empty lines, and from the start of
 // the last line that begins within them: the end of a log, however large the log is.
 std::string log_tail(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  if (!S_ISREG(st.st_mode)) return std::string("(the log is ") + file_kind(st.st_mode) + ", not read)";  // a FIFO would block
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
   in.seekg(0, std::ios::end);
@@ -309,7 +312,8 @@ int run_check(const CheckArgs& a) {
     if (!a.array_job.empty()) {
       const std::filesystem::path log =
           std::filesystem::path(job.dir) / "logs" / ("task_" + a.array_job + "_" + std::to_string(i) + ".log");
-      line += std::filesystem::exists(log) ? "; log " + log.string() + ": " + last_line(log)
+      std::error_code ec;
+      line += std::filesystem::exists(std::filesystem::symlink_status(log, ec)) ? "; log " + echo(log.string(), 300) + ": " + last_line(log)
                                            : "; no log (the task never ran: cancelled before it started)";
     }
     std::printf("%s\n", line.c_str());

@@ -63,6 +63,8 @@ std::filesystem::path job_path(const FarmJob& job, const std::string& path) {
   return p.is_absolute() ? p : std::filesystem::path(job.workdir) / p;
 }
 
+constexpr long kMaxFarmFrames = 1000000;
+
 void make_farm_tasks(FarmJob& job) {
   job.tasks.clear();
   if (job.chunk < 1 || job.chunk > 1000000) throw UsageError("--chunk: must be in [1, 1000000] frames");
@@ -80,8 +82,11 @@ void make_farm_tasks(FarmJob& job) {
   const SequencePattern output = check_sequence_pattern("COMMAND -o", job.output);
   if (!job.preview.empty()) check_sequence_pattern("COMMAND --preview", job.preview);
   (void)output;
+  // Every frame's outputs are listed for the check: a farm job holds at most 10^6 frames.
+  if (long(job.last) - job.first + 1 > kMaxFarmFrames)
+    throw UsageError("--frames: " + std::to_string(job.first) + "-" + std::to_string(job.last) +
+                     " is more than 10^6 frames for one farm job; cut it into several jobs");
   const long tasks = task_count(job.first, job.last, job.chunk);
-  if (tasks > 1000000) throw UsageError("--frames: more than 10^6 tasks");
   for (long t = 0; t < tasks; ++t) {
     const int a = int(job.first + t * job.chunk), b = int(std::min<long>(job.last, job.first + (t + 1) * job.chunk - 1));
     FarmTask task;

@@ -37,21 +37,8 @@ import tempfile
 import threading
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def limits(mem_mb, cpu_s):
-    # Soft limits only: nimbus may fork a reader that sets limits of its own, and one above a hard
-    # limit inherited from here would fail (EPERM) for reasons that are not the file's.
-    def soft(which, value):
-        resource.setrlimit(which, (value, resource.getrlimit(which)[1]))
-
-    def apply():
-        if mem_mb > 0:
-            soft(resource.RLIMIT_AS, mem_mb << 20)
-        if cpu_s > 0:  # SIGXCPU: a reader spinning on a corrupt count, however loaded the machine
-            soft(resource.RLIMIT_CPU, cpu_s)
-        soft(resource.RLIMIT_CORE, 0)  # no core files from expected crashes
-    return apply
+sys.path.insert(0, HERE)
+from program_runs import limits, outcome  # noqa: E402
 
 
 def run_one(cmd, mem_mb, cpu_s, timeout):
@@ -71,16 +58,6 @@ def run_one(cmd, mem_mb, cpu_s, timeout):
         err.seek(0)
         return (p.returncode, out.read().decode("utf-8", "replace"), err.read(1 << 20).decode("utf-8", "replace"),
                 timed_out, usage.ru_maxrss // 1024)
-
-
-def outcome(rc, timed_out):
-    if timed_out:
-        return "hang"
-    if rc < 0:
-        return "signal %s" % signal.Signals(-rc).name
-    if rc > 128 and rc - 128 < 65:  # a shell-style "killed by signal" code
-        return "signal %d" % (rc - 128)
-    return "exit %d" % rc
 
 
 def check(row, verb, path, rc, out, err, timed_out, rss_mb, rss_limit):

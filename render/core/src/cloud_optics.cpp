@@ -1,5 +1,6 @@
 // Validation, phase and parsing of the cloud optics (cloud_optics.hpp).
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/base/input_limits.hpp"
 
 #include <cmath>
 #include <optional>
@@ -63,7 +64,7 @@ void validate(const LightVolumeSettings& s) {
 MultipleScatteringMethod parse_multiple_scattering_method(const std::string& text) {
   if (text == "octaves") return MultipleScatteringMethod::Octaves;
   if (text == "light-volume") return MultipleScatteringMethod::LightVolume;
-  throw std::invalid_argument("multiple-scattering method '" + text + "': expected octaves or light-volume");
+  throw std::invalid_argument("multiple-scattering method '" + echo(text) + "': expected octaves or light-volume");
 }
 
 std::string to_string(MultipleScatteringMethod m) {
@@ -86,7 +87,7 @@ DualLobePhase parse_cloud_phase(const std::string& text) {
     // "isotropic" and "hg:G" are the medium's own phase names (phase.hpp): one parser for both,
     // whose errors name the text.
     if (text != "isotropic" && text.rfind("hg:", 0) != 0)
-      throw std::invalid_argument("cloud phase '" + text + "': expected isotropic, hg:G or dual:GF,GB,W");
+      throw std::invalid_argument("cloud phase '" + echo(text) + "': expected isotropic, hg:G or dual:GF,GB,W");
     p.g_forward = parse_phase(text).g;
     return p;
   }
@@ -94,12 +95,12 @@ DualLobePhase parse_cloud_phase(const std::string& text) {
   double part[3] = {0.0, 0.0, 0.0};
   int n = 0;
   for (std::string item; std::getline(ss, item, ',');) {
-    if (n == 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+    if (n == 3) throw std::invalid_argument("cloud phase '" + echo(text) + "': expected dual:GF,GB,W");
     const std::optional<double> v = parse_double(item);
-    if (!v) throw std::invalid_argument("cloud phase '" + text + "': '" + item + "' is not a number");
+    if (!v) throw std::invalid_argument("cloud phase '" + echo(text) + "': '" + echo(item) + "' is not a number");
     part[n++] = *v;
   }
-  if (n != 3) throw std::invalid_argument("cloud phase '" + text + "': expected dual:GF,GB,W");
+  if (n != 3) throw std::invalid_argument("cloud phase '" + echo(text) + "': expected dual:GF,GB,W");
   p.g_forward = part[0];
   p.g_back = part[1];
   p.forward_weight = part[2];
@@ -108,7 +109,7 @@ DualLobePhase parse_cloud_phase(const std::string& text) {
     o.phase = p;
     validate(o);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("cloud phase '" + text + "': " + e.what());
+    throw std::invalid_argument("cloud phase '" + echo(text) + "': " + e.what());
   }
   return p;
 }

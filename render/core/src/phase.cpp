@@ -1,6 +1,7 @@
 // Phase functions of the medium (thesis eqs. 13-17) in double precision, and their text form
 // "isotropic", "hg:G", "schlick:G", "rayleigh" used on the command line.
 #include "nimbus/render/core/phase.hpp"
+#include "nimbus/base/input_limits.hpp"
 
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
@@ -21,7 +22,7 @@ constexpr double kSchlickMaxK = 0.999;  // same bound as shaders/lib/phase.glsl
 
 void check_g(double g, const std::string& text) {
   if (!(g > -1.0 && g < 1.0))
-    throw std::invalid_argument("phase '" + text + "': g must be in (-1, 1)");
+    throw std::invalid_argument("phase '" + echo(text) + "': g must be in (-1, 1)");
 }
 
 }  // namespace
@@ -87,13 +88,13 @@ Phase parse_phase(const std::string& text) {
     else if (name == "schlick")
       kind = PhaseKind::Schlick;
     else
-      throw std::invalid_argument("phase '" + text + "': expected isotropic, hg:G, schlick:G or rayleigh");
+      throw std::invalid_argument("phase '" + echo(text) + "': expected isotropic, hg:G, schlick:G or rayleigh");
     const std::optional<double> g = parse_double(value);
-    if (!g) throw std::invalid_argument("phase '" + text + "': G is not a number");
+    if (!g) throw std::invalid_argument("phase '" + echo(text) + "': G is not a number");
     check_g(*g, text);
     return {kind, *g};
   }
-  throw std::invalid_argument("phase '" + text + "': expected isotropic, hg:G, schlick:G or rayleigh");
+  throw std::invalid_argument("phase '" + echo(text) + "': expected isotropic, hg:G, schlick:G or rayleigh");
 }
 
 std::string to_string(const Phase& phase) {

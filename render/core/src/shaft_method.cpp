@@ -1,5 +1,6 @@
 // Parsing and printing of light-shaft method names (shaft_method.hpp).
 #include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/base/input_limits.hpp"
 
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
@@ -21,21 +22,21 @@ ShaftMethod parse_shaft_method(const std::string& text) {
   ShaftMethod m;
   if (starts_with(text, "raymarch:")) {
     m.kind = ShaftMethod::Kind::RayMarch;
-    m.steps = parse_int_in(text.substr(9), 1, 4096, "method '" + text + "': the count");
+    m.steps = parse_int_in(text.substr(9), 1, 4096, "method '" + echo(text) + "': the count");
   } else if (text == "analytic" || text == "analytic:stable") {
     m.kind = ShaftMethod::Kind::Analytic;
     m.airlight.kind = AirlightMethod::Stable;
   } else if (starts_with(text, "analytic:table:")) {
     m.kind = ShaftMethod::Kind::Analytic;
     m.airlight.kind = AirlightMethod::Table;
-    m.airlight.n = parse_int_in(text.substr(15), 16, 1024, "method '" + text + "': the count");
+    m.airlight.n = parse_int_in(text.substr(15), 16, 1024, "method '" + echo(text) + "': the count");
   } else if (starts_with(text, "shadowvolume:")) {
     m.kind = ShaftMethod::Kind::ShadowVolume;
-    m.steps = parse_int_in(text.substr(13), 1, 4096, "method '" + text + "': the count");
+    m.steps = parse_int_in(text.substr(13), 1, 4096, "method '" + echo(text) + "': the count");
   } else if (text == "reference") {
     m.kind = ShaftMethod::Kind::Reference;
   } else {
-    throw std::invalid_argument("method '" + text +
+    throw std::invalid_argument("method '" + echo(text) +
                                 "': expected raymarch:N, analytic, analytic:table:N, "
                                 "shadowvolume:N or reference");
   }
@@ -77,7 +78,7 @@ Jitter parse_jitter(const std::string& text) {
   if (text == "none") return Jitter::None;
   if (text == "white") return Jitter::White;
   if (text == "blue") return Jitter::BlueNoise;
-  throw std::invalid_argument("jitter '" + text + "': expected none, white or blue");
+  throw std::invalid_argument("jitter '" + echo(text) + "': expected none, white or blue");
 }
 
 std::string to_string(Jitter j) {

@@ -3,6 +3,7 @@
 // submits it; `nimbus farm check` reads it back and lists what is missing or unreadable.
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct FarmJob {
   int first = 0, last = 0;           // frames only: the command's --frames
   std::string output, preview;       // frames only: the command's -o and --preview (sequence names)
   std::vector<FarmTask> tasks;       // made from the fields above (make_farm_tasks), not stored
+  std::optional<std::filesystem::file_time_type> submitted;  // read back: job.json's time (outputs older are stale)
 };
 
 // The job's tasks from its fields; UsageError when they are inconsistent (a bad pattern, a

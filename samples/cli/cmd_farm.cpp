@@ -201,14 +201,8 @@ void check_task_command(const FarmJob& job, std::size_t index) {
     args.insert(args.end(), {"--brick", std::to_string(index) + "/" + job.bricks, "-o", job.tasks[index].outputs[0]});
   std::string line = "SLURM_ARRAY_TASK_ID=" + std::to_string(index) + " " + shell_quote(job.nimbus) + " --check-only";
   for (const std::string& arg : args) line += " " + shell_quote(arg);
-  FILE* p = popen((line + " 2>&1 >/dev/null </dev/null").c_str(), "r");
-  if (!p) throw std::runtime_error("cannot run the task's command to check it");
-  std::string said;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, p))
-    if (said.size() < 65536) said.append(buf, n);
-  const int status = pclose(p);
-  const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  // Its stderr alone (the one line a refusal prints); its stdout is dropped.
+  const auto [rc, said] = run_shell("{ " + line + " 2>&1 >/dev/null </dev/null; }");
   if (rc == 0) return;
   std::string first = said.substr(0, said.find('\n'));
   if (first.rfind("nimbus: ", 0) == 0) first = first.substr(8);

@@ -79,9 +79,8 @@ void make_farm_tasks(FarmJob& job) {
   if (job.kind != "frames") throw UsageError("kind: '" + echo(job.kind) + "' must be frames or bricks");
   if (job.last < job.first || std::abs(job.first) > 9999999 || std::abs(job.last) > 9999999)
     throw UsageError("--frames: " + std::to_string(job.first) + "-" + std::to_string(job.last) + " is not a range within +-9999999");
-  const SequencePattern output = check_sequence_pattern("COMMAND -o", job.output);
+  check_sequence_pattern("COMMAND -o", job.output);
   if (!job.preview.empty()) check_sequence_pattern("COMMAND --preview", job.preview);
-  (void)output;
   // Every frame's outputs are listed and looked up by the check: a farm job holds at most 10^5 frames.
   if (long(job.last) - job.first + 1 > kMaxFarmFrames)
     throw UsageError("--frames: " + std::to_string(job.first) + "-" + std::to_string(job.last) +

@@ -211,7 +211,7 @@ TEST_F(HostileSurfaces, MessagesAreEscapedBoundedAndSayWhatIsWrong) {
       {{"render", "--view-state", "{d}/state_sky_fifo.json", "-o", "{d}/o.exr"}, 1, "fifo': is a FIFO, not a VDB file"},
       {{"render", "--view-state", "{d}/state_sky_dir.json", "-o", "{d}/o.exr"}, 1, "sub': is a directory, not a VDB file"},
   });
-  for (const std::string& f : {"key_escape.json", "key_long.json"}) {
+  for (const char* f : {"key_escape.json", "key_long.json"}) {
     const SplitResult r = run_nimbus_split({"view", "--headless", "--script", (*dir_ / f).string()});
     EXPECT_FALSE(has_control_character(r.err)) << r.err;
     EXPECT_LT(r.err.size(), 1100u) << f;

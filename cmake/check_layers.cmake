@@ -19,6 +19,7 @@ set(rules
   "render/shafts|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/gl/,nimbus/render/shafts/|yes"
   "render/clouds|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/gl/,nimbus/render/clouds/|yes"
   "render/frame|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/render/gl/,nimbus/render/shafts/,nimbus/render/clouds/,nimbus/render/frame/|yes"
+  "samples/app|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/app/|no"
 )
 set(gl_header_regex "^(epoxy|EGL|GL|GLES[0-9]*|GLFW|KHR)/")
 

@@ -1,6 +1,7 @@
 // `nimbus bench airlight`: nanoseconds per airlight evaluation beside its error against the double
 // quadrature, for stable, table:N and raymarch:N on the CPU and through GLSL on an OpenGL context
-// (a compute pass timed with glFinish + steady_clock); the quadrature's own time is the anchor.
+// (the library's compute pass, render/shafts/airlight_gl.hpp, timed with glFinish +
+// steady_clock); the quadrature's own time is the anchor.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -15,10 +16,8 @@
 #include "cli/cli.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/airlight.hpp"
-#include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/context.hpp"
-#include "nimbus/render/gl/resources.hpp"
-#include "nimbus/render/gl/shader_program.hpp"
+#include "nimbus/render/shafts/airlight_gl.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -82,102 +81,25 @@ double best_seconds(int repeat, F&& f) {
   return best;
 }
 
-// The compute pass: one invocation per query, the shaders' own functions. AL_NONCE makes every
-// run's program new to the driver's shader cache, so the compile time is measured cold.
-const char* kEvalShader = R"(#version 450 core
-#include "lib/airlight.glsl"
-#include "lib/airlight_table.glsl"
-layout(local_size_x = 64) in;
-struct Query { float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma, march_length, unused; };
-layout(std430, binding = STORAGE_AIRLIGHT_QUERIES) readonly buffer Queries { Query queries[]; };
-layout(std430, binding = STORAGE_AIRLIGHT_RESULTS) writeonly buffer Results { float results[]; };
-layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
-uniform int u_n;
-uniform int u_count;
-uniform int u_phase_kind;
-uniform float u_phase_g;
-void main() {
-  int i = int(gl_GlobalInvocationID.x);
-  if (i >= u_count) return;
-  Query q = queries[i];
-  float La = 0.0;
-#if defined(METHOD_TABLE)
-  La = airlight_table(u_F_table, u_n, q.beta, q.I0, q.Dsv, q.Dvp, q.cos_gamma, q.sin_gamma);
-#elif defined(METHOD_RAYMARCH)
-  if (q.beta > 0.0 && q.march_length > 0.0) {  // N midpoint samples of thesis eq. 33
-    float dx = q.march_length / float(u_n), sum = 0.0;
-    for (int k = 0; k < u_n; ++k) {
-      float x = (float(k) + 0.5) * dx;
-      float d2 = q.Dsv * q.Dsv + x * x - 2.0 * x * q.Dsv * q.cos_gamma;
-      float d = sqrt(d2);
-      sum += phase_value(u_phase_kind, u_phase_g, (q.Dsv * q.cos_gamma - x) / d) * exp(-q.beta * (x + d)) / d2;
-    }
-    La = q.beta * q.I0 * sum * dx;
-  }
-#else
-  La = point_segment_airlight(q.beta, q.beta, q.I0, q.Dsv, q.cos_gamma, q.sin_gamma, 0.0, q.Dvp, u_phase_kind,
-                              u_phase_g);
-#endif
-  if (u_count == -AL_NONCE) La += 1.0;  // never true; keeps the nonce in the compiled code
-  results[i] = La;
-}
-)";
-
 // Times one method on the GL context: compile (cold) + a one-query dispatch, then the best of
 // `repeat` passes over all queries. Fills ns, compile_ms and the errors over the first ref.size().
 void run_gl(Row& row, const render::AirlightMethod& m, const render::Phase& phase,
             const std::vector<render::AirlightQuery>& qs, const std::vector<double>& ref, int repeat) {
-  struct GpuQuery {
-    float beta, I0, Dsv, Dvp, cos_gamma, sin_gamma, march_length, unused;
-  };
-  std::vector<GpuQuery> input(qs.size());
-  for (size_t i = 0; i < qs.size(); ++i) {
-    const auto& q = qs[i];
-    input[i] = {float(q.beta), float(q.I0), float(q.Dsv), float(q.Dvp), float(std::cos(q.gamma)),
-                float(std::sin(q.gamma)),
-                m.kind == render::AirlightMethod::RayMarch ? float(render::airlight_raymarch_length(q)) : 0.0f, 0.0f};
-  }
-  const char* method_define = m.kind == render::AirlightMethod::Table      ? "#define METHOD_TABLE\n"
-                              : m.kind == render::AirlightMethod::RayMarch ? "#define METHOD_RAYMARCH\n"
-                                                                            : "";
+  // The library's evaluator (airlight_gl.hpp: shaders/airlight_eval.comp.glsl), the one the
+  // program and the tests use. The nonce makes every run's program new to the driver's shader
+  // cache, so that the compile is measured cold.
+  render::AirlightGlEvaluator evaluator(qs, m, phase);
   static int nonce = int(std::chrono::steady_clock::now().time_since_epoch().count() % 1000000000);
-  const std::string defines = method_define + std::string("#define AL_NONCE ") + std::to_string(++nonce) + "\n";
-  render::GlBuffer in = render::make_buffer(GLsizeiptr(input.size() * sizeof(GpuQuery)), input.data(), 0);
-  render::GlBuffer out = render::make_buffer(GLsizeiptr(input.size() * sizeof(float)), nullptr, 0);
-  render::GlTexture table_texture;
-  if (m.kind == render::AirlightMethod::Table) {
-    const render::FTable table(m.n);
-    render::TextureParams params;
-    params.min_filter = params.mag_filter = GL_NEAREST;  // the shader interpolates itself
-    table_texture = render::make_texture_2d(GL_R32F, m.n, m.n, params);
-    glTextureSubImage2D(table_texture.id(), 0, 0, 0, m.n, m.n, GL_RED, GL_FLOAT, table.data());
-    glBindTextureUnit(render::contract::UNIT_F_TABLE, table_texture.id());
-  }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, render::contract::STORAGE_AIRLIGHT_QUERIES, in.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, render::contract::STORAGE_AIRLIGHT_RESULTS, out.id());
-  const int count = int(qs.size());
-  auto dispatch = [&](const render::ShaderProgram& p, int n) {
-    p.set("u_count", n);
-    glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
-    glFinish();
-  };
+  const std::string defines = "#define AL_NONCE " + std::to_string(++nonce) + "\n";
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
-  render::ShaderProgram program =
-      render::ShaderProgram::from_sources({{"bench_airlight.comp.glsl", kEvalShader}}, {"bench_airlight.comp.glsl"}, defines);
-  program.use();
-  program.set("u_n", m.n);
-  program.set("u_phase_kind", render::phase_code(phase.kind));
-  program.set("u_phase_g", float(phase.g));
-  dispatch(program, 1);  // drivers that compile at first use (llvmpipe) do it here
+  evaluator.compile(defines);
+  evaluator.evaluate(1);  // drivers that compile at first use (llvmpipe) do it here
   row.compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  dispatch(program, count);  // warm-up
-  const double s = best_seconds(repeat, [&] { dispatch(program, count); });
-  row.ns = s * 1e9 / double(count);
-  std::vector<float> result(ref.size());
-  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(result.size() * sizeof(float)), result.data());
-  render::check_gl("bench airlight");
-  errors(row, std::vector<double>(result.begin(), result.end()), ref);
+  evaluator.evaluate();  // warm-up
+  const double s = best_seconds(repeat, [&] { evaluator.evaluate(); });
+  row.ns = s * 1e9 / double(evaluator.size());
+  errors(row, evaluator.results(int(ref.size())), ref);
 }
 
 

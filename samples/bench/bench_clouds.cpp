@@ -15,7 +15,7 @@
 
 #include <unistd.h>
 
-#include "bench_clouds_scene.hpp"
+#include "nimbus/app/bench_clouds_scene.hpp"
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "nimbus/base/validate.hpp"
@@ -31,6 +31,15 @@
 #include "nimbus/render/image/svg_plot.hpp"
 
 namespace nimbus::cli {
+
+using app::bench_camera;
+using app::kBenchAbsorbPerVoxel;
+using app::kBenchScatterPerVoxel;
+using app::bench_light;
+using app::bench_noisy_sphere;
+using app::bench_optics;
+using app::run_vdb_render;
+using app::VdbRenderRun;
 namespace {
 
 using render::Plot;
@@ -63,17 +72,11 @@ struct BenchCloudsArgs {
 std::vector<int> int_list(const std::string& flag, const std::string& text, int lo, int hi) {
   std::vector<int> out;
   for (const std::string& s : split_list(text)) {
-    std::size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != s.size() || used == 0 || v < lo || v > hi)
+    const std::optional<int> v = parse_int_in(s, lo, hi);
+    if (!v)
       throw UsageError(flag + ": '" + s + "' is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
                        "]");
-    out.push_back(v);
+    out.push_back(*v);
   }
   if (out.empty()) throw UsageError(flag + ": empty list");
   return out;
@@ -417,7 +420,7 @@ int run_bench_clouds(const BenchCloudsArgs& a) {
     if (!a.no_vdb_render) {
       VdbRenderRun v;  // best of --repeat runs (its own render time; the image is the same every run)
       for (int r = 0; r < a.repeat; ++r) {
-        VdbRenderRun run = run_vdb_render(a.vdb_render, vdb, tmp / ("vdb_" + name + ".exr"), camera, lit.light, 1.0, 3.0);
+        VdbRenderRun run = run_vdb_render(a.vdb_render, vdb, tmp / ("vdb_" + name + ".exr"), camera, lit.light.direction_to_light, app::VdbRenderSettings{});
         if (r == 0 || run.render_s < v.render_s) v = std::move(run);
       }
       const render::Image img = normalise_vdb(v.image);

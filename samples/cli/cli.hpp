@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/app/usage_error.hpp"
+
 namespace nimbus::cli {
 
-// Bad input from the user: exit code 2, one line naming the input.
-struct UsageError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
-};
+// Bad input from the user: exit code 2, one line naming the input (the app library's error kind).
+using app::UsageError;
 
 // `nimbus --check-only COMMAND ...`: the command checks every flag, input and output as it would,
 // then stops before its work and exits 0 (nimbus farm slurm checks each task's command this way).

@@ -2,20 +2,31 @@
 // (frames in chunks, or bricks), a dependent check job, and for bricks a merge job after it;
 // `nimbus farm check DIR`: which tasks left missing or unreadable outputs (docs/farm.md).
 #include <sys/stat.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "cli.hpp"
-#include "farm_job.hpp"
+#include "nimbus/app/farm_job.hpp"
+#include "nimbus/app/shell.hpp"
 #include "nimbus/base/file_kind.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/output_path.hpp"
 #include "nimbus/base/staged_files.hpp"
 
 namespace nimbus::cli {
+
+using app::FarmJob;
+using app::FarmTask;
+using app::check_task_outputs;
+using app::farm_job_json;
+using app::job_path;
+using app::make_farm_tasks;
+using app::plan_farm_job;
+using app::read_farm_job;
+using app::shell_quote;
+using app::task_arguments;
 namespace {
 
 struct SlurmArgs {
@@ -168,15 +179,10 @@ std::string merge_script(const SlurmArgs& a, const FarmJob& job) {
   return s + join_quoted(args) + "\n";
 }
 
-// Runs a shell command line; its exit status and everything it printed.
-std::pair<int, std::string> run_shell(const std::string& line) {
-  FILE* p = popen((line + " 2>&1").c_str(), "r");
-  if (!p) throw std::runtime_error("cannot run: " + line);
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0), out};
+// A command line's exit status (128 + the signal that ended it) and output (nimbus/app/shell.hpp).
+std::pair<int, std::string> run_line(const std::string& line) {
+  const app::ShellResult r = app::run_shell(line);
+  return {r.signal ? 128 + r.signal : r.exit_code, r.output};
 }
 
 std::string job_id(const std::string& sbatch_output, const std::string& what) {
@@ -202,7 +208,7 @@ void check_task_command(const FarmJob& job, std::size_t index) {
   std::string line = "SLURM_ARRAY_TASK_ID=" + std::to_string(index) + " " + shell_quote(job.nimbus) + " --check-only";
   for (const std::string& arg : args) line += " " + shell_quote(arg);
   // Its stderr alone (the one line a refusal prints); its stdout is dropped.
-  const auto [rc, said] = run_shell("{ " + line + " 2>&1 >/dev/null </dev/null; }");
+  const auto [rc, said] = run_line("{ " + line + " 2>&1 >/dev/null </dev/null; }");
   if (rc == 0) return;
   std::string first = said.substr(0, said.find('\n'));
   if (first.rfind("nimbus: ", 0) == 0) first = first.substr(8);
@@ -253,20 +259,20 @@ int run_slurm(const SlurmArgs& a) {
     std::printf("not submitted (--dry-run): run %s/submit.sh\n", job.dir.c_str());
     return 0;
   }
-  if (run_shell("command -v sbatch").first != 0)
+  if (run_line("command -v sbatch").first != 0)
     throw std::runtime_error("sbatch not found: Slurm's client (slurm-client) is not installed or not on PATH");
   const std::string last_flags = a.wait ? " --wait" : "";
-  auto [rc1, out1] = run_shell(std::string("sbatch --parsable") + (a.hold ? " --hold" : "") + " " + shell_quote(job.dir + "/task.sh"));
+  auto [rc1, out1] = run_line(std::string("sbatch --parsable") + (a.hold ? " --hold" : "") + " " + shell_quote(job.dir + "/task.sh"));
   const std::string array = job_id(out1, "task array");
   const bool check_last = job.kind != "bricks";
-  auto [rc2, out2] = run_shell("sbatch --parsable --dependency=afterany:" + array + (check_last ? last_flags : "") + " " +
+  auto [rc2, out2] = run_line("sbatch --parsable --dependency=afterany:" + array + (check_last ? last_flags : "") + " " +
                                shell_quote(job.dir + "/check.sh") + " " + array);
   const std::string check = job_id(out2, "check job");
   std::printf("submitted: task array %s, check %s (after any end of the array)\n", array.c_str(), check.c_str());
   std::string merge;
   int rc = rc2;
   if (!check_last) {
-    auto [rc3, out3] = run_shell("sbatch --parsable --dependency=afterok:" + check + " --kill-on-invalid-dep=yes" +
+    auto [rc3, out3] = run_line("sbatch --parsable --dependency=afterok:" + check + " --kill-on-invalid-dep=yes" +
                                  last_flags + " " + shell_quote(job.dir + "/merge.sh"));
     merge = job_id(out3, "merge job");
     rc = rc3;

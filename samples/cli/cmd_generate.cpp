@@ -13,7 +13,7 @@
 #include "cli.hpp"
 #include "nimbus/base/validate.hpp"
 #include "frame_range.hpp"
-#include "sequence_path.hpp"
+#include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/volume/brick.hpp"
 #include "nimbus/base/memory.hpp"
@@ -25,6 +25,10 @@
 #include "nimbus/volume/vdb_io.hpp"
 
 namespace nimbus::cli {
+
+using app::check_sequence_pattern;
+using app::has_frame_field;
+using app::sequence_path;
 namespace {
 
 struct GenerateArgs {

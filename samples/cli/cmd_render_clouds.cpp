@@ -9,7 +9,7 @@
 #include <regex>
 
 #include "frame_range.hpp"
-#include "sequence_path.hpp"
+#include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
@@ -25,31 +25,18 @@
 #include "outputs.hpp"
 #include "progress.hpp"
 #include "render_clouds.hpp"
+#include "render_clouds_plan.hpp"
 
 namespace nimbus::cli {
-namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using app::check_sequence_pattern;
+using app::has_frame_field;
+using app::sequence_path;
+namespace {
 
 // A sequence's file of `frame` (sequence_path.hpp); the name as it is for a single picture.
 std::string frame_path(const std::string& pattern, int frame, bool sequence) {
   return sequence ? sequence_path(pattern, frame) : pattern;
-}
-
-glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
-  if (text.find(',') == std::string::npos) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != text.size() || !std::isfinite(v)) throw UsageError(flag + ": '" + text + "' must be V or R,G,B");
-    if (std::abs(v) > kMaxFlagMagnitude) throw UsageError(flag + ": '" + text + "' must be within +-1e12");
-    return glm::dvec3(v);
-  }
-  return parse_vec3(flag, text);
 }
 
 // The clouds of one frame (library calls): files as they are, turned y-up, presets generated at
@@ -170,271 +157,79 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
 }
 
-// --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
-// bad value a UsageError naming its flag. Without the sun the light volume (photons from the sun)
-// is not the default.
-// UsageError "<flag>: <why>" when `flag` was given but what it qualifies is not in effect (it
-// would be ignored without a word).
-static void refuse_if_given_without(const CloudRenderArgs& a, const std::string& flag, bool applies, const std::string& why) {
-  if (a.given.count(flag) && !applies) throw UsageError(flag + ": " + why);
+namespace {
+
+// Every file of every frame: outputs writable, none of them an input, before any work.
+void check_cloud_render_files(const CloudRenderArgs& a, const FrameRange& range, const std::string& output,
+                              const std::string& preview) {
+  std::vector<PathArg> outputs, inputs;
+  for (int frame = range.first; frame <= range.last; ++frame) {
+    outputs.push_back({"-o", frame_path(output, frame, range.sequence)});
+    if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, range.sequence)});
+    for (const std::string& pattern : a.files)
+      inputs.push_back({"FILE", frame_path(pattern, frame, range.sequence && has_frame_field(pattern))});
+  }
+  for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
+  check_outputs(outputs, inputs);
 }
 
-static render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
-  render::MultipleScattering ms;
-  if (a.ms_method.empty()) {
-    ms.method = (a.multiple && *a.multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
-                                                        : render::MultipleScatteringMethod::LightVolume;
-  } else {
-    try {
-      ms.method = render::parse_multiple_scattering_method(a.ms_method);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--ms-method: ") + e.what());
-    }
+// The camera of a frame: framed on its clouds unless the flags place it, or the scene is made for
+// its gas (steam-lamp: its camera is aimed where the steam rises).
+render::Camera frame_camera(const CloudRenderArgs& a, const CloudRenderPlan& plan, const CameraArgs& camera_args,
+                            const std::vector<render::CloudVolume>& clouds, int frame) {
+  render::Camera camera = plan.base_camera;
+  const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !plan.scene.cloud_extinction_per_m;
+  if (framed) {
+    CameraArgs size_only;
+    size_only.res = camera_args.res;
+    size_only.fov_deg = camera_args.fov_deg;
+    camera = render::frame_clouds(apply_camera_args(size_only, plan.base_camera), clouds,
+                                  !plan.no_scene && plan.scene.ground.has_value());
   }
-  if (a.multiple && (*a.multiple < 0 || *a.multiple > 3))
-    throw UsageError("--multiple: must be in [0, 3], got " + std::to_string(*a.multiple));
-  if (ms.method == render::MultipleScatteringMethod::LightVolume) {
-    if (!sun) throw UsageError("--ms-method: light-volume traces photons from the sun, and nothing gives one (--sun)");
-    if (a.multiple && *a.multiple > 1)
-      throw UsageError("--multiple: --ms-method light-volume takes 0 (single scattering) or 1 (on), got " +
-                       std::to_string(*a.multiple));
-    if (a.multiple && *a.multiple == 0) ms.method = render::MultipleScatteringMethod::Octaves;  // octaves 0: single
-  } else {
-    ms.octaves = a.multiple.value_or(0);
+  try {
+    camera = apply_camera_args(camera_args, camera);
+  } catch (const UsageError& e) {
+    // A camera framed on clouds no camera can frame (a file whose voxels are 1e300 m) fails
+    // here: the file is at fault, not the flags.
+    if (!framed || !camera_args.up.empty()) throw;
+    throw std::runtime_error("framing the camera on " + describe_clouds(a, frame, plan.range.sequence) + ": " + e.what());
   }
-  const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
-  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-seed"})
-    refuse_if_given_without(a, flag, light_volume,
-                            "applies to the light volume (--ms-method light-volume), and the multiple scattering here is "
-                            "the octaves method");
-  for (const char* flag : {"--ms-occlusion", "--ms-contribution", "--ms-eccentricity"})
-    refuse_if_given_without(a, flag, !light_volume && ms.octaves > 0,
-                            "applies to the octaves of multiple scattering (--multiple 1-3 with --ms-method octaves), "
-                            "which this render does not use");
-  if (a.ms_grid < 4 || a.ms_grid > 192)
-    throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
-  if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
-    throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
-  ms.light_volume.resolution = a.ms_grid;
-  ms.light_volume.photons = a.ms_photons;
-  if (a.ms_lobes < 0 || a.ms_lobes > 2) throw UsageError("--ms-lobes: must be in [0, 2], got " + std::to_string(a.ms_lobes));
-  ms.light_volume.lobe_orders = a.ms_lobes;
-  ms.light_volume.seed = a.ms_seed;
-  auto check = [](double v, bool ok, const char* flag, const char* range) {
-    if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));
-  };
-  check(a.ms_occlusion, a.ms_occlusion > 0.0 && a.ms_occlusion <= 1.0, "--ms-occlusion", "(0, 1]");
-  check(a.ms_contribution, a.ms_contribution >= 0.0 && a.ms_contribution <= 1.0, "--ms-contribution", "[0, 1]");
-  check(a.ms_eccentricity, a.ms_eccentricity >= 0.0 && a.ms_eccentricity <= 1.0, "--ms-eccentricity", "[0, 1]");
-  ms.occlusion = a.ms_occlusion;
-  ms.contribution = a.ms_contribution;
-  ms.eccentricity = a.ms_eccentricity;
-  return ms;
+  if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, clouds);
+  return camera;
 }
+
+// Writes a frame's image (and preview), with the sequence's metadata, and says what it drew.
+void write_cloud_frame(render::Image& image, const CloudRenderPlan& plan, const render::Camera& camera,
+                       const render::FrameStats& stats, std::size_t n_clouds, double seconds, int frame,
+                       const std::string& output, const std::string& preview, std::optional<double> exposure) {
+  const FrameRange& range = plan.range;
+  if (range.sequence) {
+    image.metadata["frame"] = std::to_string(frame);
+    image.metadata["fps"] = std::to_string(range.fps);
+    image.metadata["start_frame"] = std::to_string(range.start_frame);
+  }
+  const std::string out = frame_path(output, frame, range.sequence);
+  render::PreviewOptions po;
+  if (!preview.empty()) po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
+  write_image_files(out, preview.empty() ? "" : frame_path(preview, frame, range.sequence), image, po);
+  warn_half_float_clipping(image, out, "--lamp-intensity, --ambient or the scene's lights");
+  std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
+               plan.no_scene ? "nothing" : plan.scene.name.c_str(), camera.width, camera.height, plan.method.c_str(),
+               seconds, stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());
+}
+
+}  // namespace
 
 int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
                       const std::string& method_text, bool method_given, const CameraArgs& camera_args,
                       const std::string& output, const std::string& preview, std::optional<double> exposure) {
-  // Flags first: every usage error before any work.
-  const std::string method = method_given ? method_text : "slices";
-  render::CloudMethod cloud_method;
-  try {
-    cloud_method = render::parse_cloud_method(method);
-  } catch (const std::invalid_argument&) {
-    throw UsageError("--method: '" + method + "' is not a cloud method (slices, reference or pathtrace)");
-  }
-  const std::string scene_choice = scene_given ? scene_name : "sky";
-  const bool no_scene = scene_choice == "none";
-  if (render::is_cpu_method(cloud_method) && !no_scene)
-    throw UsageError("--method " + method + " renders clouds alone, without a scene: add --scene none");
-  render::Scene scene;
-  if (!no_scene) {
-    try {
-      scene = render::make_scene(scene_choice);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--scene: ") + e.what() + " (or none)");
-    }
-  }
-  if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
-  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
-    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
-  const FrameRange range = parse_frames(a.frame);
-  const int first = range.first, last = range.last;
-  const bool sequence = range.sequence;
-  if (range.whole_last > range.whole_first && a.presets.empty() &&
-      std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
-    throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
-                     "name.%04d.vdb, or --preset (generated at each frame's time)");
-  check_sequence_pattern("-o", output);
-  if (!preview.empty()) check_sequence_pattern("--preview", preview);
-  for (const std::string& f : a.files) check_sequence_pattern("file", f);
-  if (!sequence)  // a frame field is filled only in a sequence; alone it would name a file "%04d"
-    for (const auto& [flag, p] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
-      if (has_frame_field(p)) throw UsageError(flag + ": '" + echo(p) + "' holds a frame field but no --frames was given");
-  check_exposure(exposure);
-  if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
-
-  render::CloudOptics optics;
-  if (a.cloud_extinction) {
-    if (!(std::abs(*a.cloud_extinction) <= kMaxFlagMagnitude))
-      throw UsageError("--cloud-extinction: must be at most 1e12 per metre (per unit density)");
-    optics.extinction_per_m = *a.cloud_extinction;
-  } else if (scene.cloud_extinction_per_m) {
-    optics.extinction_per_m = *scene.cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
-  }
-  if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
-  try {
-    optics.phase = render::parse_cloud_phase(a.cloud_phase);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--cloud-phase: ") + e.what());
-  }
-  if (a.ambient == "auto") {
-    optics.ambient_radiance = scene.sky ? render::sky_mean_radiance(*scene.sky) : glm::dvec3(0.0);
-  } else {
-    optics.ambient_radiance = parse_colour("--ambient", a.ambient);
-  }
-  try {
-    render::validate(optics);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--cloud-extinction/--cloud-albedo/--ambient: ") + e.what());
-  }
-
-  // The lights: the sun (given, or the scene's) and the lamps (given, and the scene's).
-  std::vector<render::CloudLight> lights;
-  for (const std::string& text : a.lamps) {
-    const glm::dvec3 at = parse_vec3("--lamp", text);
-    lights.push_back(render::point_light(at, parse_colour("--lamp-intensity", a.lamp_intensity)));
-  }
-  refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
-  refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
-  for (const char* flag : {"--spp", "--bounces", "--seed"})
-    refuse_if_given_without(a, flag, cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
-  if (!a.spot.empty()) {
-    if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
-    if (!no_scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
-    const glm::dvec3 axis = parse_vec3("--spot", a.spot);
-    const std::size_t comma = a.spot_cone.find(',');
-    const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
-    const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));
-    if (!inner || !outer || !(*inner > 0.0) || !(*inner <= *outer) || !(*outer <= 180.0))
-      throw UsageError("--spot-cone: '" + a.spot_cone + "' must be INNER,OUTER degrees with 0 < INNER <= OUTER <= 180");
-    for (render::CloudLight& l : lights) {
-      l.spot_axis = axis;
-      l.spot_inner_rad = *inner * kPi / 180.0;
-      l.spot_outer_rad = *outer * kPi / 180.0;
-    }
-  }
-  for (const render::CloudLight& l : lights) {
-    try {
-      render::validate(l);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--lamp/--lamp-intensity/--spot: ") + e.what());
-    }
-  }
-  render::CloudLight light;
-  bool sun = false;
-  if (!a.sun.empty()) {
-    sun = true;
-    light.direction_to_light = parse_vec3("--sun", a.sun);
-    if (glm::length(light.direction_to_light) == 0.0) throw UsageError("--sun: the direction must not be zero");
-    if (!no_scene) {
-      if (!scene.sun) scene.sun = render::SunLight{};
-      scene.sun->direction_to_sun = light.direction_to_light;
-      if (scene.sky && scene.sky->atmosphere) {
-        // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
-        try {
-          const render::Daylight d = render::daylight(light.direction_to_light, scene.sky->atmosphere->view.altitude_m);
-          scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
-          scene.sky = d.sky;
-        } catch (const std::invalid_argument& e) {
-          throw UsageError(std::string("--sun: ") + e.what());
-        }
-      }
-      light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
-    }
-  } else if (!no_scene && scene.sun) {
-    sun = true;
-    light.direction_to_light = scene.sun->direction_to_sun;
-    light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
-  } else if (!no_scene && scene.point_lights.empty() && lights.empty()) {
-    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene.name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
-  } else if (no_scene && lights.empty()) {
-    sun = true;  // clouds alone: the default sun
-  }
-  if (sun) lights.insert(lights.begin(), light);
-  if (a.ambient == "auto" && scene.sky) optics.ambient_radiance = render::sky_mean_radiance(*scene.sky);  // after --sun moved it
-
-  render::CloudSliceSettings settings;
-  settings.slices = a.slices;
-  settings.light_res = a.light_res;
-  settings.jitter = !a.no_jitter;
-  settings.ambient = true;
-  settings.blur_cone_rad = a.blur_deg * kPi / 180.0;
-  settings.multiple = multiple_scattering_of(a, sun);
-  settings.max_lights = a.max_lights;
-  settings.multiple.occlusion = a.ms_occlusion;
-  settings.multiple.contribution = a.ms_contribution;
-  settings.multiple.eccentricity = a.ms_eccentricity;
-  try {
-    render::validate(settings);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--slices/--light-res/--multiple/--blur/--max-lights: ") + e.what());
-  }
-  render::ShaftMethod shafts;
-  if (!no_scene) {
-    try {
-      shafts = render::parse_shaft_method(a.shafts);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--shafts: ") + e.what());
-    }
-    if (shafts.kind == render::ShaftMethod::Kind::Reference)
-      throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
-  }
-  render::Camera base = no_scene ? render::Camera{} : scene.camera;
-  if (no_scene) {
-    base.width = 512;
-    base.height = 512;
-    base.fov_deg = 44.8;  // vdb_render's default
-  }
-
-  std::vector<render::PresetCloud> presets;
-  for (const std::string& name : a.presets) {
-    try {
-      presets.push_back(render::load_preset_cloud(name));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--preset: ") + e.what());
-    }
-  }
-
-  render::FrameSettings fs;
-  fs.method = cloud_method;
-  fs.slices = settings;
-  fs.shafts = shafts;
-  fs.cloud_shadow_res = a.shadow_map_res;
-  fs.shaft_settings.surface_airlight = a.surface_airlight;
-  fs.path_tracer.samples_per_pixel = a.spp;
-  fs.path_tracer.max_bounces = a.bounces;
-  fs.path_tracer.seed = a.seed;
-  try {
-    render::validate(fs.path_tracer);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--spp/--bounces: ") + e.what());
-  }
-  if (fs.method == render::CloudMethod::PathTrace && (lights.size() != 1 || lights[0].kind != render::CloudLightKind::Sun))
-    throw UsageError("--lamp: --method pathtrace traces the sun only");
-
-  // Every file of every frame: outputs writable, none of them an input, before any work.
-  std::vector<PathArg> outputs, inputs;
-  for (int frame = first; frame <= last; ++frame) {
-    outputs.push_back({"-o", frame_path(output, frame, sequence)});
-    if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, sequence)});
-    for (const std::string& pattern : a.files)
-      inputs.push_back({"FILE", frame_path(pattern, frame, sequence && has_frame_field(pattern))});
-  }
-  for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
-  check_outputs(outputs, inputs);
+  // Flags first, then every file: every usage error before any work (render_clouds_plan.cpp).
+  CloudRenderPlan plan =
+      plan_cloud_render(a, scene_name, scene_given, method_text, method_given, output, preview, exposure);
+  check_cloud_render_files(a, plan.range, output, preview);
   checks_done();
 
+  render::FrameSettings& fs = plan.settings;
   std::unique_ptr<render::GlContext> gl;
   if (fs.method == render::CloudMethod::Slices) {
     try {
@@ -450,35 +245,17 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (reference_progress) reference_progress->update(x);
   };
   fs.path_tracer.progress = fs.reference.progress;
-  render::FrameRenderer renderer(no_scene ? std::nullopt : std::optional<render::Scene>(scene), lights, fs);
+  render::FrameRenderer renderer(plan.no_scene ? std::nullopt : std::optional<render::Scene>(plan.scene), plan.lights,
+                                 fs);
 
-  for (int frame = first; frame <= last; ++frame) {
+  const FrameRange& range = plan.range;
+  for (int frame = range.first; frame <= range.last; ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    renderer.set_clouds(load_clouds(a, presets, optics, range, frame));
-    const std::size_t n_clouds = renderer.clouds().size();
-    // Camera: framed on the clouds unless the flags place it, or the scene is made for its gas
-    // (steam-lamp: its camera is aimed where the steam rises).
-    render::Camera camera = base;
-    const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !scene.cloud_extinction_per_m;
-    if (framed) {
-      CameraArgs size_only;
-      size_only.res = camera_args.res;
-      size_only.fov_deg = camera_args.fov_deg;
-      camera = render::frame_clouds(apply_camera_args(size_only, base), renderer.clouds(),
-                                    !no_scene && scene.ground.has_value());
-    }
-    try {
-      camera = apply_camera_args(camera_args, camera);
-    } catch (const UsageError& e) {
-      // A camera framed on clouds no camera can frame (a file whose voxels are 1e300 m) fails
-      // here: the file is at fault, not the flags.
-      if (!framed || !camera_args.up.empty()) throw;
-      throw std::runtime_error("framing the camera on " + describe_clouds(a, frame, sequence) + ": " + e.what());
-    }
-    if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, renderer.clouds());
-
+    renderer.set_clouds(load_clouds(a, plan.presets, plan.optics, range, frame));
+    const render::Camera camera = frame_camera(a, plan, camera_args, renderer.clouds(), frame);
     if (render::is_cpu_method(fs.method))
-      reference_progress = std::make_unique<Progress>("cloud " + method + (sequence ? " frame " + std::to_string(frame) : ""));
+      reference_progress = std::make_unique<Progress>("cloud " + plan.method +
+                                                      (range.sequence ? " frame " + std::to_string(frame) : ""));
     render::FrameStats stats;
     render::Image image;
     try {
@@ -486,23 +263,11 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     } catch (const std::invalid_argument& e) {
       // A stage refused what it computed (a NaN pixel): the flags were checked, so say which
       // input it was rendering, and that it is a failure of the render, not of the usage.
-      throw std::runtime_error("rendering " + describe_clouds(a, frame, sequence) + ": " + e.what());
+      throw std::runtime_error("rendering " + describe_clouds(a, frame, range.sequence) + ": " + e.what());
     }
     reference_progress.reset();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (sequence) {
-      image.metadata["frame"] = std::to_string(frame);
-      image.metadata["fps"] = std::to_string(range.fps);
-      image.metadata["start_frame"] = std::to_string(range.start_frame);
-    }
-    const std::string out = frame_path(output, frame, sequence);
-    render::PreviewOptions po;
-    if (!preview.empty()) po.exposure_stops = exposure ? *exposure : render::auto_exposure_stops(image);
-    write_image_files(out, preview.empty() ? "" : frame_path(preview, frame, sequence), image, po);
-    warn_half_float_clipping(image, out, "--lamp-intensity, --ambient or the scene's lights");
-    std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
-                 no_scene ? "nothing" : scene.name.c_str(), camera.width, camera.height, method.c_str(), seconds,
-                 stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());
+    write_cloud_frame(image, plan, camera, stats, renderer.clouds().size(), seconds, frame, output, preview, exposure);
   }
   return 0;
 }

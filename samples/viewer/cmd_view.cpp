@@ -14,7 +14,7 @@
 #include "cli/outputs.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/output_path.hpp"
-#include "cli/sequence_path.hpp"
+#include "nimbus/app/sequence_path.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/sky_keyframes.hpp"
 #include "nimbus/render/core/view_state.hpp"
@@ -25,6 +25,9 @@
 #include "viewer.hpp"
 
 namespace nimbus::cli {
+
+using app::check_sequence_pattern;
+using app::has_frame_field;
 namespace {
 
 struct ViewArgs {

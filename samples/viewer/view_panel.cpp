@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "nimbus/app/sun_path.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "view_window.hpp"
@@ -16,14 +17,6 @@ namespace nimbus::viewer {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Sun position over a day (a simple path: rises in the east at 6 h, 60 degrees at noon, sets in
-// the west at 18 h), for the time-of-day slider.
-void sun_at_hour(double hour, double& elevation, double& azimuth) {
-  const double x = (hour - 6.0) / 12.0;  // 0 sunrise, 1 sunset
-  elevation = std::clamp(60.0 * std::sin(kPi * x), -10.0, 90.0);
-  azimuth = std::fmod(90.0 + 180.0 * x + 360.0, 360.0);
-}
 
 bool slider(const char* label, double& v, double lo, double hi, const char* fmt = "%.3f", bool log = false) {
   float f = static_cast<float>(v);
@@ -35,7 +28,7 @@ bool slider(const char* label, double& v, double lo, double hi, const char* fmt 
 
 }  // namespace
 
-void draw_panel(Viewer& viewer) {
+void draw_panel(Viewer& viewer, PanelState& panel) {
   render::ViewState& s = viewer.state();
   const FrameReport& r = viewer.report();
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
@@ -56,20 +49,21 @@ void draw_panel(Viewer& viewer) {
     double el = s.sky.sun_elevation_deg, az = s.sky.sun_azimuth_deg;
     bool moved = slider("elevation (deg)", el, -10.0, 90.0, "%.1f");
     moved |= slider("azimuth (deg)", az, 0.0, 359.9, "%.1f");
-    static double hour = 15.0;
-    if (slider("time of day (h)", hour, 5.0, 19.0, "%.2f")) {
-      sun_at_hour(hour, el, az);
+    if (slider("time of day (h)", panel.hour, 5.0, 19.0, "%.2f")) {
+      const app::SunPosition sun = app::sun_at_hour(panel.hour);
+      el = sun.elevation_deg;
+      az = sun.azimuth_deg;
       moved = true;
     }
     if (moved) viewer.set_sun(el, az);
   }
   if (ImGui::CollapsingHeader("Clouds")) {
     // Edits that need new keyframes apply when the control is released.
-    static volume::Sky edit;
-    static bool editing = false;
+    volume::Sky& edit = panel.edit;
+    bool& editing = panel.editing;
     if (!editing) edit = s.sky;
     bool done = false;
-    const std::vector<volume::PresetInfo> presets = volume::list_presets();
+    const std::vector<volume::PresetInfo>& presets = volume::list_presets();
     for (std::size_t i = 0; i < edit.clouds.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
       volume::SkyCloud& c = edit.clouds[i];

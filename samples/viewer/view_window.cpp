@@ -131,6 +131,7 @@ int run_interactive(Window& window, Viewer& viewer) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+  PanelState panel;
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(w, true);
   ImGui_ImplOpenGL3_Init("#version 450 core");
@@ -165,7 +166,7 @@ int run_interactive(Window& window, Viewer& viewer) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    draw_panel(viewer);
+    draw_panel(viewer, panel);
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     window.swap();

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "nimbus/volume/sky.hpp"
 #include "viewer.hpp"
 
 struct GLFWwindow;
@@ -33,8 +34,16 @@ int run_interactive(Window& window, Viewer& viewer);
 // Shows a scripted frame in the window (display and swap, events polled so it stays responsive).
 void present_in_window(Window& window, Viewer& viewer);
 
+// What the panel remembers between frames, beside the viewer's state: the time-of-day slider and
+// a cloud edit in progress (applied when its control is released).
+struct PanelState {
+  double hour = 15.0;
+  volume::Sky edit;
+  bool editing = false;
+};
+
 // The panel (view_panel.cpp): clouds, sun, optics, renderer, frame times. Between ImGui::NewFrame
 // and ImGui::Render.
-void draw_panel(Viewer& viewer);
+void draw_panel(Viewer& viewer, PanelState& panel);
 
 }  // namespace nimbus::viewer

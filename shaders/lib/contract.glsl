@@ -74,7 +74,7 @@ const int STORAGE_SKIRT_COUNTER = 1;
 
 // --- Uniform blocks (layout(std140, binding = ...); glBindBufferBase / Range) -------------
 const int BLOCK_CAMERA = 0;            // CameraBlock (lib/camera_ray.glsl)
-const int BLOCK_LIGHTS = 1;            // LightsBlock (lib/lights_block.glsl)
+const int BLOCK_LIGHTS = 1;            // LightsBlock (lib/light_list.glsl)
 const int BLOCK_CLOUD = 2;             // CloudBlock (lib/cloud_block.glsl), one range per cloud
 
 #endif

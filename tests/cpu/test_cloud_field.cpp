@@ -11,13 +11,17 @@
 #include <random>
 
 #include "nimbus/volume/cloud_field.hpp"
-#include "nimbus/volume/cloud_stats.hpp"
+#include "support/cloud_stats.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/shape_index.hpp"
 
 namespace nimbus::volume {
 namespace {
+
+using test::CloudOutline;
+using test::PowerLawFit;
+using test::area_exponent;
 
 TEST(CloudField, LayoutFollowsItsPowerLawCoversItsShareAndNeverStacks) {
   CloudFieldParams p;

@@ -12,12 +12,22 @@
 
 #include <cstdio>
 
-#include "nimbus/volume/cloud_stats.hpp"
+#include "support/cloud_stats.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 
 namespace nimbus::volume {
 namespace {
+
+using test::CloudOutline;
+using test::MapAxis;
+using test::OpticalDepthMap;
+using test::PowerLawFit;
+using test::area_exponent;
+using test::cloud_outlines;
+using test::perimeter_area_dimension;
+using test::spectrum_slope;
+using test::vertical_optical_depth;
 
 constexpr double kExtinctionPerM = 0.04;  // render::CloudOptics' default sigma_t per unit density
 

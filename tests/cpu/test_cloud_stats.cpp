@@ -19,15 +19,10 @@
 #include <utility>
 #include <vector>
 
-#include "nimbus/volume/cloud_stats.hpp"
+#include "support/cloud_stats.hpp"
 
 namespace nimbus::test {
 namespace {
-
-using volume::CloudOutline;
-using volume::MapAxis;
-using volume::OpticalDepthMap;
-using volume::PowerLawFit;
 
 // Runs f and expects std::invalid_argument whose message contains `names`.
 void expect_invalid(const std::function<void()>& f, const std::string& names) {
@@ -77,7 +72,7 @@ TEST(CloudStatsDepth, ColumnIsExtinctionTimesVoxelTimesDensitySum) {
   acc.setValue(openvdb::Coord(2, 3, 5000), 0.0f);  // active zero: adds nothing
   const double ext = 0.0625;                       // tau = ext * 8 m * sum = 0.5 * sum
 
-  const OpticalDepthMap m = volume::vertical_optical_depth(*g, ext, openvdb::CoordBBox(1, 0, -9, 5, 4, 9));
+  const OpticalDepthMap m = vertical_optical_depth(*g, ext, openvdb::CoordBBox(1, 0, -9, 5, 4, 9));
   ASSERT_EQ(m.nx, 5);
   ASSERT_EQ(m.ny, 5);
   ASSERT_EQ(m.tau.size(), 25u);
@@ -97,7 +92,7 @@ TEST(CloudStatsDepth, TilesCountOncePerVoxelOfTheirHeight) {
   ASSERT_GT(g->tree().activeTileCount(), 0u);
   g->getAccessor().setValue(openvdb::Coord(258, 100, -3), 1.0f);
   // Columns x in 250 .. 260 at y = 100: x <= 255 are inside the tiles (128 voxels of 0.25).
-  const OpticalDepthMap m = volume::vertical_optical_depth(*g, 0.25, openvdb::CoordBBox(250, 100, 0, 260, 100, 0));
+  const OpticalDepthMap m = vertical_optical_depth(*g, 0.25, openvdb::CoordBBox(250, 100, 0, 260, 100, 0));
   ASSERT_EQ(m.nx, 11);
   ASSERT_EQ(m.ny, 1);
   for (int i = 0; i < 11; ++i) {
@@ -110,40 +105,40 @@ TEST(CloudStatsDepth, RefusesBadTransformsExtinctionBoxesAndBackground) {
   openvdb::FloatGrid::Ptr good = grid_with_voxel(1.0);
   good->getAccessor().setValue(openvdb::Coord(0, 0, 0), 1.0f);
   const openvdb::CoordBBox box(0, 0, 0, 3, 3, 0);
-  EXPECT_NO_THROW(volume::vertical_optical_depth(*good, 1.0, box));
+  EXPECT_NO_THROW(vertical_optical_depth(*good, 1.0, box));
 
   openvdb::FloatGrid::Ptr stretched = good->deepCopy();
   openvdb::math::Transform::Ptr tall = openvdb::math::Transform::createLinearTransform(1.0);
   tall->preScale(openvdb::Vec3d(1.0, 1.0, 2.0));  // voxels twice as tall as wide
   stretched->setTransform(tall);
-  expect_invalid([&] { volume::vertical_optical_depth(*stretched, 1.0, box); }, "density");
+  expect_invalid([&] { vertical_optical_depth(*stretched, 1.0, box); }, "density");
   openvdb::FloatGrid::Ptr turned = good->deepCopy();
   openvdb::math::Transform::Ptr rotated = openvdb::math::Transform::createLinearTransform(1.0);
   rotated->postRotate(0.3, openvdb::math::Z_AXIS);  // cubic voxels, but not axis-aligned
   turned->setTransform(rotated);
-  expect_invalid([&] { volume::vertical_optical_depth(*turned, 1.0, box); }, "density");
+  expect_invalid([&] { vertical_optical_depth(*turned, 1.0, box); }, "density");
   openvdb::FloatGrid::Ptr frustum = good->deepCopy();
   frustum->setTransform(openvdb::math::Transform::createFrustumTransform(
       openvdb::BBoxd(openvdb::Vec3d(0, 0, 0), openvdb::Vec3d(10, 10, 10)), 0.5, 10.0, 1.0));
-  expect_invalid([&] { volume::vertical_optical_depth(*frustum, 1.0, box); }, "density");
+  expect_invalid([&] { vertical_optical_depth(*frustum, 1.0, box); }, "density");
 
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN(), kInf = std::numeric_limits<double>::infinity();
   for (const double ext : {0.0, -1.0, kNaN, kInf})
-    expect_invalid([&] { volume::vertical_optical_depth(*good, ext, box); }, "extinction_per_m");
+    expect_invalid([&] { vertical_optical_depth(*good, ext, box); }, "extinction_per_m");
 
-  expect_invalid([&] { volume::vertical_optical_depth(*good, 1.0, openvdb::CoordBBox()); }, "columns");
+  expect_invalid([&] { vertical_optical_depth(*good, 1.0, openvdb::CoordBBox()); }, "columns");
   // 2^20 x 2^20 columns: refused before allocating (a vector of 2^40 doubles would throw bad_alloc).
-  expect_invalid([&] { volume::vertical_optical_depth(*good, 1.0, openvdb::CoordBBox(0, 0, 0, 1 << 20, 1 << 20, 0)); },
+  expect_invalid([&] { vertical_optical_depth(*good, 1.0, openvdb::CoordBBox(0, 0, 0, 1 << 20, 1 << 20, 0)); },
                  "columns");
-  expect_invalid([&] { volume::vertical_optical_depth(*good, 1.0, openvdb::CoordBBox(0, 0, 0, 8192, 8192, 0)); },
+  expect_invalid([&] { vertical_optical_depth(*good, 1.0, openvdb::CoordBBox(0, 0, 0, 8192, 8192, 0)); },
                  "columns");  // 8193^2 > 2^26
 
   openvdb::FloatGrid::Ptr fogged = openvdb::FloatGrid::create(0.5f);
-  expect_invalid([&] { volume::vertical_optical_depth(*fogged, 1.0, box); }, "background");
+  expect_invalid([&] { vertical_optical_depth(*fogged, 1.0, box); }, "background");
 
   openvdb::FloatGrid::Ptr broken = good->deepCopy();
   broken->getAccessor().setValue(openvdb::Coord(1, 1, 4), std::numeric_limits<float>::quiet_NaN());
-  expect_invalid([&] { volume::vertical_optical_depth(*broken, 1.0, box); }, "non-finite");
+  expect_invalid([&] { vertical_optical_depth(*broken, 1.0, box); }, "non-finite");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -154,7 +149,7 @@ TEST(CloudStatsOutlines, SquareOfSideSHasAreaS2AndPerimeter4S) {
   for (const int s : {1, 2, 7, 30}) {
     OpticalDepthMap m = blank(s + 4, s + 6, px);
     rect(m, 2, 3, s, s);
-    const auto clouds = volume::cloud_outlines(m);
+    const auto clouds = cloud_outlines(m);
     ASSERT_EQ(clouds.size(), 1u) << "s = " << s;
     EXPECT_EQ(clouds[0].pixels, int64_t(s) * s);
     EXPECT_DOUBLE_EQ(clouds[0].area_m2, double(s) * s * px * px);
@@ -168,7 +163,7 @@ TEST(CloudStatsOutlines, LShapeAndRingsCountTheirHoleEdges) {
   OpticalDepthMap l = blank(8, 8);
   rect(l, 1, 1, 1, 4);
   rect(l, 2, 1, 2, 1);
-  auto clouds = volume::cloud_outlines(l);
+  auto clouds = cloud_outlines(l);
   ASSERT_EQ(clouds.size(), 1u);
   EXPECT_EQ(clouds[0].pixels, 6);
   EXPECT_EQ(clouds[0].perimeter_m, 2.0 * (3 + 4));
@@ -179,7 +174,7 @@ TEST(CloudStatsOutlines, LShapeAndRingsCountTheirHoleEdges) {
     rect(r, 1, 1, s, s);
     const int h0 = 1 + (s - t) / 2;
     rect(r, h0, h0, t, t, 0.0);
-    clouds = volume::cloud_outlines(r);
+    clouds = cloud_outlines(r);
     ASSERT_EQ(clouds.size(), 1u) << "ring " << s << " / " << t;
     EXPECT_EQ(clouds[0].pixels, int64_t(s) * s - int64_t(t) * t);
     EXPECT_EQ(clouds[0].perimeter_m, 4.0 * s + 4.0 * t);
@@ -192,7 +187,7 @@ TEST(CloudStatsOutlines, DiagonalNeighboursAreSeparateClouds) {
   for (int j = 1; j <= 4; ++j)
     for (int i = 1; i <= 4; ++i)
       if ((i + j) % 2 == 0) tau(m, i, j) = 3.0;
-  const auto clouds = volume::cloud_outlines(m);
+  const auto clouds = cloud_outlines(m);
   ASSERT_EQ(clouds.size(), 8u);
   for (const CloudOutline& c : clouds) {
     EXPECT_EQ(c.pixels, 1);
@@ -207,7 +202,7 @@ TEST(CloudStatsOutlines, CloudsOnAnyBorderAreFlagged) {
   rect(m, 18, 5, 2, 2);   // right column
   rect(m, 9, 9, 2, 2);    // inside
   rect(m, 5, 18, 2, 2);   // top row
-  const auto clouds = volume::cloud_outlines(m);
+  const auto clouds = cloud_outlines(m);
   ASSERT_EQ(clouds.size(), 5u);
   // Raster order of each cloud's first pixel: bottom, left, right, inside, top.
   const bool want[] = {true, true, true, false, true};
@@ -224,31 +219,31 @@ TEST(CloudStatsOutlines, TauAtTheThresholdIsCloud) {
   tau(m, 3, 1) = std::nextafter(1.0, 0.0);     // just under: clear
   tau(m, 5, 1) = 0.5;                          // cloud only for threshold 0.5
   tau(m, 7, 1) = std::numeric_limits<double>::infinity();
-  auto clouds = volume::cloud_outlines(m);
+  auto clouds = cloud_outlines(m);
   EXPECT_EQ(clouds.size(), 2u);
-  clouds = volume::cloud_outlines(m, 0.5);
+  clouds = cloud_outlines(m, 0.5);
   EXPECT_EQ(clouds.size(), 4u);
-  clouds = volume::cloud_outlines(m, 1.5);
+  clouds = cloud_outlines(m, 1.5);
   EXPECT_EQ(clouds.size(), 1u);
 
-  expect_invalid([&] { volume::cloud_outlines(m, std::numeric_limits<double>::quiet_NaN()); }, "threshold");
+  expect_invalid([&] { cloud_outlines(m, std::numeric_limits<double>::quiet_NaN()); }, "threshold");
   OpticalDepthMap bad = m;
   bad.tau[4] = std::numeric_limits<double>::quiet_NaN();
-  expect_invalid([&] { volume::cloud_outlines(bad); }, "NaN");
+  expect_invalid([&] { cloud_outlines(bad); }, "NaN");
   bad = m;
   bad.tau.pop_back();
-  expect_invalid([&] { volume::cloud_outlines(bad); }, "nx * ny");
+  expect_invalid([&] { cloud_outlines(bad); }, "nx * ny");
   bad = m;
   bad.pixel_m = 0;
-  expect_invalid([&] { volume::cloud_outlines(bad); }, "pixel_m");
-  expect_invalid([&] { volume::cloud_outlines(OpticalDepthMap{}); }, "empty");
+  expect_invalid([&] { cloud_outlines(bad); }, "pixel_m");
+  expect_invalid([&] { cloud_outlines(OpticalDepthMap{}); }, "empty");
 }
 
 TEST(CloudStatsOutlines, A4096SquaredCloudNeedsNoRecursion) {
   constexpr int n = 4096;
   OpticalDepthMap m = blank(n, n);
   std::fill(m.tau.begin(), m.tau.end(), 5.0);
-  auto clouds = volume::cloud_outlines(m);
+  auto clouds = cloud_outlines(m);
   ASSERT_EQ(clouds.size(), 1u);
   EXPECT_EQ(clouds[0].pixels, int64_t(n) * n);
   EXPECT_EQ(clouds[0].perimeter_m, 4.0 * n);
@@ -266,7 +261,7 @@ TEST(CloudStatsOutlines, A4096SquaredCloudNeedsNoRecursion) {
       ++p;
     }
   }
-  clouds = volume::cloud_outlines(m);
+  clouds = cloud_outlines(m);
   ASSERT_EQ(clouds.size(), 1u);
   EXPECT_EQ(clouds[0].pixels, p);
   EXPECT_EQ(clouds[0].perimeter_m, double(2 * p + 2));
@@ -297,7 +292,7 @@ TEST(CloudStatsDimension, DigitalDiscsHaveDimensionOne) {
   rect(m, 0, 0, width, 1);
   for (int i = 3; i < 40; i += 4) tau(m, i, 2 * radii.back() + 3) = 4.0;
 
-  const auto clouds = volume::cloud_outlines(m);
+  const auto clouds = cloud_outlines(m);
   std::vector<CloudOutline> discs;
   for (const CloudOutline& c : clouds)
     if (!c.touches_edge && c.pixels > 1) discs.push_back(c);
@@ -309,7 +304,7 @@ TEST(CloudStatsDimension, DigitalDiscsHaveDimensionOne) {
     EXPECT_EQ(discs[d].perimeter_m, (8.0 * r + 4.0) * px) << "r = " << r;
     EXPECT_NEAR(double(discs[d].pixels), std::numbers::pi * r * r, 2.0 * std::numbers::pi * r) << "r = " << r;
   }
-  const PowerLawFit fit = volume::perimeter_area_dimension(clouds);
+  const PowerLawFit fit = perimeter_area_dimension(clouds);
   std::printf("[cloud-stats] discs r = 5..200 px: D = %.4f +- %.4f over %d clouds, sqrt(A) %.0f..%.0f m\n",
               fit.exponent, fit.standard_error, fit.points, fit.x_lo, fit.x_hi);
   EXPECT_EQ(fit.points, int(radii.size()));
@@ -327,19 +322,19 @@ TEST(CloudStatsDimension, ExactPowerLawGivesItsExponent) {
   // Left out: clouds on the edge and under min_pixels, each far off the law.
   clouds.push_back({5000, 5000.0, 1e7, true});
   clouds.push_back({9, 9.0, 1e5, false});
-  const PowerLawFit fit = volume::perimeter_area_dimension(clouds, 10);
+  const PowerLawFit fit = perimeter_area_dimension(clouds, 10);
   EXPECT_EQ(fit.points, 40);
   EXPECT_NEAR(fit.exponent, 1.4, 1e-9);
   EXPECT_LT(fit.standard_error, 1e-9);
   EXPECT_NEAR(fit.x_lo, 10.0, 1e-6);
   EXPECT_NEAR(fit.x_hi, 1e4, 1e-6);
 
-  expect_invalid([&] { volume::perimeter_area_dimension({clouds[0]}); }, "at least 2");
-  expect_invalid([&] { volume::perimeter_area_dimension({clouds[3], clouds[3]}); }, "same abscissa");
-  expect_invalid([&] { volume::perimeter_area_dimension(clouds, 0); }, "min_pixels");
+  expect_invalid([&] { perimeter_area_dimension({clouds[0]}); }, "at least 2");
+  expect_invalid([&] { perimeter_area_dimension({clouds[3], clouds[3]}); }, "same abscissa");
+  expect_invalid([&] { perimeter_area_dimension(clouds, 0); }, "min_pixels");
   std::vector<CloudOutline> bad = clouds;
   bad[5].perimeter_m = std::numeric_limits<double>::quiet_NaN();
-  expect_invalid([&] { volume::perimeter_area_dimension(bad); }, "perimeter");
+  expect_invalid([&] { perimeter_area_dimension(bad); }, "perimeter");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -363,7 +358,7 @@ std::vector<CloudOutline> power_law_clouds(double b, int n, double a_min_m2, dou
 TEST(CloudStatsAreaExponent, RecoversExponentOfSampledPowerLaws) {
   for (const double b : {0.87, 1.2}) {
     const auto clouds = power_law_clouds(b, 20000, 1e4, 10.0, 20240109);
-    const PowerLawFit fit = volume::area_exponent(clouds);
+    const PowerLawFit fit = area_exponent(clouds);
     std::printf("[cloud-stats] %d clouds, b = %.2f: fitted b = %.4f +- %.4f over %d bins, a %.3g..%.3g m^2\n",
                 int(clouds.size()), b, fit.exponent, fit.standard_error, fit.points, fit.x_lo, fit.x_hi);
     EXPECT_NEAR(fit.exponent, b, 0.08);
@@ -386,25 +381,25 @@ TEST(CloudStatsAreaExponent, BinsUnderMinCountAreDropped) {
   add(5, 10, false);
   add(6, 23, false);
   add(8, 600, true);
-  PowerLawFit fit = volume::area_exponent(clouds, 1, 24);
+  PowerLawFit fit = area_exponent(clouds, 1, 24);
   EXPECT_EQ(fit.points, 3);
   EXPECT_NEAR(fit.exponent, 1.0, 1e-12);
   EXPECT_NEAR(fit.x_lo, std::pow(10.0, 2.5), 1e-9);
   EXPECT_NEAR(fit.x_hi, std::pow(10.0, 4.5), 1e-6);
 
   // With min_count 10, bins 5 and 6 enter (5 bins) and pull the fit off b = 1.
-  fit = volume::area_exponent(clouds, 1, 10);
+  fit = area_exponent(clouds, 1, 10);
   EXPECT_EQ(fit.points, 5);
   EXPECT_GT(std::abs(fit.exponent - 1.0), 0.05);
   // min_pixels leaves bin 2 (316 px) out.
-  fit = volume::area_exponent(clouds, 1, 24, 1000);
+  fit = area_exponent(clouds, 1, 24, 1000);
   EXPECT_EQ(fit.points, 2);
   EXPECT_NEAR(fit.exponent, 1.0, 1e-12);
 
-  expect_invalid([&] { volume::area_exponent(clouds, 1, 24, 5000); }, "at least 2");
-  expect_invalid([&] { volume::area_exponent(clouds, 0); }, "bins_per_decade");
-  expect_invalid([&] { volume::area_exponent(clouds, 5, 0); }, "min_count");
-  expect_invalid([&] { volume::area_exponent(clouds, 5, 24, 0); }, "min_pixels");
+  expect_invalid([&] { area_exponent(clouds, 1, 24, 5000); }, "at least 2");
+  expect_invalid([&] { area_exponent(clouds, 0); }, "bins_per_decade");
+  expect_invalid([&] { area_exponent(clouds, 5, 0); }, "min_count");
+  expect_invalid([&] { area_exponent(clouds, 5, 24, 0); }, "min_pixels");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -455,7 +450,7 @@ TEST(CloudStatsSpectrum, RecoversSlopeOfRandomPhaseRows) {
   // 1024 px of 20 m along x, 64 rows; fitted between 200 m and 5 km as Cahalan & Snider.
   for (const double beta : {0.0, 5.0 / 3.0, 3.0}) {
     const OpticalDepthMap m = random_phase_rows(1024, 64, 20.0, beta, 1989);
-    const PowerLawFit fit = volume::spectrum_slope(m, MapAxis::X, 200.0, 5000.0);
+    const PowerLawFit fit = spectrum_slope(m, MapAxis::X, 200.0, 5000.0);
     std::printf("[cloud-stats] rows with P ∝ k^-%.3f: slope %.4f +- %.4f over %d bins, k %.3g..%.3g /m\n", beta,
                 fit.exponent, fit.standard_error, fit.points, fit.x_lo, fit.x_hi);
     EXPECT_NEAR(fit.exponent, -beta, 0.15) << "beta = " << beta;
@@ -470,30 +465,30 @@ TEST(CloudStatsSpectrum, AxisChoosesRowsOrColumns) {
   // Every row the same: tau varies along x only.
   const OpticalDepthMap m = random_phase_rows(512, 32, 20.0, 5.0 / 3.0, 7, true);
   // Along x it fits (one realisation repeated, so its slope is noisy: not checked here).
-  const PowerLawFit along_x = volume::spectrum_slope(m, MapAxis::X, 200.0, 5000.0);
+  const PowerLawFit along_x = spectrum_slope(m, MapAxis::X, 200.0, 5000.0);
   EXPECT_TRUE(std::isfinite(along_x.exponent));
   EXPECT_GE(along_x.points, 10);
   // Along y every column is constant: there is no power to fit, and it says so.
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::Y, 200.0, 600.0); }, "no power along y");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::Y, 200.0, 600.0); }, "no power along y");
   // The transposed map along y is the original along x.
-  const PowerLawFit along_y = volume::spectrum_slope(transposed(m), MapAxis::Y, 200.0, 5000.0);
+  const PowerLawFit along_y = spectrum_slope(transposed(m), MapAxis::Y, 200.0, 5000.0);
   EXPECT_NEAR(along_y.exponent, along_x.exponent, 1e-9);
   EXPECT_EQ(along_y.points, along_x.points);
 }
 
 TEST(CloudStatsSpectrum, RefusesWavelengthsTheMapCannotResolve) {
   const OpticalDepthMap m = random_phase_rows(256, 4, 20.0, 2.0, 3);  // lines of 5120 m
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::X, 30.0, 1000.0); }, "Nyquist");
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::X, 200.0, 6000.0); }, "line length");
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::X, 500.0, 500.0); }, "lambda_lo_m");
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::X, std::nan(""), 500.0); }, "lambda_lo_m");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::X, 30.0, 1000.0); }, "Nyquist");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::X, 200.0, 6000.0); }, "line length");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::X, 500.0, 500.0); }, "lambda_lo_m");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::X, std::nan(""), 500.0); }, "lambda_lo_m");
   // 4000 .. 5120 m holds one mode (5120 m): one bin, no slope.
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::X, 4000.0, 5120.0); }, "at least 2");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::X, 4000.0, 5120.0); }, "at least 2");
   // Columns are 4 px (80 m) long: 200 m is over their length.
-  expect_invalid([&] { volume::spectrum_slope(m, MapAxis::Y, 40.0, 200.0); }, "line length along y");
+  expect_invalid([&] { spectrum_slope(m, MapAxis::Y, 40.0, 200.0); }, "line length along y");
   OpticalDepthMap bad = m;
   bad.tau[17] = std::numeric_limits<double>::infinity();
-  expect_invalid([&] { volume::spectrum_slope(bad, MapAxis::X, 200.0, 5000.0); }, "not finite");
+  expect_invalid([&] { spectrum_slope(bad, MapAxis::X, 200.0, 5000.0); }, "not finite");
 }
 
 }  // namespace

@@ -47,6 +47,7 @@ TEST(Layers, ATreeThatKeepsTheRulesPasses) {
   t.write("render/core/src/b.cpp", "#include \"nimbus/volume/vdb_read.hpp\"\n#include <glm/glm.hpp>\n");
   t.write("render/gl/src/c.cpp", "#include <epoxy/gl.h>\n#include \"nimbus/render/core/camera.hpp\"\n");
   t.write("render/frame/src/d.cpp", "#include \"nimbus/render/clouds/cloud_renderer.hpp\"\n");
+  t.write("samples/app/src/e.cpp", "#include \"nimbus/render/reference/cloud_reference.hpp\"\n");
   const RunResult r = t.check();
   EXPECT_EQ(r.code, 0) << r.output;
 }
@@ -59,6 +60,8 @@ TEST(Layers, GlInACpuLayerOrAnIncludeUpwardsFailsNamingTheFile) {
   t.write("render/core/include/nimbus/render/core/bad_up.hpp", "#include \"nimbus/render/gl/context.hpp\"\n");
   t.write("render/clouds/src/bad_side.cpp", "#include \"nimbus/render/shafts/shaft_renderer.hpp\"\n");
   t.write("render/image/src/bad_egl.cpp", "  #  include <EGL/egl.h>\n");
+  // The app library is CPU-only (the CPU tests link it): no GL layer, no GL header.
+  t.write("samples/app/src/bad_app.cpp", "#include \"nimbus/render/frame/frame_renderer.hpp\"\n#include <GL/gl.h>\n");
   const RunResult r = t.check();
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("render/reference/src/bad_gl.cpp: includes epoxy/gl.h"), std::string::npos) << r.output;
@@ -66,6 +69,9 @@ TEST(Layers, GlInACpuLayerOrAnIncludeUpwardsFailsNamingTheFile) {
   EXPECT_NE(r.output.find("bad_side.cpp: includes nimbus/render/shafts/shaft_renderer.hpp"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("bad_egl.cpp: includes EGL/egl.h"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bad_app.cpp: includes nimbus/render/frame/frame_renderer.hpp"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("bad_app.cpp: includes GL/gl.h"), std::string::npos) << r.output;
 }
 
 }  // namespace

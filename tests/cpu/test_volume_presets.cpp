@@ -2,6 +2,8 @@
 // --set / --params overrides; mistakes name the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,8 +14,11 @@ namespace nimbus::volume {
 namespace {
 
 TEST(VolumePresets, EveryPresetParsesRoundTripsAndDocumentsEveryKey) {
-  const auto presets = list_presets();
+  const auto& presets = list_presets();
   ASSERT_FALSE(presets.empty());
+  EXPECT_EQ(&presets, &list_presets()) << "the list is parsed once and kept, not parsed per call";
+  EXPECT_TRUE(std::is_sorted(presets.begin(), presets.end(),
+                             [](const PresetInfo& a, const PresetInfo& b) { return a.name < b.name; }));
   for (const auto& info : presets) {
     const nlohmann::json doc = load_preset(info.name);
     EXPECT_EQ(doc.at("name"), info.name) << "file name and \"name\" differ";

@@ -105,14 +105,18 @@ json shape_to_json(const Shape& s) {
 
 }  // namespace
 
-std::vector<PresetInfo> list_presets() {
-  std::vector<PresetInfo> out;
-  for (size_t i = 0; i < kEmbeddedPresetsCount; ++i) {
-    const json j = parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
-    out.push_back({kEmbeddedPresets[i].name, j.value("genus", ""), j.value("description", "")});
-  }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  return out;
+const std::vector<PresetInfo>& list_presets() {
+  // The presets are compiled in: parsed once per process (the viewer's panel asks every frame).
+  static const std::vector<PresetInfo> presets = [] {
+    std::vector<PresetInfo> out;
+    for (size_t i = 0; i < kEmbeddedPresetsCount; ++i) {
+      const json j = parse(kEmbeddedPresets[i].text, std::string("preset ") + kEmbeddedPresets[i].name);
+      out.push_back({kEmbeddedPresets[i].name, j.value("genus", ""), j.value("description", "")});
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    return out;
+  }();
+  return presets;
 }
 
 json load_preset(std::string_view name) {

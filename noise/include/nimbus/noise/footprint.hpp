@@ -6,7 +6,7 @@
 namespace nimbus::noise {
 
 // Top of one octave's band in cycles per lattice unit: above it each kind keeps only a small
-// share of its energy (measured in ../shared/research-noise.md section 3: gradient noise's
+// share of its energy (measured in research-noise.md section 3: gradient noise's
 // best octave is [0.5, 1), value noise's [0.34, 0.69), wavelet noise's band [0.25, 0.5)).
 double band_top(Kind kind);
 

@@ -18,8 +18,8 @@ struct PresetInfo {
   std::string description;
 };
 
-// The shipped presets, sorted by name.
-std::vector<PresetInfo> list_presets();
+// The shipped presets, sorted by name: parsed on the first call, the same list after.
+const std::vector<PresetInfo>& list_presets();
 
 // The preset's JSON document; throws std::invalid_argument naming an unknown preset (and
 // listing the known ones).

@@ -1,6 +1,6 @@
 // The lights that shine on clouds and gases: the sun (parallel light of a given irradiance) or a
 // lamp (a point light of radiant intensity I, falling off as I / r^2, optionally narrowed to a
-// spot's cone). The half-angle slicer (shaders/lib/cloud_light.glsl, the same formulas in float)
+// spot's cone). The half-angle slicer (shaders/lib/cloud_lamp.glsl, the same formulas in float)
 // and the CPU references evaluate a light through light_at() alone.
 #pragma once
 #include <string>

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace nimbus::volume {
+namespace nimbus::test {
 
 // tau on a regular grid of square pixels.
 struct OpticalDepthMap {
@@ -95,4 +95,4 @@ enum class MapAxis { X, Y };  // X: along rows (i varies); Y: along columns (j v
 // Line lengths with a large prime factor are slow (kissfft's generic radix costs n p a line).
 PowerLawFit spectrum_slope(const OpticalDepthMap& m, MapAxis along, double lambda_lo_m, double lambda_hi_m);
 
-}  // namespace nimbus::volume
+}  // namespace nimbus::test

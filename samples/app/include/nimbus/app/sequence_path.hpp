@@ -4,10 +4,10 @@
 #pragma once
 #include <string>
 
-#include "cli.hpp"
+#include "nimbus/app/usage_error.hpp"
 #include "nimbus/base/sequence_pattern.hpp"
 
-namespace nimbus::cli {
+namespace nimbus::app {
 
 // UsageError naming `flag` unless `pattern` holds no '%' or exactly one frame field %d / %0Nd
 // (N from 1 to 9).
@@ -34,4 +34,4 @@ inline std::string sequence_path(const std::string& pattern, int frame, const st
   return has_ext ? pattern.substr(0, dot) + number + pattern.substr(dot) : pattern + number;
 }
 
-}  // namespace nimbus::cli
+}  // namespace nimbus::app

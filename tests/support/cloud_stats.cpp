@@ -1,7 +1,7 @@
 // Observational cloud statistics on optical-depth maps (research-viewer.md section 5.2):
 // Lovejoy 1982 (perimeter-area dimension), DeWitt et al. 2024 and DeWitt & Garrett 2024 (area
 // distribution, bins under 24 counts dropped), Cahalan & Snider 1989 (1-D spectra of tau).
-#include "nimbus/volume/cloud_stats.hpp"
+#include "support/cloud_stats.hpp"
 
 #include <kissfft.hh>
 
@@ -19,7 +19,7 @@
 #include "nimbus/base/memory.hpp"
 #include "nimbus/base/validate.hpp"
 
-namespace nimbus::volume {
+namespace nimbus::test {
 namespace {
 
 std::string num(double v) {
@@ -326,4 +326,4 @@ PowerLawFit spectrum_slope(const OpticalDepthMap& m, MapAxis along, double lambd
   return fit;
 }
 
-}  // namespace nimbus::volume
+}  // namespace nimbus::test

@@ -1,18 +1,18 @@
 // Planning a farm job from a nimbus command, storing it, and checking its tasks' outputs.
-#include "farm_job.hpp"
+#include "nimbus/app/farm_job.hpp"
 
 #include <fstream>
 #include <regex>
 
-#include "cli.hpp"
-#include "frame_range.hpp"
-#include "sequence_path.hpp"
+#include "nimbus/app/frame_range.hpp"
+#include "nimbus/app/sequence_path.hpp"
+#include "nimbus/app/usage_error.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/vdb_read.hpp"
 
-namespace nimbus::cli {
+namespace nimbus::app {
 namespace {
 
 // The value of the first of `names` in `args` ("-o X", "--output X" or "--output=X"), and its
@@ -51,12 +51,6 @@ int brick_count(const std::string& layout) {
 }
 
 }  // namespace
-
-std::string shell_quote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 std::filesystem::path job_path(const FarmJob& job, const std::string& path) {
   const std::filesystem::path p(path);
@@ -246,4 +240,4 @@ std::vector<std::string> check_task_outputs(const FarmJob& job, int index) {
   return problems;
 }
 
-}  // namespace nimbus::cli
+}  // namespace nimbus::app

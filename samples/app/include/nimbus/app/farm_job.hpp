@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace nimbus::cli {
+namespace nimbus::app {
 
 struct FarmTask {
   std::vector<std::string> outputs;  // files the task writes, as the command names them
@@ -57,7 +57,4 @@ std::vector<std::string> check_task_outputs(const FarmJob& job, int index);
 // A path of the job as the tasks see it: absolute ones as they are, others from job.workdir.
 std::filesystem::path job_path(const FarmJob& job, const std::string& path);
 
-// Single-quoted for a POSIX shell.
-std::string shell_quote(const std::string& text);
-
-}  // namespace nimbus::cli
+}  // namespace nimbus::app

@@ -1,21 +1,19 @@
 // The noisy sphere, camera, lights and optics of `nimbus bench clouds`, and its vdb_render runner
 // (bench_clouds_scene.hpp).
-#include "bench_clouds_scene.hpp"
+#include "nimbus/app/bench_clouds_scene.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <memory>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 
+#include "nimbus/app/shell.hpp"
 #include "nimbus/noise/noise.hpp"
 #include "nimbus/render/image/image_io.hpp"
 
-namespace nimbus::cli {
+namespace nimbus::app {
 namespace {
 
 std::string vec3(const glm::dvec3& v) {
@@ -24,8 +22,6 @@ std::string vec3(const glm::dvec3& v) {
   s << v.x << "," << v.y << "," << v.z;
   return s.str();
 }
-
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 }  // namespace
 
@@ -82,41 +78,44 @@ render::CloudLight bench_light(bool back_lit) {
   return l;
 }
 
-render::CloudOptics bench_optics(double voxel_m) {
+render::CloudOptics vdb_render_optics(const VdbRenderSettings& s, double voxel_m) {
   render::CloudOptics o;
-  o.extinction_per_m = (kBenchAbsorbPerVoxel + kBenchScatterPerVoxel) / voxel_m;
-  o.albedo = glm::dvec3(kBenchScatterPerVoxel / (kBenchAbsorbPerVoxel + kBenchScatterPerVoxel));
+  o.extinction_per_m = (s.absorb_per_voxel + s.scatter_per_voxel) / voxel_m;
+  o.albedo = glm::dvec3(s.scatter_per_voxel / (s.absorb_per_voxel + s.scatter_per_voxel));
   o.ambient_radiance = glm::dvec3(0.0);
   return o;
 }
 
+render::CloudOptics bench_optics(double voxel_m) { return vdb_render_optics(VdbRenderSettings{}, voxel_m); }
+
 VdbRenderRun run_vdb_render(const std::string& vdb_render, const std::filesystem::path& vdb,
                             const std::filesystem::path& exr, const render::Camera& camera,
-                            const render::CloudLight& light, double step, double shadow_step) {
+                            const glm::dvec3& direction_to_light, const VdbRenderSettings& s) {
   VdbRenderRun run;
+  const auto rgb = [](double v) { return vec3(glm::dvec3(v)); };
   std::ostringstream cmd;
-  cmd << vdb_render << " " << quoted(vdb) << " " << quoted(exr) << " -res " << camera.width << "x" << camera.height
-      << " -translate " << vec3(camera.eye) << " -lookat " << vec3(camera.look_at) << " -up " << vec3(camera.up)
-      << " -fov " << camera.fov_deg << " -absorb " << kBenchAbsorbPerVoxel << "," << kBenchAbsorbPerVoxel << ","
-      << kBenchAbsorbPerVoxel << " -scatter " << kBenchScatterPerVoxel << "," << kBenchScatterPerVoxel << ","
-      << kBenchScatterPerVoxel << " -light " << vec3(glm::normalize(light.direction_to_light)) << ",1,1,1 -gain 0 -step "
-      << step << " -shadowstep " << shadow_step << " -v";
+  cmd << shell_quote(vdb_render) << " " << shell_quote(vdb.string()) << " " << shell_quote(exr.string()) << " -res "
+      << camera.width << "x" << camera.height << " -translate " << vec3(camera.eye) << " -lookat "
+      << vec3(camera.look_at) << " -up " << vec3(camera.up) << " -fov " << camera.fov_deg << " -absorb "
+      << rgb(s.absorb_per_voxel) << " -scatter " << rgb(s.scatter_per_voxel) << " -light "
+      << vec3(glm::normalize(direction_to_light)) << ",1,1,1 -gain 0 -step " << s.step << " -shadowstep "
+      << s.shadow_step << " -v";
+  if (s.cutoff > 0.0) cmd << " -cutoff " << s.cutoff;
+  if (s.cpus > 0) cmd << " -cpus " << s.cpus;
   run.command = cmd.str();
   const auto t0 = std::chrono::steady_clock::now();
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen((run.command + " 2>&1").c_str(), "r"), ::pclose);
-  if (!pipe) throw std::runtime_error("cannot start: " + run.command);
-  std::string output;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe.get())) output += buf.data();
-  const int status = ::pclose(pipe.release());
+  const ShellResult done = run_shell(run.command);
   run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (status != 0) throw std::runtime_error("failed (" + std::to_string(status) + "): " + run.command + "\n" + output);
+  if (done.exit_code != 0)
+    throw std::runtime_error("failed (exit " + std::to_string(done.exit_code) + ", signal " +
+                             std::to_string(done.signal) + "): " + run.command + "\n" + done.output);
+  const std::string& output = done.output;
   // "vdb_render: ray-tracing density..." is followed by "...completed in T sec".
-  const std::regex done("ray-tracing[^\\n]*\\n[^\\n]*completed in ([0-9.eE+-]+) sec");
+  const std::regex timing("ray-tracing[^\\n]*\\n[^\\n]*completed in ([0-9.eE+-]+) sec");
   std::smatch m;
-  if (std::regex_search(output, m, done)) run.render_s = std::stod(m[1].str());
+  if (std::regex_search(output, m, timing)) run.render_s = std::stod(m[1].str());
   run.image = render::read_exr(exr);
   return run;
 }
 
-}  // namespace nimbus::cli
+}  // namespace nimbus::app

@@ -11,7 +11,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/image.hpp"
 
-namespace nimbus::cli {
+namespace nimbus::app {
 
 // vdb_render's coefficients, per voxel (its steps are in index space).
 constexpr double kBenchAbsorbPerVoxel = 0.01;
@@ -33,9 +33,23 @@ render::Camera bench_camera(int width, int height);
 // Irradiance 1 (vdb_render's light colour 1,1,1).
 render::CloudLight bench_light(bool back_lit);
 
-// Isotropic, no ambient: extinction (absorb + scatter) / voxel per metre, albedo scatter / (absorb
-// + scatter).
+// vdb_render_optics with the bench's coefficients.
 render::CloudOptics bench_optics(double voxel_m);
+
+// How OpenVDB's vdb_render (libopenvdb-tools) is run on a fog volume: its coefficients per voxel
+// and its steps, all in index space.
+struct VdbRenderSettings {
+  double absorb_per_voxel = kBenchAbsorbPerVoxel;
+  double scatter_per_voxel = kBenchScatterPerVoxel;
+  double step = 1.0;         // -step (vdb_render's default 1)
+  double shadow_step = 3.0;  // -shadowstep (its default 3)
+  double cutoff = 0.0;       // -cutoff, the transmittance a ray stops at; 0: vdb_render's default
+  int cpus = 0;              // -cpus; 0: all
+};
+
+// The optics that match vdb_render with `s` on voxels of `voxel_m`: isotropic, no ambient,
+// extinction (absorb + scatter) / voxel per metre, albedo scatter / (absorb + scatter).
+render::CloudOptics vdb_render_optics(const VdbRenderSettings& s, double voxel_m);
 
 struct VdbRenderRun {
   render::Image image;      // as vdb_render wrote it (radiance with its unnormalised phase)
@@ -44,10 +58,11 @@ struct VdbRenderRun {
   std::string command;
 };
 
-// Runs vdb_render on `vdb` with the bench camera and light, -gain 0 and the given steps (its
-// defaults are 1 and 3), writing `exr`. Throws std::runtime_error naming the command on failure.
+// Runs vdb_render on `vdb` with `camera` (its horizontal field of view, eye, look-at and up), a
+// light of colour 1 towards `direction_to_light`, -gain 0 and `s`, writing `exr`, and reads the
+// image back. Throws std::runtime_error naming the command when it fails.
 VdbRenderRun run_vdb_render(const std::string& vdb_render, const std::filesystem::path& vdb,
                             const std::filesystem::path& exr, const render::Camera& camera,
-                            const render::CloudLight& light, double step, double shadow_step);
+                            const glm::dvec3& direction_to_light, const VdbRenderSettings& s);
 
-}  // namespace nimbus::cli
+}  // namespace nimbus::app

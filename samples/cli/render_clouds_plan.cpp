@@ -1,0 +1,332 @@
+// The stages that turn `nimbus render`'s cloud flags into a plan (render_clouds_plan.hpp).
+#include "render_clouds_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "frame_range.hpp"
+#include "nimbus/app/sequence_path.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/daylight.hpp"
+#include "outputs.hpp"
+
+namespace nimbus::cli {
+
+using app::check_sequence_pattern;
+using app::has_frame_field;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// UsageError "<flag>: <why>" when `flag` was given but what it qualifies is not in effect (it
+// would be ignored without a word).
+void refuse_if_given_without(const CloudRenderArgs& a, const std::string& flag, bool applies, const std::string& why) {
+  if (a.given.count(flag) && !applies) throw UsageError(flag + ": " + why);
+}
+
+// --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
+// bad value a UsageError naming its flag. Without the sun the light volume (photons from the sun)
+// is not the default.
+render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
+  render::MultipleScattering ms;
+  if (a.ms_method.empty()) {
+    ms.method = (a.multiple && *a.multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
+                                                        : render::MultipleScatteringMethod::LightVolume;
+  } else {
+    try {
+      ms.method = render::parse_multiple_scattering_method(a.ms_method);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--ms-method: ") + e.what());
+    }
+  }
+  if (a.multiple && (*a.multiple < 0 || *a.multiple > 3))
+    throw UsageError("--multiple: must be in [0, 3], got " + std::to_string(*a.multiple));
+  if (ms.method == render::MultipleScatteringMethod::LightVolume) {
+    if (!sun) throw UsageError("--ms-method: light-volume traces photons from the sun, and nothing gives one (--sun)");
+    if (a.multiple && *a.multiple > 1)
+      throw UsageError("--multiple: --ms-method light-volume takes 0 (single scattering) or 1 (on), got " +
+                       std::to_string(*a.multiple));
+    if (a.multiple && *a.multiple == 0) ms.method = render::MultipleScatteringMethod::Octaves;  // octaves 0: single
+  } else {
+    ms.octaves = a.multiple.value_or(0);
+  }
+  const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
+  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-seed"})
+    refuse_if_given_without(a, flag, light_volume,
+                            "applies to the light volume (--ms-method light-volume), and the multiple scattering here is "
+                            "the octaves method");
+  for (const char* flag : {"--ms-occlusion", "--ms-contribution", "--ms-eccentricity"})
+    refuse_if_given_without(a, flag, !light_volume && ms.octaves > 0,
+                            "applies to the octaves of multiple scattering (--multiple 1-3 with --ms-method octaves), "
+                            "which this render does not use");
+  if (a.ms_grid < 4 || a.ms_grid > 192)
+    throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
+  if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
+    throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
+  ms.light_volume.resolution = a.ms_grid;
+  ms.light_volume.photons = a.ms_photons;
+  if (a.ms_lobes < 0 || a.ms_lobes > 2) throw UsageError("--ms-lobes: must be in [0, 2], got " + std::to_string(a.ms_lobes));
+  ms.light_volume.lobe_orders = a.ms_lobes;
+  ms.light_volume.seed = a.ms_seed;
+  auto check = [](double v, bool ok, const char* flag, const char* range) {
+    if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));
+  };
+  check(a.ms_occlusion, a.ms_occlusion > 0.0 && a.ms_occlusion <= 1.0, "--ms-occlusion", "(0, 1]");
+  check(a.ms_contribution, a.ms_contribution >= 0.0 && a.ms_contribution <= 1.0, "--ms-contribution", "[0, 1]");
+  check(a.ms_eccentricity, a.ms_eccentricity >= 0.0 && a.ms_eccentricity <= 1.0, "--ms-eccentricity", "[0, 1]");
+  ms.occlusion = a.ms_occlusion;
+  ms.contribution = a.ms_contribution;
+  ms.eccentricity = a.ms_eccentricity;
+  return ms;
+}
+
+// Stage 1: the method (slices, reference, pathtrace) and the scene under the clouds.
+void plan_method_and_scene(CloudRenderPlan& p, const std::string& scene_name, bool scene_given,
+                           const std::string& method_text, bool method_given) {
+  p.method = method_given ? method_text : "slices";
+  try {
+    p.cloud_method = render::parse_cloud_method(p.method);
+  } catch (const std::invalid_argument&) {
+    throw UsageError("--method: '" + p.method + "' is not a cloud method (slices, reference or pathtrace)");
+  }
+  const std::string scene_choice = scene_given ? scene_name : "sky";
+  p.no_scene = scene_choice == "none";
+  if (render::is_cpu_method(p.cloud_method) && !p.no_scene)
+    throw UsageError("--method " + p.method + " renders clouds alone, without a scene: add --scene none");
+  if (!p.no_scene) {
+    try {
+      p.scene = render::make_scene(scene_choice);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scene: ") + e.what() + " (or none)");
+    }
+  }
+}
+
+// Stage 2: the inputs' reading flags, the frames, and the names of every file (patterns checked).
+void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const std::string& output,
+                           const std::string& preview, std::optional<double> exposure) {
+  if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
+  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
+    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  p.range = parse_frames(a.frame);
+  if (p.range.whole_last > p.range.whole_first && a.presets.empty() &&
+      std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
+    throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
+                     "name.%04d.vdb, or --preset (generated at each frame's time)");
+  check_sequence_pattern("-o", output);
+  if (!preview.empty()) check_sequence_pattern("--preview", preview);
+  for (const std::string& f : a.files) check_sequence_pattern("file", f);
+  if (!p.range.sequence)  // a frame field is filled only in a sequence; alone it would name a file "%04d"
+    for (const auto& [flag, name] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
+      if (has_frame_field(name)) throw UsageError(flag + ": '" + echo(name) + "' holds a frame field but no --frames was given");
+  check_exposure(exposure);
+  if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
+}
+
+// Stage 3: the clouds' optics (the scene's gas, the flags, the sky's ambient light).
+void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  render::CloudOptics& optics = p.optics;
+  if (a.cloud_extinction) {
+    if (!(std::abs(*a.cloud_extinction) <= kMaxFlagMagnitude))
+      throw UsageError("--cloud-extinction: must be at most 1e12 per metre (per unit density)");
+    optics.extinction_per_m = *a.cloud_extinction;
+  } else if (p.scene.cloud_extinction_per_m) {
+    optics.extinction_per_m = *p.scene.cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
+  }
+  if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
+  try {
+    optics.phase = render::parse_cloud_phase(a.cloud_phase);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--cloud-phase: ") + e.what());
+  }
+  if (a.ambient == "auto") {
+    optics.ambient_radiance = p.scene.sky ? render::sky_mean_radiance(*p.scene.sky) : glm::dvec3(0.0);
+  } else {
+    optics.ambient_radiance = parse_colour("--ambient", a.ambient);
+  }
+  try {
+    render::validate(optics);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--cloud-extinction/--cloud-albedo/--ambient: ") + e.what());
+  }
+}
+
+// Stage 4a: the lamps (--lamp, shaped by --spot), each validated.
+void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  for (const std::string& text : a.lamps) {
+    const glm::dvec3 at = parse_vec3("--lamp", text);
+    p.lights.push_back(render::point_light(at, parse_colour("--lamp-intensity", a.lamp_intensity)));
+  }
+  refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
+  refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
+  for (const char* flag : {"--spp", "--bounces", "--seed"})
+    refuse_if_given_without(a, flag, p.cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
+  if (!a.spot.empty()) {
+    if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
+    if (!p.no_scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
+    const glm::dvec3 axis = parse_vec3("--spot", a.spot);
+    const std::size_t comma = a.spot_cone.find(',');
+    const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
+    const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));
+    if (!inner || !outer || !(*inner > 0.0) || !(*inner <= *outer) || !(*outer <= 180.0))
+      throw UsageError("--spot-cone: '" + a.spot_cone + "' must be INNER,OUTER degrees with 0 < INNER <= OUTER <= 180");
+    for (render::CloudLight& l : p.lights) {
+      l.spot_axis = axis;
+      l.spot_inner_rad = *inner * kPi / 180.0;
+      l.spot_outer_rad = *outer * kPi / 180.0;
+    }
+  }
+  for (const render::CloudLight& l : p.lights) {
+    try {
+      render::validate(l);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--lamp/--lamp-intensity/--spot: ") + e.what());
+    }
+  }
+}
+
+// Stage 4b: the sun (--sun, else the scene's, else the default for clouds alone), which a physical
+// sky follows; first in the list. True when there is one.
+bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  render::Scene& scene = p.scene;
+  render::CloudLight light;
+  bool sun = false;
+  if (!a.sun.empty()) {
+    sun = true;
+    light.direction_to_light = parse_vec3("--sun", a.sun);
+    if (glm::length(light.direction_to_light) == 0.0) throw UsageError("--sun: the direction must not be zero");
+    if (!p.no_scene) {
+      if (!scene.sun) scene.sun = render::SunLight{};
+      scene.sun->direction_to_sun = light.direction_to_light;
+      if (scene.sky && scene.sky->atmosphere) {
+        // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
+        try {
+          const render::Daylight d = render::daylight(light.direction_to_light, scene.sky->atmosphere->view.altitude_m);
+          scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
+          scene.sky = d.sky;
+        } catch (const std::invalid_argument& e) {
+          throw UsageError(std::string("--sun: ") + e.what());
+        }
+      }
+      light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+    }
+  } else if (!p.no_scene && scene.sun) {
+    sun = true;
+    light.direction_to_light = scene.sun->direction_to_sun;
+    light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+  } else if (!p.no_scene && scene.point_lights.empty() && p.lights.empty()) {
+    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene.name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
+  } else if (p.no_scene && p.lights.empty()) {
+    sun = true;  // clouds alone: the default sun
+  }
+  if (sun) p.lights.insert(p.lights.begin(), light);
+  if (a.ambient == "auto" && scene.sky) p.optics.ambient_radiance = render::sky_mean_radiance(*scene.sky);  // after --sun moved it
+  return sun;
+}
+
+// Stage 5: the renderer's settings: the method, the slicer, the scene's shaft method.
+void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
+  render::CloudSliceSettings slices;
+  slices.slices = a.slices;
+  slices.light_res = a.light_res;
+  slices.jitter = !a.no_jitter;
+  slices.ambient = true;
+  slices.blur_cone_rad = a.blur_deg * kPi / 180.0;
+  slices.multiple = multiple_scattering_of(a, sun);
+  slices.max_lights = a.max_lights;
+  slices.multiple.occlusion = a.ms_occlusion;
+  slices.multiple.contribution = a.ms_contribution;
+  slices.multiple.eccentricity = a.ms_eccentricity;
+  try {
+    render::validate(slices);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--slices/--light-res/--multiple/--blur/--max-lights: ") + e.what());
+  }
+  render::ShaftMethod shafts;
+  if (!p.no_scene) {
+    try {
+      shafts = render::parse_shaft_method(a.shafts);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--shafts: ") + e.what());
+    }
+    if (shafts.kind == render::ShaftMethod::Kind::Reference)
+      throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
+  }
+  render::FrameSettings& fs = p.settings;
+  fs.method = p.cloud_method;
+  fs.slices = slices;
+  fs.shafts = shafts;
+  fs.cloud_shadow_res = a.shadow_map_res;
+  fs.shaft_settings.surface_airlight = a.surface_airlight;
+}
+
+// Stage 7: the path tracer's settings, and the one light it traces.
+void plan_path_tracer(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  render::FrameSettings& fs = p.settings;
+  fs.path_tracer.samples_per_pixel = a.spp;
+  fs.path_tracer.max_bounces = a.bounces;
+  fs.path_tracer.seed = a.seed;
+  try {
+    render::validate(fs.path_tracer);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--spp/--bounces: ") + e.what());
+  }
+  if (fs.method == render::CloudMethod::PathTrace &&
+      (p.lights.size() != 1 || p.lights[0].kind != render::CloudLightKind::Sun))
+    throw UsageError("--lamp: --method pathtrace traces the sun only");
+}
+
+// Stage 6: the camera before framing, and the presets to generate.
+void plan_camera_and_presets(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  p.base_camera = p.no_scene ? render::Camera{} : p.scene.camera;
+  if (p.no_scene) {
+    p.base_camera.width = 512;
+    p.base_camera.height = 512;
+    p.base_camera.fov_deg = 44.8;  // vdb_render's default
+  }
+  for (const std::string& name : a.presets) {
+    try {
+      p.presets.push_back(render::load_preset_cloud(name));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--preset: ") + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+glm::dvec3 parse_colour(const std::string& flag, const std::string& text) {
+  if (text.find(',') == std::string::npos) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || !std::isfinite(v)) throw UsageError(flag + ": '" + text + "' must be V or R,G,B");
+    if (std::abs(v) > kMaxFlagMagnitude) throw UsageError(flag + ": '" + text + "' must be within +-1e12");
+    return glm::dvec3(v);
+  }
+  return parse_vec3(flag, text);
+}
+
+CloudRenderPlan plan_cloud_render(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
+                                  const std::string& method_text, bool method_given, const std::string& output,
+                                  const std::string& preview, std::optional<double> exposure) {
+  CloudRenderPlan p;
+  plan_method_and_scene(p, scene_name, scene_given, method_text, method_given);
+  plan_frames_and_names(p, a, output, preview, exposure);
+  plan_optics(p, a);
+  plan_lamps(p, a);
+  const bool sun = plan_sun(p, a);
+  plan_settings(p, a, sun);
+  plan_camera_and_presets(p, a);
+  plan_path_tracer(p, a);
+  return p;
+}
+
+}  // namespace nimbus::cli

@@ -1,0 +1,38 @@
+// What `nimbus render FILE.vdb | --preset NAME` will draw, made from its flags in named stages
+// (method and scene, frames and names, optics, lights, renderer settings, presets), every usage
+// error found before any work starts.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nimbus/render/core/cloud_method.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/frame/frame_renderer.hpp"
+#include "render_clouds.hpp"
+
+namespace nimbus::cli {
+
+struct CloudRenderPlan {
+  std::string method;                       // as named on the command line ("slices" by default)
+  render::CloudMethod cloud_method{};
+  render::Scene scene;                      // empty with --scene none
+  bool no_scene = false;
+  FrameRange range;                         // this run's frames
+  render::CloudOptics optics;
+  std::vector<render::CloudLight> lights;   // the sun first, when there is one
+  render::FrameSettings settings;           // method, slicer, shafts, path tracer
+  render::Camera base_camera;               // the scene's, or 512x512 at vdb_render's fov alone
+  std::vector<render::PresetCloud> presets; // --preset, loaded
+};
+
+// The plan, or a UsageError naming the flag at fault. Outputs and inputs are checked by the caller.
+CloudRenderPlan plan_cloud_render(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
+                                  const std::string& method_text, bool method_given, const std::string& output,
+                                  const std::string& preview, std::optional<double> exposure);
+
+// "R,G,B" or one value for all three; UsageError naming `flag`.
+glm::dvec3 parse_colour(const std::string& flag, const std::string& text);
+
+}  // namespace nimbus::cli

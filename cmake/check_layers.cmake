@@ -15,11 +15,12 @@ set(rules
   "render/core|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/|no"
   "render/image|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/|no"
   "render/reference|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/reference/|no"
+  "render/sky|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/reference/,nimbus/render/sky/|no"
   "render/gl|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/gl/|yes"
   "render/shafts|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/gl/,nimbus/render/shafts/|yes"
   "render/clouds|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/gl/,nimbus/render/clouds/|yes"
-  "render/frame|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/render/gl/,nimbus/render/shafts/,nimbus/render/clouds/,nimbus/render/frame/|yes"
-  "samples/app|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/app/|no"
+  "render/frame|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/render/sky/,nimbus/render/gl/,nimbus/render/shafts/,nimbus/render/clouds/,nimbus/render/frame/|yes"
+  "samples/app|nimbus/base/,nimbus/noise/,nimbus/volume/,nimbus/render/core/,nimbus/render/image/,nimbus/render/reference/,nimbus/render/sky/,nimbus/app/|no"
 )
 set(gl_header_regex "^(epoxy|EGL|GL|GLES[0-9]*|GLFW|KHR)/")
 

@@ -5,8 +5,8 @@
 #
 # Installs clang and libclang-rt-14-dev when missing (Debian packages, as install-deps.sh does),
 # configures build-fuzz/ with clang, -DNIMBUS_FUZZ=ON and -DNIMBUS_SANITIZE=ON (AddressSanitizer
-# and UndefinedBehaviorSanitizer), builds only the harnesses (with base, noise, volume and
-# render_core), and runs each one in libFuzzer's fork mode so that it keeps going after a finding:
+# and UndefinedBehaviorSanitizer), builds only the harnesses (with base, noise, volume,
+# render_core and, for view_state, render_sky), and runs each one in libFuzzer's fork mode so that it keeps going after a finding:
 #   - seeds: tests/fuzz/corpus/<corpus>/ (read, never written), with the dictionary
 #     tests/fuzz/<corpus>.dict (<corpus>: params_json, vdb, sky_json, view_state_json); new
 #     inputs go to build-fuzz/corpus/<target>/, kept between runs;

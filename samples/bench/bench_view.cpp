@@ -15,7 +15,7 @@
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/image/image_metrics.hpp"

@@ -12,7 +12,7 @@
 #include "camera_control.hpp"
 #include "display.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 
 namespace nimbus::viewer {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "nimbus/render/core/daylight.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 
 namespace nimbus::render {
 namespace {

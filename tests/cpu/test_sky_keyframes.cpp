@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "nimbus/render/core/cloud_source.hpp"
-#include "nimbus/render/core/sky_keyframes.hpp"
+#include "nimbus/render/sky/sky_keyframes.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/up_axis.hpp"
 

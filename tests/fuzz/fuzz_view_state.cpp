@@ -5,7 +5,7 @@
 // contract (fuzz_json_document.hpp): refusals start with "view state '<path>'" on one line; an
 // accepted state survives the trip through JSON that Ctrl+S / Ctrl+O and screenshots make.
 #include "fuzz_json_document.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   namespace render = nimbus::render;

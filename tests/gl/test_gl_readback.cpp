@@ -21,7 +21,8 @@ TEST(GlReadback, FullScreenPassReadsBackExactlyTopRowFirst) {
   GlTexture coords = make_texture_2d(GL_RGBA32F, kW, kH, {GL_NEAREST, GL_NEAREST});
   GlTexture uv = make_texture_2d(GL_RGBA32F, kW, kH, {GL_NEAREST, GL_NEAREST});
   GlFramebuffer fb = make_framebuffer({{GL_COLOR_ATTACHMENT0, coords.id()}, {GL_COLOR_ATTACHMENT1, uv.id()}});
-  ShaderProgram program({"fullscreen.vert.glsl", "test_pattern.frag.glsl"});
+  ShaderProgram program =
+      ShaderProgram::from_sources(test::test_shader_files(), {"fullscreen.vert.glsl", "test_pattern.frag.glsl"});
   program.set("value", 0.375f);
   GlVertexArray vao = make_vertex_array();
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb.id());
@@ -68,7 +69,8 @@ TEST(GlReadback, EveryUniformSetterReachesTheShader) {
                                        {GL_COLOR_ATTACHMENT1, t1.id()},
                                        {GL_COLOR_ATTACHMENT2, t2.id()},
                                        {GL_COLOR_ATTACHMENT3, t3.id()}});
-  ShaderProgram program({"fullscreen.vert.glsl", "test_uniforms.frag.glsl"});
+  ShaderProgram program =
+      ShaderProgram::from_sources(test::test_shader_files(), {"fullscreen.vert.glsl", "test_uniforms.frag.glsl"});
   const glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)) * glm::scale(glm::mat4(1.0f), glm::vec3(2));
   program.set("i1", -7);
   program.set("f1", 0.25f);
@@ -174,7 +176,8 @@ TEST(GlReadback, GpuTimeMeasuresTheDraw) {
   NIMBUS_REQUIRE_GL();
   GlTexture t = make_texture_2d(GL_RGBA32F, 64, 64);
   GlFramebuffer fb = make_framebuffer({{GL_COLOR_ATTACHMENT0, t.id()}});
-  ShaderProgram program({"fullscreen.vert.glsl", "test_uniforms.frag.glsl"});
+  ShaderProgram program =
+      ShaderProgram::from_sources(test::test_shader_files(), {"fullscreen.vert.glsl", "test_uniforms.frag.glsl"});
   GlVertexArray vao = make_vertex_array();
   int calls = 0;
   const GpuTiming timing = gpu_time([&] {

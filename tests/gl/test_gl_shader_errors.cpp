@@ -83,7 +83,8 @@ TEST(GlShaderErrors, ErrorInsideAnIncludeNamesTheIncludedFile) {
 
 TEST(GlShaderErrors, ErrorInTheDefinesNamesThem) {
   NIMBUS_REQUIRE_GL();
-  expect_error_at({}, {"fullscreen.vert.glsl", "test_pattern.frag.glsl"}, "#define OK 1\nconst float x = ;\n",
+  expect_error_at(test::test_shader_files(), {"fullscreen.vert.glsl", "test_pattern.frag.glsl"},
+                  "#define OK 1\nconst float x = ;\n",
                   "(defines)", 2);
 }
 
@@ -91,7 +92,9 @@ TEST(GlShaderErrors, ErrorInAnEmbeddedVertexStageIsFound) {
   NIMBUS_REQUIRE_GL();
   // An in-memory file of an embedded name takes its place: here a broken full-screen vertex stage.
   const ShaderFile vert{"fullscreen.vert.glsl", "#version 450 core\nout vec2 uv;\nvoid main() { uv = 1; }\n"};
-  expect_error_at({vert}, {"fullscreen.vert.glsl", "test_pattern.frag.glsl"}, "", "shaders/fullscreen.vert.glsl", 3);
+  std::vector<ShaderFile> files = test::test_shader_files();
+  files.push_back(vert);
+  expect_error_at(files, {"fullscreen.vert.glsl", "test_pattern.frag.glsl"}, "", "shaders/fullscreen.vert.glsl", 3);
 }
 
 TEST(GlShaderErrors, LinkErrorNamesTheProgramFiles) {

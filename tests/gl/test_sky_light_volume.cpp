@@ -10,7 +10,7 @@
 
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/daylight.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"

@@ -16,10 +16,10 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/sky_keyframes.hpp"
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/sky_keyframes.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
-#include "nimbus/render/frame/keyframe_light_volumes.hpp"
+#include "nimbus/render/sky/keyframe_light_volumes.hpp"
 
 namespace nimbus::render {
 

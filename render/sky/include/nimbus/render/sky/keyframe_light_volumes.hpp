@@ -18,7 +18,7 @@
 
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/light_volume.hpp"
-#include "nimbus/render/core/sky_keyframes.hpp"
+#include "nimbus/render/sky/sky_keyframes.hpp"
 
 namespace nimbus::render {
 

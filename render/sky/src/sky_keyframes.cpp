@@ -1,5 +1,5 @@
 // Keyframes of a sky's evolution on a background thread (sky_keyframes.hpp).
-#include "nimbus/render/core/sky_keyframes.hpp"
+#include "nimbus/render/sky/sky_keyframes.hpp"
 
 #include <sys/stat.h>
 

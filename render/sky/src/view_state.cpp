@@ -1,5 +1,5 @@
 // The animated sky's view state and its JSON (view_state.hpp).
-#include "nimbus/render/core/view_state.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Light volumes of a sky's keyframes on a background thread (keyframe_light_volumes.hpp).
-#include "nimbus/render/frame/keyframe_light_volumes.hpp"
+#include "nimbus/render/sky/keyframe_light_volumes.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -111,51 +111,43 @@ render::Image std_error_image(const render::PathTracedImage& ref) {
   return img;
 }
 
-int run_bench_look(const BenchLookArgs& a) {
-  if (a.view != "side" && a.view != "below") throw UsageError("--view: expected side or below, got '" + a.view + "'");
-  // Every item of --lighting and --phases names a case (a prefix of its name).
-  auto check_items = [](const std::string& flag, const std::string& list, const std::vector<std::string>& names) {
-    std::stringstream ss(list);
-    std::string item;
-    int items = 0;
-    while (std::getline(ss, item, ',')) {
-      bool found = false;
-      for (const std::string& n : names) found = found || (!item.empty() && n.rfind(item, 0) == 0);
-      if (!found) throw UsageError(flag + ": '" + item + "' names none of its cases");
-      ++items;
-    }
-    if (items == 0) throw UsageError(flag + ": give at least one case");
-  };
-  check_items("--lighting", a.lighting, {"front-lit", "back-lit"});
-  check_items("--phases", a.phases, {"isotropic", "hg:0.7", "dual:0.7,-0.25,0.8"});
-  const auto [w, h] = parse_resolution("--res", a.res);
-  const std::vector<int> spps = parse_ints("--spp", a.spp);
-  if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
-  if (a.slices < 2 || a.slices > 4096) throw UsageError("--slices: must be in [2, 4096]");
-  check_outputs({{"--plot", a.plot}});
-  render::PresetCloud preset;
-  try {
-    preset = render::load_preset_cloud(a.preset);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--preset: ") + e.what());
+// Every item of --lighting and --phases names a case (a prefix of its name).
+void check_case_list(const std::string& flag, const std::string& list, const std::vector<std::string>& names) {
+  std::stringstream ss(list);
+  std::string item;
+  int items = 0;
+  while (std::getline(ss, item, ',')) {
+    bool found = false;
+    for (const std::string& n : names) found = found || (!item.empty() && n.rfind(item, 0) == 0);
+    if (!found) throw UsageError(flag + ": '" + item + "' names none of its cases");
+    ++items;
   }
-  if (!a.images.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(a.images, ec);
-    if (ec || !std::filesystem::is_directory(a.images))
-      throw std::runtime_error("--images: cannot make the directory '" + a.images + "'" + (ec ? ": " + ec.message() : ""));
-  }
-  const auto gl = render::GlContext::create_headless();
-  struct Lighting {
-    const char* name;
-    glm::dvec3 to_sun;
-  };
-  struct PhaseCase {
-    const char* name;
-    render::DualLobePhase phase;
-  };
-  const Lighting lights[] = {{"front-lit", {0.8, 0.55, -0.25}}, {"back-lit", {-0.5, 0.55, -0.7}}};
-  const PhaseCase phases[] = {{"isotropic", {0.0, 0.0, 1.0}}, {"hg:0.7", {0.7, 0.0, 1.0}}, {"dual:0.7,-0.25,0.8", {0.7, -0.25, 0.8}}};
+  if (items == 0) throw UsageError(flag + ": give at least one case");
+}
+
+// Whether a case's name starts with an item of the list.
+bool chosen(const std::string& list, const std::string& name) {
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty() && name.rfind(item, 0) == 0) return true;
+  return false;
+}
+
+struct Lighting {
+  const char* name;
+  glm::dvec3 to_sun;
+};
+struct PhaseCase {
+  const char* name;
+  render::DualLobePhase phase;
+};
+const Lighting kLightings[] = {{"front-lit", {0.8, 0.55, -0.25}}, {"back-lit", {-0.5, 0.55, -0.7}}};
+const PhaseCase kPhases[] = {{"isotropic", {0.0, 0.0, 1.0}}, {"hg:0.7", {0.7, 0.0, 1.0}}, {"dual:0.7,-0.25,0.8", {0.7, -0.25, 0.8}}};
+
+// The slicer's rows: single scattering, the octaves, and a light volume for every combination of
+// the --ms-* lists.
+std::vector<Octaves> method_rows(const BenchLookArgs& a) {
   std::vector<Octaves> methods = {{"single scattering", 0, 0.5, 0.5},
                                   {"2 octaves (a 0.5, b 0.5)", 2, 0.5, 0.5},
                                   {"3 octaves (a 0.5, b 0.5)", 3, 0.5, 0.5},
@@ -174,8 +166,44 @@ int run_bench_look(const BenchLookArgs& a) {
                                                    : ", finer to " + std::to_string(refine) + " photons a cell"),
                                0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine});
   }
+  return methods;
+}
+
+// The flags, checked before any work: the image size, the tracer's sample counts and the preset.
+struct LookPlan {
+  int w = 0, h = 0;
+  std::vector<int> spps;
+  render::PresetCloud preset;
+  std::vector<Octaves> methods;
+};
+
+LookPlan check_args(const BenchLookArgs& a) {
+  if (a.view != "side" && a.view != "below") throw UsageError("--view: expected side or below, got '" + a.view + "'");
+  check_case_list("--lighting", a.lighting, {"front-lit", "back-lit"});
+  check_case_list("--phases", a.phases, {"isotropic", "hg:0.7", "dual:0.7,-0.25,0.8"});
+  LookPlan p;
+  std::tie(p.w, p.h) = parse_resolution("--res", a.res);
+  p.spps = parse_ints("--spp", a.spp);
+  if (a.ref_spp < 1 || a.ref_spp > (1 << 20)) throw UsageError("--ref-spp: must be in [1, 1048576]");
+  if (a.slices < 2 || a.slices > 4096) throw UsageError("--slices: must be in [2, 4096]");
+  check_outputs({{"--plot", a.plot}});
+  try {
+    p.preset = render::load_preset_cloud(a.preset);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--preset: ") + e.what());
+  }
+  if (!a.images.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.images, ec);
+    if (ec || !std::filesystem::is_directory(a.images))
+      throw std::runtime_error("--images: cannot make the directory '" + a.images + "'" + (ec ? ": " + ec.message() : ""));
+  }
+  return p;
+}
+
+void print_header(const BenchLookArgs& a, const LookPlan& p, const std::string& gl_renderer) {
   std::printf("# nimbus bench look: %s, %dx%d, seen from %s, clouds alone over black, sun irradiance 3, no ambient, %s\n", a.preset.c_str(),
-              w, h, a.view == "below" ? "below" : "the side", gl->renderer().c_str());
+              p.w, p.h, a.view == "below" ? "below" : "the side", gl_renderer.c_str());
   std::printf("# reference: the path tracer at %d samples per pixel (its own noise in its row); error: relative RMSE over\n"
               "#   covered pixels against it (compare_images), which includes the reference's noise; less ref. noise: the same\n"
               "#   with the reference's own variance taken out (noise_corrected_rel_rmse), the error against a converged\n"
@@ -184,96 +212,126 @@ int run_bench_look(const BenchLookArgs& a) {
               a.ref_spp, a.slices);
   std::printf("| lighting | phase | method | ms | rel. RMSE | less ref. noise | bias | noise (mean rel. std. error) | light volume build, CPU ms | cells used |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---|\n");
+}
+
+// One case (a lighting and a phase): the cloud, the camera, the sun and the path-traced reference.
+struct LookCase {
+  const Lighting& lighting;
+  const PhaseCase& phase;
+  std::vector<render::CloudVolume> clouds;
+  render::Camera camera;
+  render::CloudLight light;
+  render::PathTracedImage reference;
+  std::filesystem::path stem;  // --images: the case's file names start here
+};
+
+LookCase look_case(const BenchLookArgs& a, const LookPlan& p, const Lighting& l, const PhaseCase& ph) {
+  LookCase c{l, ph, {}, {}, {}, {}, std::filesystem::path(a.images) / (slug(l.name) + "_" + slug(ph.name))};
+  render::CloudOptics optics;
+  optics.phase = ph.phase;
+  c.clouds = {render::generate_preset_cloud(p.preset, std::nullopt, 0.0, optics)};
+  render::Camera cam;
+  cam.width = p.w;
+  cam.height = p.h;
+  cam.fov_deg = 44.8;
+  c.camera = a.view == "below" ? view_from_below(cam, c.clouds) : render::frame_clouds(cam, c.clouds, false);
+  c.light.direction_to_light = l.to_sun;
+  render::PathTracerSettings ps;
+  ps.samples_per_pixel = a.ref_spp;
+  c.reference = render::render_cloud_path_traced(c.clouds, c.camera, c.light, ps);
+  std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | 0 | %.4f | | |\n", l.name, ph.name, a.ref_spp,
+              1000.0 * c.reference.seconds, c.reference.mean_relative_error);
+  if (!a.images.empty()) {
+    render::write_exr(c.stem.string() + "_reference.exr", c.reference.image);
+    render::write_exr(c.stem.string() + "_reference-std-error.exr", std_error_image(c.reference));
+  }
+  return c;
+}
+
+// The path tracer's own rows: its error against the reference as samples grow (other streams).
+render::PlotSeries path_tracer_rows(const LookPlan& p, const LookCase& c) {
+  render::PlotSeries traced;  // one line per case: error against time as samples grow
+  traced.name = std::string("path tracer, ") + c.lighting.name + ", " + c.phase.name;
+  render::PathTracerSettings ps;
+  for (int spp : p.spps) {
+    ps.samples_per_pixel = spp;
+    ps.seed = 7;  // other streams than the reference's
+    const render::PathTracedImage pt = render::render_cloud_path_traced(c.clouds, c.camera, c.light, ps);
+    const render::ImageError e = render::compare_images(pt.image, c.reference.image);
+    const double clean = render::noise_corrected_rel_rmse(pt.image, c.reference.image, c.reference.std_error);
+    std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %.4f | %+.4f | %.4f | | |\n", c.lighting.name,
+                c.phase.name, spp, 1000.0 * pt.seconds, e.rel_rmse, clean, e.mean_bias, pt.mean_relative_error);
+    traced.x.push_back(1000.0 * pt.seconds);
+    traced.y.push_back(e.rel_rmse);
+  }
+  return traced;
+}
+
+render::FrameSettings slicer_settings(const BenchLookArgs& a, const Octaves& m) {
+  render::FrameSettings fs;
+  fs.slices.slices = a.slices;
+  fs.slices.ambient = false;
+  fs.slices.multiple.octaves = m.octaves;
+  fs.slices.multiple.occlusion = m.a;
+  fs.slices.multiple.contribution = m.b;
+  if (m.light_volume) {
+    fs.slices.multiple.method = render::MultipleScatteringMethod::LightVolume;
+    fs.slices.multiple.light_volume.resolution = m.grid;
+    fs.slices.multiple.light_volume.photons = m.photons;
+    fs.slices.multiple.light_volume.lobe_orders = m.lobes;
+    fs.slices.multiple.light_volume.fits = m.fits;
+    fs.slices.multiple.light_volume.photons_per_cell = m.refine;
+  }
+  return fs;
+}
+
+// One slicer row: the best GPU time of five frames after the first (which builds the light
+// volume), its error against the reference, and the light volume's build time and grid.
+void slicer_row(const BenchLookArgs& a, const LookCase& c, const Octaves& m, render::PlotSeries& series) {
+  const render::FrameSettings fs = slicer_settings(a, m);
+  render::FrameRenderer fr(std::nullopt, c.light, fs);
+  fr.set_clouds(c.clouds);
+  render::FrameStats first;
+  fr.render(c.camera, &first);  // programs compiled, buffers made, the light volume built
+  double best = 1e300;
+  render::Image img;
+  for (int rep = 0; rep < 5; ++rep) {
+    render::FrameStats st;
+    img = fr.render(c.camera, &st);
+    best = std::min(best, st.clouds.total_ms);
+  }
+  if (!a.images.empty()) {
+    img.metadata["bench_method"] = m.name;
+    render::write_exr(c.stem.string() + "_" + slug(m.name) + ".exr", img);
+  }
+  const render::ImageError e = render::compare_images(img, c.reference.image);
+  char build[32] = "", used[64] = "";
+  if (m.light_volume) {
+    std::snprintf(build, sizeof build, "%.0f", first.light_volume_build_ms);
+    const render::LightVolume g = render::light_volume_grid(c.clouds, fs.slices.multiple.light_volume);
+    std::snprintf(used, sizeof used, "%dx%dx%d, %.0f m", g.size[0], g.size[1], g.size[2],
+                  std::max({g.cell_m.x, g.cell_m.y, g.cell_m.z}));
+  }
+  const double clean = render::noise_corrected_rel_rmse(img, c.reference.image, c.reference.std_error);
+  std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %.4f | %+.4f | | %s | %s |\n", c.lighting.name, c.phase.name,
+              m.name.c_str(), best, e.rel_rmse, clean, e.mean_bias, build, used);
+  series.x.push_back(best);
+  series.y.push_back(e.rel_rmse);
+}
+
+int run_bench_look(const BenchLookArgs& a) {
+  const LookPlan p = check_args(a);
+  const std::vector<Octaves> methods = method_rows(a);
+  const auto gl = render::GlContext::create_headless();
+  print_header(a, p, gl->renderer());
   std::vector<render::PlotSeries> series(methods.size());
   for (std::size_t m = 0; m < methods.size(); ++m) series[m].name = std::string("slicer, ") + methods[m].name;
-  auto chosen = [](const std::string& list, const std::string& name) {
-    std::stringstream ss(list);
-    std::string item;
-    while (std::getline(ss, item, ','))
-      if (!item.empty() && name.rfind(item, 0) == 0) return true;
-    return false;
-  };
-  for (const Lighting& l : lights)
-    for (const PhaseCase& p : phases) {
-      if (!chosen(a.lighting, l.name) || !chosen(a.phases, p.name)) continue;
-      render::CloudOptics optics;
-      optics.phase = p.phase;
-      const std::vector<render::CloudVolume> clouds = {render::generate_preset_cloud(preset, std::nullopt, 0.0, optics)};
-      render::Camera cam;
-      cam.width = w;
-      cam.height = h;
-      cam.fov_deg = 44.8;
-      cam = a.view == "below" ? view_from_below(cam, clouds) : render::frame_clouds(cam, clouds, false);
-      render::CloudLight light;
-      light.direction_to_light = l.to_sun;
-      render::PathTracerSettings ps;
-      ps.samples_per_pixel = a.ref_spp;
-      const render::PathTracedImage ref = render::render_cloud_path_traced(clouds, cam, light, ps);
-      std::printf("| %s | %s | path tracer, %d spp (reference) | %.0f | 0 | 0 | 0 | %.4f | | |\n", l.name, p.name, a.ref_spp,
-                  1000.0 * ref.seconds, ref.mean_relative_error);
-      const std::filesystem::path case_stem = std::filesystem::path(a.images) / (slug(l.name) + "_" + slug(p.name));
-      if (!a.images.empty()) {
-        render::write_exr(case_stem.string() + "_reference.exr", ref.image);
-        render::write_exr(case_stem.string() + "_reference-std-error.exr", std_error_image(ref));
-      }
-      render::PlotSeries traced;  // one line per case: error against time as samples grow
-      traced.name = std::string("path tracer, ") + l.name + ", " + p.name;
-      for (int spp : spps) {
-        ps.samples_per_pixel = spp;
-        ps.seed = 7;  // other streams than the reference's
-        const render::PathTracedImage pt = render::render_cloud_path_traced(clouds, cam, light, ps);
-        const render::ImageError e = render::compare_images(pt.image, ref.image);
-        const double clean = render::noise_corrected_rel_rmse(pt.image, ref.image, ref.std_error);
-        std::printf("| %s | %s | path tracer, %d spp | %.0f | %.4f | %.4f | %+.4f | %.4f | | |\n", l.name, p.name, spp,
-                    1000.0 * pt.seconds, e.rel_rmse, clean, e.mean_bias, pt.mean_relative_error);
-        traced.x.push_back(1000.0 * pt.seconds);
-        traced.y.push_back(e.rel_rmse);
-      }
-      series.push_back(traced);
-      for (std::size_t m = 0; m < methods.size(); ++m) {
-        render::FrameSettings fs;
-        fs.slices.slices = a.slices;
-        fs.slices.ambient = false;
-        fs.slices.multiple.octaves = methods[m].octaves;
-        fs.slices.multiple.occlusion = methods[m].a;
-        fs.slices.multiple.contribution = methods[m].b;
-        if (methods[m].light_volume) {
-          fs.slices.multiple.method = render::MultipleScatteringMethod::LightVolume;
-          fs.slices.multiple.light_volume.resolution = methods[m].grid;
-          fs.slices.multiple.light_volume.photons = methods[m].photons;
-          fs.slices.multiple.light_volume.lobe_orders = methods[m].lobes;
-          fs.slices.multiple.light_volume.fits = methods[m].fits;
-          fs.slices.multiple.light_volume.photons_per_cell = methods[m].refine;
-        }
-        render::FrameRenderer fr(std::nullopt, light, fs);
-        fr.set_clouds(clouds);
-        render::FrameStats first;
-        fr.render(cam, &first);  // programs compiled, buffers made, the light volume built
-        double best = 1e300;
-        render::Image img;
-        for (int rep = 0; rep < 5; ++rep) {
-          render::FrameStats st;
-          img = fr.render(cam, &st);
-          best = std::min(best, st.clouds.total_ms);
-        }
-        if (!a.images.empty()) {
-          img.metadata["bench_method"] = methods[m].name;
-          render::write_exr(case_stem.string() + "_" + slug(methods[m].name) + ".exr", img);
-        }
-        const render::ImageError e = render::compare_images(img, ref.image);
-        char build[32] = "", used[64] = "";
-        if (methods[m].light_volume) {
-          std::snprintf(build, sizeof build, "%.0f", first.light_volume_build_ms);
-          const render::LightVolume g = render::light_volume_grid(clouds, fs.slices.multiple.light_volume);
-          std::snprintf(used, sizeof used, "%dx%dx%d, %.0f m", g.size[0], g.size[1], g.size[2],
-                        std::max({g.cell_m.x, g.cell_m.y, g.cell_m.z}));
-        }
-        const double clean = render::noise_corrected_rel_rmse(img, ref.image, ref.std_error);
-        std::printf("| %s | %s | slicer, %s | %.1f | %.4f | %.4f | %+.4f | | %s | %s |\n", l.name, p.name,
-                    methods[m].name.c_str(), best, e.rel_rmse, clean, e.mean_bias, build, used);
-        series[m].x.push_back(best);
-        series[m].y.push_back(e.rel_rmse);
-      }
+  for (const Lighting& l : kLightings)
+    for (const PhaseCase& ph : kPhases) {
+      if (!chosen(a.lighting, l.name) || !chosen(a.phases, ph.name)) continue;
+      const LookCase c = look_case(a, p, l, ph);
+      series.push_back(path_tracer_rows(p, c));
+      for (std::size_t m = 0; m < methods.size(); ++m) slicer_row(a, c, methods[m], series[m]);
       std::fflush(stdout);
     }
   if (!a.plot.empty()) {

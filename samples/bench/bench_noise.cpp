@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_noise_harness.hpp"
 #include "cli/cli.hpp"
 #include "nimbus/noise/noise.hpp"
 #include "nimbus/noise/perlin_worley.hpp"
@@ -38,6 +39,7 @@
 namespace nimbus::cli {
 namespace {
 
+using namespace bench_noise;
 using noise::Fractal;
 using noise::Kind;
 using noise::SimdLevel;
@@ -48,143 +50,6 @@ struct BenchOptions {
   bool quick = false;
   bool all_levels = false;
 };
-
-// ---------------------------------------------------------------------------------------------
-// Clocks and small helpers.
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// Best (smallest) time of `repeats` calls of f, measured with `clock`.
-template <class F>
-double best_of(int repeats, double (*clock)(), F&& f) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repeats; ++r) {
-    const double t0 = clock();
-    f();
-    best = std::min(best, clock() - t0);
-  }
-  return best;
-}
-
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string ns_cell(double ns) { return ns < 10.0 ? fmt("%.2f", ns) : fmt("%.1f", ns); }
-std::string ms_cell(double ns) {  // Msamples/s from ns/sample
-  const double m = 1e3 / ns;
-  return m < 10.0 ? fmt("%.2f", m) : fmt("%.1f", m);
-}
-
-struct MinMax {
-  float lo = std::numeric_limits<float>::infinity();
-  float hi = -std::numeric_limits<float>::infinity();
-};
-
-MinMax min_max(const std::vector<float>& v) {
-  MinMax m;
-  for (float x : v) {
-    m.lo = std::min(m.lo, x);
-    m.hi = std::max(m.hi, x);
-  }
-  return m;
-}
-
-std::string range_cell(MinMax m) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "[%.3f, %.3f]", double(m.lo), double(m.hi));
-  return buf;
-}
-
-// Error of a path against the scalar path: "0 (bit-identical)" when every bit matches.
-std::string diff_cell(const std::vector<float>& ref, const std::vector<float>& got) {
-  if (ref.size() == got.size() && std::memcmp(ref.data(), got.data(), ref.size() * sizeof(float)) == 0)
-    return "0 (bit-identical)";
-  double worst = 0.0;
-  size_t nan_mismatch = 0;
-  for (size_t i = 0; i < ref.size(); ++i) {
-    if (std::isnan(ref[i]) != std::isnan(got[i])) ++nan_mismatch;
-    else if (!std::isnan(ref[i])) worst = std::max(worst, std::fabs(double(ref[i]) - double(got[i])));
-  }
-  std::string s = "**max |diff| " + fmt("%.3g", worst) + "** (NOT bit-identical";
-  if (nan_mismatch) s += ", " + std::to_string(nan_mismatch) + " NaN mismatches";
-  return s + ")";
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) {
-        auto s = line.substr(colon + 1);
-        s.erase(0, s.find_first_not_of(' '));
-        return s;
-      }
-    }
-  }
-  return "unknown CPU";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  if (!(in >> a >> b >> c)) return "unknown";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.2f %.2f %.2f", a, b, c);
-  return buf;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
-  return buf;
-}
-
-// How this translation unit (the harness and the header-only glm anchor) was compiled. The
-// noise library has its own flags (noise/CMakeLists.txt: -ffp-contract=off, one TU per ISA);
-// libnoise is Debian's prebuilt shared library.
-std::string harness_flags() {
-  std::string s;
-#if defined(__OPTIMIZE__)
-  s += "optimised (__OPTIMIZE__)";
-#else
-  s += "NOT optimised (-O0)";
-#endif
-#if defined(NDEBUG)
-  s += ", NDEBUG";
-#else
-  s += ", assertions on";
-#endif
-#if defined(__AVX512F__)
-  s += ", -mavx512f or -march=native";
-#elif defined(__AVX2__)
-  s += ", -mavx2";
-#else
-  s += ", baseline x86-64 (no -march)";
-#endif
-#if defined(__FMA__)
-  s += ", FMA";
-#endif
-#if defined(__FAST_MATH__)
-  s += ", -ffast-math";
-#endif
-  return s + "; build type: see CMAKE_BUILD_TYPE";
-}
 
 std::string spacing_name(double s) { return s == 1.0 / 16.0 ? "1/16" : fmt("%g", s); }
 
@@ -208,19 +73,6 @@ noise::NoiseParams params(Kind kind, int octaves) {
   p.octaves = octaves;
   return p;  // frequency 1, lacunarity 2, gain 0.5, seed 0
 }
-
-struct Cell {
-  double ns = 0.0;
-  std::string diff;  // against the scalar path
-};
-
-struct Row {
-  std::string name;
-  std::string grid_note;          // empty: the spacing's cube
-  double scalar_ns = 0.0;
-  std::vector<Cell> simd;         // one per measured SIMD level, same order as `levels`
-  std::string observed, documented;
-};
 
 // One thread, thread CPU time. A timed block covers at least 2^16 samples (the grid is
 // evaluated `inner` times when it is smaller), so small grids are not dominated by clock noise.
@@ -313,35 +165,144 @@ Row measure_anchor(const std::string& name, const std::string& documented, const
   return row;
 }
 
-void print_rows(const std::vector<Row>& rows, const std::vector<SimdLevel>& levels) {
-  std::printf("| Noise | scalar ns/sample | scalar Msamples/s |");
-  for (SimdLevel l : levels) {
-    const std::string n(noise::to_string(l));
-    std::printf(" %s ns/sample | %s Msamples/s |", n.c_str(), n.c_str());
+// The SIMD levels timed beside the scalar path: the best, or every supported one up to it.
+std::vector<SimdLevel> simd_levels(bool all_levels) {
+  const SimdLevel best = noise::best_simd_level();
+  std::vector<SimdLevel> levels;
+  if (all_levels) {
+    for (SimdLevel l : {SimdLevel::Sse41, SimdLevel::Avx2, SimdLevel::Avx512})
+      if (noise::simd_level_supported(l) && int(l) <= int(best)) levels.push_back(l);
+  } else if (best != SimdLevel::Scalar) {
+    levels.push_back(best);
   }
-  std::printf(" SIMD output vs scalar (max \\|diff\\|) | observed range | documented range |\n|---|---:|---:|");
-  for (size_t i = 0; i < levels.size(); ++i) std::printf("---:|---:|");
-  std::printf("---|---|---|\n");
-  for (const Row& r : rows) {
-    std::string name = r.name;
-    if (!r.grid_note.empty()) name += " (" + r.grid_note + ")";
-    std::printf("| %s | %s | %s |", name.c_str(), ns_cell(r.scalar_ns).c_str(), ms_cell(r.scalar_ns).c_str());
-    std::string diff;
-    if (r.simd.empty()) {
-      for (size_t i = 0; i < levels.size(); ++i) std::printf(" — | — |");
-      diff = "n/a (anchor, own scalar code)";
-    } else {
-      for (size_t i = 0; i < r.simd.size(); ++i) {
-        const Cell& c = r.simd[i];
-        std::printf(" %s | %s |", ns_cell(c.ns).c_str(), ms_cell(c.ns).c_str());
-        if (c.diff != "0 (bit-identical)")  // name each level that differs
-          diff += (diff.empty() || diff == "0 (bit-identical)" ? "" : "; ") + std::string(noise::to_string(levels[i])) + ": " + c.diff;
-        else if (diff.empty())
-          diff = c.diff;
-      }
+  return levels;
+}
+
+void print_preamble(const BenchOptions& o, const std::string& load_before) {
+  const int64_t res = o.res;
+  std::printf("## nimbus bench noise\n\n");
+  std::printf("- CPU: %s, %ld logical CPUs online; TBB default concurrency %d\n", cpu_model().c_str(),
+              sysconf(_SC_NPROCESSORS_ONLN), tbb::info::default_concurrency());
+  std::printf("- Compiler: g++ %s; harness TU: %s\n", __VERSION__, harness_flags().c_str());
+  std::printf("- Date: %s; load average (1/5/15 min) at start: %s\n", utc_now().c_str(), load_before.c_str());
+  std::printf("- Best SIMD level: **%s**%s\n", std::string(noise::to_string(noise::best_simd_level())).c_str(),
+              std::getenv("NIMBUS_SIMD") ? " (lowered by NIMBUS_SIMD)" : "");
+  std::printf("- Protocol: %lld^3 grid (%lld samples), x fastest, origin (0.137, 0.571, 0.913), frequency 1, "
+              "seed 0; one thread (BatchOptions.parallel = false); thread CPU time "
+              "(CLOCK_THREAD_CPUTIME_ID); best of %d repeat%s. fBm: 6 octaves, lacunarity 2, gain 0.5.\n",
+              static_cast<long long>(res), static_cast<long long>(res * res * res), o.repeats, o.repeats == 1 ? "" : "s");
+  std::printf("- Error column: nimbus SIMD paths against nimbus's scalar path (the contract is bit-identical). "
+              "Anchors are different functions, so their error is shown as observed range against documented "
+              "range.\n\n");
+}
+
+// nimbus's rows at one spacing: every kind at 1 and 6 octaves, Perlin-Worley, projected wavelet.
+void add_nimbus_rows(std::vector<Row>& rows, const noise::GridSpec& grid, const std::vector<SimdLevel>& levels,
+                     int repeats, int64_t res) {
+  for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Wavelet, Kind::Worley}) {
+    const std::string k(noise::to_string(kind));
+    rows.push_back(measure_nimbus("nimbus " + k + ", 1 octave", params(kind, 1), grid, levels, repeats));
+    rows.push_back(measure_nimbus("nimbus " + k + ", 6-octave fBm", params(kind, 6), grid, levels, repeats));
+  }
+  rows.push_back(measure_perlin_worley("nimbus perlin-worley, 4-octave gradient fBm remapped by 3-octave Worley fBm",
+                                       noise::PerlinWorleyParams{}, grid, levels, repeats));
+  {
+    noise::NoiseParams p = params(Kind::Wavelet, 1);
+    p.projected = true;  // normal (0, 0, 1)
+    noise::GridSpec slice = grid;  // fewer samples: projection costs far more per sample
+    slice.res = {res / 2, res / 2, 1};
+    rows.push_back(measure_nimbus("nimbus wavelet projected, 1 octave", p, slice, levels, repeats,
+                                  std::to_string(res / 2) + "²×1 grid"));
+  }
+}
+
+// The anchors at one spacing, point by point: libnoise's module::Perlin and glm::perlin.
+void add_anchor_rows([[maybe_unused]] std::vector<Row>& rows, [[maybe_unused]] const noise::GridSpec& grid,
+                     [[maybe_unused]] int repeats) {
+#if NIMBUS_HAVE_LIBNOISE
+  {
+    const std::string doc = "[-1, 1] \"usually\", no guarantee (perlin.h)";
+    ::noise::module::Perlin one;
+    one.SetOctaveCount(1);
+    one.SetNoiseQuality(::noise::QUALITY_BEST);
+    rows.push_back(measure_anchor("libnoise module::Perlin, 1 octave, QUALITY_BEST", doc, grid, repeats,
+                                  [&](double x, double y, double z) { return float(one.GetValue(x, y, z)); }));
+    ::noise::module::Perlin six;  // defaults: 6 octaves, persistence 0.5, lacunarity 2, QUALITY_STD
+    rows.push_back(measure_anchor("libnoise module::Perlin, 6 octaves (defaults, QUALITY_STD)", doc, grid,
+                                  repeats,
+                                  [&](double x, double y, double z) { return float(six.GetValue(x, y, z)); }));
+  }
+#endif
+#if NIMBUS_HAVE_GLM
+  {
+    const std::string doc = "none documented";
+    rows.push_back(measure_anchor("glm::perlin(vec3), 1 octave", doc, grid, repeats,
+                                  [](double x, double y, double z) {
+                                    return glm::perlin(glm::vec3(float(x), float(y), float(z)));
+                                  }));
+    rows.push_back(measure_anchor("glm::perlin fBm loop, 6 octaves, ÷ Σamp", doc, grid, repeats,
+                                  [](double x, double y, double z) {
+                                    const glm::vec3 p{float(x), float(y), float(z)};
+                                    float sum = 0.0f, amp = 1.0f, freq = 1.0f;
+                                    for (int i = 0; i < 6; ++i) {
+                                      sum += amp * glm::perlin(p * freq);
+                                      freq *= 2.0f;
+                                      amp *= 0.5f;
+                                    }
+                                    return sum * (1.0f / 1.96875f);
+                                  }));
+  }
+#endif
+}
+
+// Wavelet tile build: wall clock, a fresh tile per seed (not the shared cache). The build
+// runs on TBB, so it is timed both in the default arena and in an arena of one thread.
+void wavelet_build_rows(const BenchOptions& o) {
+  const int builds = o.quick ? 1 : std::max(o.repeats, 3);
+  std::printf("### Wavelet tile build (wall clock, a fresh tile per seed)\n\n"
+              "| Tile | threads | builds (seeds) | best ms | worst ms |\n|---|---:|---:|---:|---:|\n");
+  for (int threads : {tbb::info::default_concurrency(), 1}) {
+    tbb::task_arena arena(threads);
+    double best_s = std::numeric_limits<double>::infinity(), worst_s = 0.0;
+    for (int s = 0; s < builds; ++s) {
+      arena.execute([&] {
+        const double t0 = wall_seconds();
+        const noise::WaveletTile tile{128, uint32_t(1000 + s)};
+        const double t = wall_seconds() - t0;
+        best_s = std::min(best_s, t);
+        worst_s = std::max(worst_s, t);
+      });
     }
-    std::printf(" %s | %s | %s |\n", diff.c_str(), r.observed.c_str(), r.documented.c_str());
+    std::printf("| WaveletTile(128, seed): 128³ coefficients, 8 MiB | %d | %d | %.1f | %.1f |\n", threads,
+                builds, best_s * 1e3, worst_s * 1e3);
+    if (threads == 1) break;
   }
+  std::printf("\n");
+}
+
+// Multi-threaded throughput: wall clock, TBB's default arena, against one thread at the best
+// SIMD level on the same grid.
+void threaded_rows(const BenchOptions& o, int64_t mt_res) {
+  const SimdLevel best = noise::best_simd_level();
+  const noise::GridSpec grid = cube(mt_res, 1.0 / 16.0);
+  const int64_t n = grid.count();
+  std::printf("### Multi-threaded throughput (%lld³ grid, spacing 1/16, %s, wall clock, best of %d)\n\n",
+              static_cast<long long>(mt_res), std::string(noise::to_string(best)).c_str(), o.repeats);
+  std::printf("| Noise | threads | 1 thread ns/sample | 1 thread Msamples/s | parallel ns/sample | "
+              "parallel Msamples/s | speedup | parallel output vs 1 thread |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
+  std::vector<float> one(static_cast<size_t>(n)), par(static_cast<size_t>(n));
+  for (Kind kind : {Kind::Gradient, Kind::Wavelet}) {
+    const noise::NoiseField field(params(kind, 6));
+    noise::BatchOptions single{best, false}, multi{best, true};
+    const double t1 = best_of(o.repeats, wall_seconds, [&] { noise::evaluate_grid(field, grid, one, single); });
+    const double tp = best_of(o.repeats, wall_seconds, [&] { noise::evaluate_grid(field, grid, par, multi); });
+    const double ns1 = t1 * 1e9 / double(n), nsp = tp * 1e9 / double(n);
+    std::printf("| nimbus %s, 6-octave fBm | %d | %s | %s | %s | %s | %.2f× | %s |\n",
+                std::string(noise::to_string(kind)).c_str(), tbb::info::default_concurrency(),
+                ns_cell(ns1).c_str(), ms_cell(ns1).c_str(), ns_cell(nsp).c_str(), ms_cell(nsp).c_str(),
+                t1 / tp, diff_cell(one, par).c_str());
+  }
+  std::printf("\n");
 }
 
 int run_bench_noise(BenchOptions o) {
@@ -351,18 +312,8 @@ int run_bench_noise(BenchOptions o) {
     o.repeats = 1;
     o.res = 64;
   }
-
-  const SimdLevel best = noise::best_simd_level();
-  std::vector<SimdLevel> levels;
-  if (o.all_levels) {
-    for (SimdLevel l : {SimdLevel::Sse41, SimdLevel::Avx2, SimdLevel::Avx512})
-      if (noise::simd_level_supported(l) && int(l) <= int(best)) levels.push_back(l);
-  } else if (best != SimdLevel::Scalar) {
-    levels.push_back(best);
-  }
-
+  const std::vector<SimdLevel> levels = simd_levels(o.all_levels);
   const int64_t res = o.res;
-  const int64_t count = res * res * res;
   const int64_t mt_res = std::max<int64_t>(res, std::min<int64_t>(2 * res, 256));
   ensure_fits_in_memory(uint64_t(mt_res * mt_res * mt_res), 2 * sizeof(float),
                         "a " + std::to_string(mt_res) + "^3 benchmark grid");
@@ -371,74 +322,12 @@ int run_bench_noise(BenchOptions o) {
   // Keep the 128^3 wavelet tile (seed 0) alive, so every wavelet field below shares it and no
   // timed block or field construction in the loop rebuilds it.
   const noise::NoiseField wavelet_keepalive(params(Kind::Wavelet, 1));
-
-  std::printf("## nimbus bench noise\n\n");
-  std::printf("- CPU: %s, %ld logical CPUs online; TBB default concurrency %d\n", cpu_model().c_str(),
-              sysconf(_SC_NPROCESSORS_ONLN), tbb::info::default_concurrency());
-  std::printf("- Compiler: g++ %s; harness TU: %s\n", __VERSION__, harness_flags().c_str());
-  std::printf("- Date: %s; load average (1/5/15 min) at start: %s\n", utc_now().c_str(), load_before.c_str());
-  std::printf("- Best SIMD level: **%s**%s\n", std::string(noise::to_string(best)).c_str(),
-              std::getenv("NIMBUS_SIMD") ? " (lowered by NIMBUS_SIMD)" : "");
-  std::printf("- Protocol: %lld^3 grid (%lld samples), x fastest, origin (0.137, 0.571, 0.913), frequency 1, "
-              "seed 0; one thread (BatchOptions.parallel = false); thread CPU time "
-              "(CLOCK_THREAD_CPUTIME_ID); best of %d repeat%s. fBm: 6 octaves, lacunarity 2, gain 0.5.\n",
-              static_cast<long long>(res), static_cast<long long>(count), o.repeats, o.repeats == 1 ? "" : "s");
-  std::printf("- Error column: nimbus SIMD paths against nimbus's scalar path (the contract is bit-identical). "
-              "Anchors are different functions, so their error is shown as observed range against documented "
-              "range.\n\n");
-
+  print_preamble(o, load_before);
   for (double spacing : {1.0 / 16.0, 1.37}) {
     const noise::GridSpec grid = cube(res, spacing);
     std::vector<Row> rows;
-    for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Wavelet, Kind::Worley}) {
-      const std::string k(noise::to_string(kind));
-      rows.push_back(measure_nimbus("nimbus " + k + ", 1 octave", params(kind, 1), grid, levels, o.repeats));
-      rows.push_back(measure_nimbus("nimbus " + k + ", 6-octave fBm", params(kind, 6), grid, levels, o.repeats));
-    }
-    rows.push_back(measure_perlin_worley("nimbus perlin-worley, 4-octave gradient fBm remapped by 3-octave Worley fBm",
-                                         noise::PerlinWorleyParams{}, grid, levels, o.repeats));
-    {
-      noise::NoiseParams p = params(Kind::Wavelet, 1);
-      p.projected = true;  // normal (0, 0, 1)
-      noise::GridSpec slice = grid;  // fewer samples: projection costs far more per sample
-      slice.res = {res / 2, res / 2, 1};
-      rows.push_back(measure_nimbus("nimbus wavelet projected, 1 octave", p, slice, levels, o.repeats,
-                                    std::to_string(res / 2) + "²×1 grid"));
-    }
-#if NIMBUS_HAVE_LIBNOISE
-    {
-      const std::string doc = "[-1, 1] \"usually\", no guarantee (perlin.h)";
-      ::noise::module::Perlin one;
-      one.SetOctaveCount(1);
-      one.SetNoiseQuality(::noise::QUALITY_BEST);
-      rows.push_back(measure_anchor("libnoise module::Perlin, 1 octave, QUALITY_BEST", doc, grid, o.repeats,
-                                    [&](double x, double y, double z) { return float(one.GetValue(x, y, z)); }));
-      ::noise::module::Perlin six;  // defaults: 6 octaves, persistence 0.5, lacunarity 2, QUALITY_STD
-      rows.push_back(measure_anchor("libnoise module::Perlin, 6 octaves (defaults, QUALITY_STD)", doc, grid,
-                                    o.repeats,
-                                    [&](double x, double y, double z) { return float(six.GetValue(x, y, z)); }));
-    }
-#endif
-#if NIMBUS_HAVE_GLM
-    {
-      const std::string doc = "none documented";
-      rows.push_back(measure_anchor("glm::perlin(vec3), 1 octave", doc, grid, o.repeats,
-                                    [](double x, double y, double z) {
-                                      return glm::perlin(glm::vec3(float(x), float(y), float(z)));
-                                    }));
-      rows.push_back(measure_anchor("glm::perlin fBm loop, 6 octaves, ÷ Σamp", doc, grid, o.repeats,
-                                    [](double x, double y, double z) {
-                                      const glm::vec3 p{float(x), float(y), float(z)};
-                                      float sum = 0.0f, amp = 1.0f, freq = 1.0f;
-                                      for (int i = 0; i < 6; ++i) {
-                                        sum += amp * glm::perlin(p * freq);
-                                        freq *= 2.0f;
-                                        amp *= 0.5f;
-                                      }
-                                      return sum * (1.0f / 1.96875f);
-                                    }));
-    }
-#endif
+    add_nimbus_rows(rows, grid, levels, o.repeats, res);
+    add_anchor_rows(rows, grid, o.repeats);
     std::printf("### Spacing %s lattice units (%s samples per cell), one thread\n\n", spacing_name(spacing).c_str(),
                 fmt("%.3g", 1.0 / spacing).c_str());
     print_rows(rows, levels);
@@ -450,55 +339,8 @@ int run_bench_noise(BenchOptions o) {
 #if !NIMBUS_HAVE_GLM
   std::printf("(glm anchor not built: glm headers not found)\n\n");
 #endif
-
-  // Wavelet tile build: wall clock, a fresh tile per seed (not the shared cache). The build
-  // runs on TBB, so it is timed both in the default arena and in an arena of one thread.
-  {
-    const int builds = o.quick ? 1 : std::max(o.repeats, 3);
-    std::printf("### Wavelet tile build (wall clock, a fresh tile per seed)\n\n"
-                "| Tile | threads | builds (seeds) | best ms | worst ms |\n|---|---:|---:|---:|---:|\n");
-    for (int threads : {tbb::info::default_concurrency(), 1}) {
-      tbb::task_arena arena(threads);
-      double best_s = std::numeric_limits<double>::infinity(), worst_s = 0.0;
-      for (int s = 0; s < builds; ++s) {
-        arena.execute([&] {
-          const double t0 = wall_seconds();
-          const noise::WaveletTile tile{128, uint32_t(1000 + s)};
-          const double t = wall_seconds() - t0;
-          best_s = std::min(best_s, t);
-          worst_s = std::max(worst_s, t);
-        });
-      }
-      std::printf("| WaveletTile(128, seed): 128³ coefficients, 8 MiB | %d | %d | %.1f | %.1f |\n", threads,
-                  builds, best_s * 1e3, worst_s * 1e3);
-      if (threads == 1) break;
-    }
-    std::printf("\n");
-  }
-
-  // Multi-threaded throughput: wall clock, TBB's default arena, against one thread at the best
-  // SIMD level on the same grid.
-  {
-    const noise::GridSpec grid = cube(mt_res, 1.0 / 16.0);
-    const int64_t n = grid.count();
-    std::printf("### Multi-threaded throughput (%lld³ grid, spacing 1/16, %s, wall clock, best of %d)\n\n",
-                static_cast<long long>(mt_res), std::string(noise::to_string(best)).c_str(), o.repeats);
-    std::printf("| Noise | threads | 1 thread ns/sample | 1 thread Msamples/s | parallel ns/sample | "
-                "parallel Msamples/s | speedup | parallel output vs 1 thread |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
-    std::vector<float> one(static_cast<size_t>(n)), par(static_cast<size_t>(n));
-    for (Kind kind : {Kind::Gradient, Kind::Wavelet}) {
-      const noise::NoiseField field(params(kind, 6));
-      noise::BatchOptions single{best, false}, multi{best, true};
-      const double t1 = best_of(o.repeats, wall_seconds, [&] { noise::evaluate_grid(field, grid, one, single); });
-      const double tp = best_of(o.repeats, wall_seconds, [&] { noise::evaluate_grid(field, grid, par, multi); });
-      const double ns1 = t1 * 1e9 / double(n), nsp = tp * 1e9 / double(n);
-      std::printf("| nimbus %s, 6-octave fBm | %d | %s | %s | %s | %s | %.2f× | %s |\n",
-                  std::string(noise::to_string(kind)).c_str(), tbb::info::default_concurrency(),
-                  ns_cell(ns1).c_str(), ms_cell(ns1).c_str(), ns_cell(nsp).c_str(), ms_cell(nsp).c_str(),
-                  t1 / tp, diff_cell(one, par).c_str());
-    }
-    std::printf("\n");
-  }
+  wavelet_build_rows(o);
+  threaded_rows(o, mt_res);
   std::printf("Load average at end: %s\n", load_average().c_str());
   return 0;
 }

@@ -1,174 +1,30 @@
 // The half-angle slice renderer (cloud_renderer.hpp; Kniss et al. 2002/2003). Per frame: the
-// slicing axis and every slice's polygons inside each cloud's convex bound of non-zero density
-// on the CPU (cloud_slice_geometry.cpp), then per slice
-// an eye pass (shaders/cloud_slice.frag.glsl: lit from the light buffer, composited under or
-// over) and a light pass (shaders/cloud_light.frag.glsl: adds the slab's optical depth, after
-// an optional forward-scattering blur), and with a scene underlay a composite pass
+// lights drawn (the strongest at the clouds' centre), one pass per light (cloud_light_pass.cpp:
+// the slicing axis and every slice's polygons inside each cloud's convex bound of non-zero density
+// on the CPU, cloud_slice_geometry.cpp, then per slice an eye draw and a light draw), the later
+// passes' radiance added into the first's, and with a scene underlay a composite pass
 // (shaders/cloud_composite.frag.glsl) that puts the clouds and the fog in front of them over it.
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 #include <sstream>
-#include <tuple>
 #include <stdexcept>
 #include <utility>
 
+#include "cloud_light_pass.hpp"
+#include "cloud_renderer_impl.hpp"
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
-#include "nimbus/render/core/shader_contract.hpp"
-#include "nimbus/render/gl/atmosphere_textures.hpp"
-#include "nimbus/render/gl/gpu_timer.hpp"
-#include "nimbus/render/gl/readback.hpp"
-#include "nimbus/render/gl/resources.hpp"
-#include "nimbus/render/gl/to_float.hpp"
-#include "nimbus/render/gl/uniform_blocks.hpp"
-#include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/readback.hpp"
 
 namespace nimbus::render {
-namespace {
 
 using namespace cloud_detail;
-
-constexpr int kJitterTile = 64;        // blue-noise tile side, pixels (power of two)
-constexpr std::uint32_t kJitterSeed = 5;
-
-// The frame's passes as GpuTimer slots.
-enum Pass { kLight = 0, kEye, kComposite, kPassCount };
-
-}  // namespace
-
-// Where set_clouds put a cloud; set_motion moves it from here.
-struct Placement {
-  glm::dmat4 index_to_world{1.0};
-  openvdb::math::Transform::Ptr transform;
-  glm::dvec3 world_min{0.0}, world_max{0.0};
-  glm::dmat4 world_to_texture{1.0};
-  ConvexHull hull;
-  std::vector<glm::dvec3> hull_vertices;
-};
-
-struct CloudRenderer::Impl {
-  std::vector<CloudVolume> clouds;         // as drawn (moved)
-  std::vector<VolumeTexture> textures;
-  std::vector<std::optional<VolumeTexture>> next_textures;  // the next keyframe, if any
-  std::vector<Placement> placements;
-  std::vector<ConvexHull> hulls;           // where each cloud's density can be non-zero
-  std::vector<glm::dvec3> hull_points;     // all their vertices
-  ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 0\n"};
-  ShaderProgram lamp_light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 1\n"};
-  ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
-  std::optional<ShaderProgram> accumulate_program;  // the second light's pass on
-  std::map<std::tuple<bool, int, bool, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, light volume, lamp)
-  std::optional<ShaderProgram> composite_program;
-  std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
-  UniformBuffer<CameraBlock> camera_ubo;
-  UniformBuffer<LightsBlock> lights_ubo;
-  UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
-  GlVertexArray empty_vao, mesh_vao;
-  GlBuffer mesh_buffer;
-  std::size_t mesh_capacity = 0;  // vertices
-  GlTexture jitter;
-
-  int light_res = 0;
-  GlTexture light_tex[2];
-  GlFramebuffer light_fbo[2];
-
-  int eye_w = 0, eye_h = 0;
-  bool eye_has_distance = false;
-  GlTexture eye_color, eye_distance, out_color;
-  GlFramebuffer eye_fbo, out_fbo;
-  // The second light's pass on draws here, then adds its radiance into eye_color.
-  int pass_w = 0, pass_h = 0;
-  GlTexture pass_color, pass_distance;
-  GlFramebuffer pass_fbo;
-
-  // The light volume (set_light_volume): fluence, flux and second moment side by side along x.
-  GlTexture light_volume_tex;
-  glm::dvec3 lv_world_min{0.0};
-  glm::dvec3 lv_cell_m{0.0};
-  glm::dvec3 lv_light_dir{0.0, -1.0, 0.0};
-  glm::ivec3 lv_cells{0};
-
-  const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume, bool lamp);
-  void upload_mesh(const SliceMesh& mesh);
-  void ensure_light_buffers(int res);
-  void ensure_eye_buffers(int w, int h, bool distance);
-  void ensure_pass_buffers(int w, int h);
-};
-
-const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves, bool light_volume, bool lamp) {
-  const auto key = std::make_tuple(underlay, octaves, light_volume, lamp);
-  auto it = eye_programs.find(key);
-  if (it == eye_programs.end()) {
-    const std::string defines = "#define UNDERLAY " + std::string(underlay ? "1" : "0") + "\n#define OCTAVES " +
-                                std::to_string(octaves) + "\n#define MS_VOLUME " + (light_volume ? "1" : "0") +
-                                "\n#define LAMP " + (lamp ? "1" : "0") + "\n";
-    it = eye_programs.emplace(key, ShaderProgram({"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, defines)).first;
-  }
-  return it->second;
-}
-
-void CloudRenderer::Impl::upload_mesh(const SliceMesh& mesh) {
-  if (mesh.vertices.size() > mesh_capacity) {
-    mesh_capacity = std::max<std::size_t>(mesh.vertices.size(), 2 * mesh_capacity);
-    mesh_buffer = make_buffer(static_cast<GLsizeiptr>(mesh_capacity * sizeof(glm::vec3)));
-    mesh_vao = make_vertex_array();
-    const GLuint vao = mesh_vao.id();
-    glVertexArrayVertexBuffer(vao, 0, mesh_buffer.id(), 0, sizeof(glm::vec3));
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
-  }
-  if (!mesh.vertices.empty())
-    glNamedBufferSubData(mesh_buffer.id(), 0, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(glm::vec3)),
-                         mesh.vertices.data());
-  check_gl("uploading slice polygons");
-}
-
-void CloudRenderer::Impl::ensure_light_buffers(int res) {
-  if (res == light_res) return;
-  for (int i = 0; i < 2; ++i) {
-    // Linear filtering; border 0 outside the footprint (no cloud there).
-    light_tex[i] = make_texture_2d(GL_R32F, res, res, TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_BORDER, 1});
-    light_fbo[i] = make_framebuffer({{GL_COLOR_ATTACHMENT0, light_tex[i].id()}});
-  }
-  light_res = res;
-}
-
-void CloudRenderer::Impl::ensure_eye_buffers(int w, int h, bool distance) {
-  if (w == eye_w && h == eye_h && distance == eye_has_distance) return;
-  const TextureParams nearest{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1};
-  eye_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
-  if (distance) {
-    eye_distance = make_texture_2d(GL_RGBA32F, w, h, nearest);
-    eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}, {GL_COLOR_ATTACHMENT1, eye_distance.id()}});
-    out_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
-    out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out_color.id()}});
-  } else {
-    eye_distance.reset();
-    out_color.reset();
-    out_fbo.reset();
-    eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}});
-  }
-  eye_w = w;
-  eye_h = h;
-  eye_has_distance = distance;
-}
-
-void CloudRenderer::Impl::ensure_pass_buffers(int w, int h) {
-  if (w == pass_w && h == pass_h) return;
-  const TextureParams nearest{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1};
-  pass_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
-  pass_distance = make_texture_2d(GL_RGBA32F, w, h, nearest);  // written by the underlay variant, not read
-  pass_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, pass_color.id()}, {GL_COLOR_ATTACHMENT1, pass_distance.id()}});
-  pass_w = w;
-  pass_h = h;
-}
 
 CloudRenderer::CloudRenderer(std::vector<CloudVolume> clouds, GLenum format) : impl_(std::make_unique<Impl>()) {
   set_clouds(std::move(clouds), format);
@@ -329,65 +185,143 @@ Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const
                             const SceneUnderlay* underlay, CloudFrameStats* stats) {
   return render(camera, std::vector<CloudLight>{light}, settings, underlay, stats);
 }
+namespace {
 
-Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>& all_lights,
-                            const CloudSliceSettings& settings, const SceneUnderlay* underlay, CloudFrameStats* stats) {
+// A frame's inputs, checked before anything is drawn.
+void validate_frame(const Camera& camera, const std::vector<CloudLight>& lights, const CloudSliceSettings& settings,
+                    const SceneUnderlay* underlay) {
   validate(camera);
-  if (all_lights.empty()) throw std::invalid_argument("cloud renderer lights: the list is empty");
-  for (const CloudLight& l : all_lights) validate(l);
+  if (lights.empty()) throw std::invalid_argument("cloud renderer lights: the list is empty");
+  for (const CloudLight& l : lights) validate(l);
   validate(settings);
-  const Scene* scene = underlay ? underlay->scene : nullptr;
-  if (underlay) {
-    if (underlay->color_texture == 0) throw std::invalid_argument("scene underlay color_texture: must be a texture");
-    if (underlay->distance_texture == 0)
-      throw std::invalid_argument("scene underlay distance_texture: must be a texture");
-    if (scene) {
-      validate(*scene);
-      if (scene->point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
-        throw std::invalid_argument("scene underlay scene: the cloud composite takes at most " +
-                                    std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
-                                    std::to_string(scene->point_lights.size()));
-    }
+  if (!underlay) return;
+  if (underlay->color_texture == 0) throw std::invalid_argument("scene underlay color_texture: must be a texture");
+  if (underlay->distance_texture == 0) throw std::invalid_argument("scene underlay distance_texture: must be a texture");
+  if (const Scene* scene = underlay->scene) {
+    validate(*scene);
+    if (scene->point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+      throw std::invalid_argument("scene underlay scene: the cloud composite takes at most " +
+                                  std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
+                                  std::to_string(scene->point_lights.size()));
   }
-  Impl& s = *impl_;
-  const int w = camera.width, h = camera.height;
-  const std::size_t n_clouds = s.clouds.size();
-  const bool light_volume = settings.multiple.method == MultipleScatteringMethod::LightVolume;
-  if (light_volume && !has_light_volume())
-    throw std::logic_error("cloud renderer: multiple-scattering method light-volume needs set_light_volume first");
+}
 
-  // The lights drawn: the strongest at the middle of the clouds' bounds, one pass each.
+// The middle of the clouds' bounds: where the lights are ranked and a lamp's axis is taken.
+glm::dvec3 clouds_centre(const std::vector<glm::dvec3>& hull_points) {
+  if (hull_points.empty()) return glm::dvec3(0.0);
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const glm::dvec3& p : s.hull_points) {
+  for (const glm::dvec3& p : hull_points) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }
-  const glm::dvec3 centre = s.hull_points.empty() ? glm::dvec3(0.0) : 0.5 * (lo + hi);
-  const std::vector<int> order = strongest_lights(all_lights, centre, settings.max_lights);
+  return 0.5 * (lo + hi);
+}
+
+// The lights drawn: the settings.max_lights strongest at the clouds' centre, one pass each.
+std::vector<int> lights_drawn(const std::vector<CloudLight>& lights, const glm::dvec3& centre,
+                              const CloudSliceSettings& settings, bool light_volume) {
+  const std::vector<int> order = strongest_lights(lights, centre, settings.max_lights);
   for (const int i : order)
-    if (all_lights[i].kind == CloudLightKind::Point && light_volume)
+    if (lights[i].kind == CloudLightKind::Point && light_volume)
       throw std::invalid_argument(
           "cloud renderer lights: the light volume of multiple scattering is built for the sun; a lamp takes the "
           "octaves method (octaves 0: single scattering)");
+  return order;
+}
 
-  s.ensure_light_buffers(settings.light_res);
-  s.ensure_eye_buffers(w, h, underlay != nullptr);
-  if (order.size() > 1) {
-    s.ensure_pass_buffers(w, h);
-    if (!s.accumulate_program)
-      s.accumulate_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_accumulate.frag.glsl"});
+// The frame's metadata: the camera (and the underlay's scene), the clouds, the lights drawn and
+// left out, the slicing settings and the first pass's axis (with the lamps' notes).
+void describe_slice_frame(Image& img, const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights,
+                          const std::vector<int>& order, const CloudSliceSettings& settings, const Camera& camera,
+                          const Scene* scene, const SliceAxis& first_axis, const std::string& lamp_notes) {
+  if (scene) {
+    describe_frame(img, *scene, camera, "cloud-slices");
+  } else {
+    img.metadata["method"] = "cloud-slices";
+    img.metadata["camera"] = describe_camera(camera);
   }
-  if (underlay && !s.composite_program)
-    s.composite_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"});
-  const bool blur = settings.blur_cone_rad > 0.0;
+  std::vector<CloudLight> drawn_lights;
+  for (const int i : order) drawn_lights.push_back(lights[i]);
+  describe_clouds(img, clouds, drawn_lights);
+  if (order.size() < lights.size()) {
+    std::vector<CloudLight> left;
+    for (std::size_t i = 0; i < lights.size(); ++i)
+      if (std::find(order.begin(), order.end(), static_cast<int>(i)) == order.end()) left.push_back(lights[i]);
+    img.metadata["lights_left_out"] = describe_lights(left);
+  }
+  describe_slices(img, settings);
+  std::ostringstream ax;
+  ax.precision(9);
+  ax << fmt3(first_axis.axis) << ", " << (first_axis.front_to_back ? "front-to-back (under)" : "back-to-front (over)")
+     << ", half angle " << first_axis.half_angle_rad << " rad";
+  if (!lamp_notes.empty()) ax << "; " << lamp_notes;
+  img.metadata["slice_axis"] = ax.str();
+}
+
+CloudFrameStats frame_stats(GpuTimer& timer, int slices_drawn, const SliceAxis& first_axis, std::size_t passes) {
+  CloudFrameStats st;
+  timer.finish();
+  st.light_ms = timer.ms(kLight);
+  st.slices_ms = timer.ms(kEye);
+  st.composite_ms = timer.ms(kComposite);
+  st.total_ms = timer.total_ms();
+  st.timing = timer.method() + " per pass";
+  st.slices_drawn = slices_drawn;
+  st.front_to_back = first_axis.front_to_back;
+  st.half_angle_rad = first_axis.half_angle_rad;
+  st.light_passes = static_cast<int>(passes);
+  return st;
+}
+
+}  // namespace
+
+Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h) {
+  const Scene* scene = underlay.scene;
+  const ShaderProgram& cp = *composite_program;
+  const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
+  cp.set("u_sigma_t", static_cast<float>(fog.extinction_per_m));
+  cp.set("u_sigma_s", static_cast<float>(fog.scattering_per_m()));
+  cp.set("u_phase_kind", phase_code(fog.phase.kind));
+  cp.set("u_phase_g", static_cast<float>(fog.phase.g));
+  lights_ubo.update(scene ? lights_block(*scene) : no_lights_block());
+  lights_ubo.bind(contract::BLOCK_LIGHTS);
+  const auto& tables = scene && scene->sky ? scene->sky->atmosphere : nullptr;
+  if (tables) {
+    if (!aerial || aerial->tables != tables) aerial = upload_atmosphere(tables);
+    bind_aerial_perspective(cp, *aerial);
+  } else {
+    cp.set("u_aerial_on", 0);
+  }
+  timer.time(kComposite, [&] {
+    glBindFramebuffer(GL_FRAMEBUFFER, out_fbo.id());
+    glViewport(0, 0, w, h);
+    glBindTextureUnit(contract::UNIT_SCENE_COLOR, underlay.color_texture);
+    glBindTextureUnit(contract::UNIT_CLOUD_COLOR, eye_color.id());
+    glBindTextureUnit(contract::UNIT_CLOUD_DISTANCE, eye_distance.id());
+    glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay.distance_texture);
+    cp.use();
+    draw_fullscreen_triangle(empty_vao);
+  });
+  check_gl("cloud composite");
+  return read_rgba(out_fbo, w, h);
+}
+
+Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>& all_lights,
+                            const CloudSliceSettings& settings, const SceneUnderlay* underlay, CloudFrameStats* stats) {
+  validate_frame(camera, all_lights, settings, underlay);
+  Impl& s = *impl_;
+  const bool light_volume = settings.multiple.method == MultipleScatteringMethod::LightVolume;
+  if (light_volume && !has_light_volume())
+    throw std::logic_error("cloud renderer: multiple-scattering method light-volume needs set_light_volume first");
+  const glm::dvec3 centre = clouds_centre(s.hull_points);
+  const std::vector<int> order = lights_drawn(all_lights, centre, settings, light_volume);
+
+  const int w = camera.width, h = camera.height;
+  s.prepare_frame(w, h, settings, order.size(), underlay != nullptr);
   GpuTimer timer(kPassCount, stats != nullptr);
-  const CameraFrame frame = camera_frame(camera);
   const CameraBlock camera_values = camera_block(camera);
   s.camera_ubo.update(camera_values);
   s.camera_ubo.bind(contract::BLOCK_CAMERA);
-  const MultipleScattering& ms = settings.multiple;
-  const double f = static_cast<double>(settings.frame);
-
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
@@ -398,302 +332,29 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>&
     if (underlay) glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 1, zero);
   });
 
+  // One pass per light, its radiance added into the first's.
+  const FrameContext frame{camera, camera_values, settings, light_volume, underlay, timer};
   int drawn = 0;
   SliceAxis first_axis;
-  std::string axes_text;
+  std::string lamp_notes;
   for (std::size_t pass = 0; pass < order.size(); ++pass) {
     const CloudLight& light = all_lights[order[pass]];
-    const bool lamp = light.kind == CloudLightKind::Point;
-    // Geometry: the axis, the planes and every polygon (Kniss et al. 2003). For a lamp, the axis
-    // takes the light's direction at the clouds' centre (Kniss et al. for local lights).
-    const glm::dvec3 l = lamp ? (glm::length(centre - light.position_m) > 0.0 ? glm::normalize(centre - light.position_m)
-                                                                             : glm::dvec3(0.0, -1.0, 0.0))
-                              : -glm::normalize(light.direction_to_light);
-    const SliceAxis axis = choose_slice_axis(frame.forward, l, settings.branch);
-    if (pass == 0) first_axis = axis;
-    const SlicePlanes planes = slice_planes(s.hull_points, axis.axis, settings.slices);
-    // A jittered sample lies up to dt / 2 = d / (2 |dot(ray, s)|) along its ray from the plane, so
-    // a ray whose plane point misses the hull can still sample density inside it: the polygons
-    // are cut from the hulls grown by that much (the steepest ray at the image's corners).
-    double margin_m = 0.0;
-    if (settings.jitter) {
-      double min_cos = 1.0;
-      for (int c = 0; c < 4; ++c) {
-        const glm::dvec3 r = pixel_ray(camera, (c & 1) ? w - 1 : 0, (c & 2) ? h - 1 : 0);
-        min_cos = std::min(min_cos, std::abs(glm::dot(r, axis.axis)));
-      }
-      margin_m = std::min(0.5 / std::max(min_cos, 0.125), 4.0) * planes.spacing_m;
-    }
-    std::vector<ConvexHull> hulls;
-    for (const ConvexHull& hull : s.hulls) hulls.push_back(grown(hull, margin_m));
-    const SliceMesh mesh = build_slice_mesh(hulls, axis.axis, planes);
-    s.upload_mesh(mesh);
-    // The slab between two planes is spacing / dot(l, s) thick along the light (issue 5: d / cos);
-    // for a lamp, per fragment along each of its rays.
-    const double light_slab_m = planes.spacing_m / std::max(glm::dot(l, axis.axis), 1e-3);
-    // The light buffer's frame: the sun's orthographic one, or the lamp's perspective one.
-    LightFrame lf;
-    LampFrame lamp_f;
-    double texel_m[2];
-    if (!lamp) {
-      lf = light_frame(s.hull_points, l, settings.light_res);
-      texel_m[0] = lf.texel_m.x;
-      texel_m[1] = lf.texel_m.y;
-    } else {
-      lamp_f = lamp_frame(s.hull_points, light.position_m, l, settings.light_res);
-      const double r = glm::length(centre - light.position_m);  // a texel's width at the clouds' centre
-      texel_m[0] = std::max(r, 1e-9) * lamp_f.texel_tan.x;
-      texel_m[1] = std::max(r, 1e-9) * lamp_f.texel_tan.y;
-      // How many slice planes lie on the lamp's near side (they see no shadow from the buffer).
-      const double lamp_s = glm::dot(axis.axis, light.position_m);
-      int near_side = 0;
-      for (int k = 0; k < planes.count; ++k) near_side += planes.first_m + k * planes.spacing_m <= lamp_s;
-      std::ostringstream a;
-      a << "lamp " << pass << ": " << near_side << " of " << planes.count << " slices on its near side"
-        << (lamp_f.clipped ? ", light buffer clipped" : "");
-      axes_text += (axes_text.empty() ? "" : "; ") + a.str();
-    }
-    const ShaderProgram& eye = s.eye_program(underlay != nullptr, light_volume ? 0 : ms.octaves, light_volume, lamp);
-    const ShaderProgram& lp = lamp ? s.lamp_light_program : s.light_program;
-
-    // Pass-constant uniforms: the slicing geometry and the light.
-    eye.set("u_view_proj", camera_values.view_proj);
-    eye.set("u_slice_axis", to_float(axis.axis));
-    eye.set("u_spacing_m", static_cast<float>(planes.spacing_m));
-    eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
-                                      static_cast<float>(ms.eccentricity)));
-    if (lamp) {
-      for (const ShaderProgram* p : {&eye, &lp}) {
-        p->set("u_lamp_position", to_float(light.position_m));
-        p->set("u_lamp_intensity", to_float(light.intensity_w_sr));
-        const bool spot = glm::length(light.spot_axis) > 0.0;
-        p->set("u_lamp_spot", glm::vec4(spot ? to_float(glm::normalize(light.spot_axis)) : glm::vec3(0.0f), spot ? 1.0f : 0.0f));
-        p->set("u_lamp_cos", glm::vec2(static_cast<float>(std::cos(light.spot_outer_rad)),
-                                       static_cast<float>(std::cos(light.spot_inner_rad))));
-        p->set("u_lamp_min_distance", static_cast<float>(light.min_distance_m));
-        p->set("u_slice_axis", to_float(axis.axis));
-        p->set("u_spacing_m", static_cast<float>(planes.spacing_m));
-      }
-      eye.set("u_world_to_light_clip", to_float(lamp_f.world_to_clip));
-    } else {
-      eye.set("u_world_to_light", to_float(lf.world_to_uv));
-      eye.set("u_light_slab_m", static_cast<float>(light_slab_m));
-      eye.set("u_light_dir", to_float(l));
-      eye.set("u_irradiance", to_float(light.irradiance_w_m2));
-      eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(camera.eye, 1.0)));
-    }
-    if (light_volume) {
-      eye.set("u_lv_world_min", to_float(s.lv_world_min));
-      eye.set("u_lv_cell_m", to_float(s.lv_cell_m));
-      eye.set("u_lv_cells", glm::vec3(s.lv_cells));
-      eye.set("u_lv_light_dir", to_float(s.lv_light_dir));
-    }
-    // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the
-    // golden ratio (Cranley-Patterson), so every pixel sees a new offset each frame.
-    eye.set("u_jitter_offset", glm::ivec2(static_cast<int>(kJitterTile * (f * 0.7548776662466927 - std::floor(f * 0.7548776662466927))),
-                                          static_cast<int>(kJitterTile * (f * 0.5698402909980532 - std::floor(f * 0.5698402909980532)))));
-    eye.set("u_jitter_shift", static_cast<float>(f * 0.6180339887498949 - std::floor(f * 0.6180339887498949)));
-    eye.set("u_jitter_on", settings.jitter ? 1.0f : 0.0f);
-    if (underlay) eye.set("u_fog_sigma_t", scene ? static_cast<float>(scene->medium.extinction_per_m) : 0.0f);
-    lp.set("u_view_proj", to_float(lamp ? lamp_f.world_to_clip : lf.world_to_clip));
-    if (blur) {
-      // Kniss's cone: the light spreads by radius (slab along the light) tan(cone) per slice; a
-      // disk of radius R has variance R^2 / 4 per axis, which the 5-tap kernel reproduces. For a
-      // lamp, the texels and the slab are taken at the clouds' centre.
-      glm::ivec2 step;
-      glm::vec2 weight;
-      for (int a = 0; a < 2; ++a) {
-        const double r = light_slab_m * std::tan(settings.blur_cone_rad) / texel_m[a];  // texels
-        step[a] = std::max(1, static_cast<int>(std::ceil(r / std::sqrt(2.0))));
-        weight[a] = static_cast<float>(std::min(0.25, r * r / (8.0 * step[a] * step[a])));
-      }
-      s.blur_program.set("u_step", step);
-      s.blur_program.set("u_weight", weight);
-    }
-
-    // Every cloud's block for this pass (its optics, and what depends on the eye and the slabs);
-    // the ambient sky light enters once, in the first pass.
-    std::vector<CloudBlock> blocks(n_clouds);
-    for (std::size_t j = 0; j < n_clouds; ++j) {
-      const CloudVolume& c = s.clouds[j];
-      const VolumeTexture& t = s.textures[j];
-      CloudBlock& b = blocks[j];
-      b.world_to_texture = to_float(t.world_to_texture);
-      b.tc_eye = glm::vec3(t.world_to_texture * glm::dvec4(camera.eye, 1.0));
-      b.sigma_t = static_cast<float>(c.optics.extinction_per_m);
-      b.albedo = to_float(c.optics.albedo);
-      b.ambient = settings.ambient && pass == 0 ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f);
-      b.phase = glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
-                          static_cast<float>(c.optics.phase.forward_weight));
-      b.tau_per_density = static_cast<float>(c.optics.extinction_per_m * light_slab_m);
-      b.blend = s.next_textures[j] ? static_cast<float>(c.blend) : 0.0f;
-    }
-    s.cloud_ubo.update(blocks);
-    std::size_t bound = n_clouds;  // none yet
-    auto bind_cloud = [&](std::size_t j) {
-      s.cloud_ubo.bind(contract::BLOCK_CLOUD, j);
-      glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, s.textures[j].texture.id());
-      const VolumeTexture& next = s.next_textures[j] ? *s.next_textures[j] : s.textures[j];
-      glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, next.texture.id());
-    };
-    auto draw_slice = [&](int k) {
-      for (std::size_t j = 0; j < n_clouds; ++j) {
-        const std::size_t idx = static_cast<std::size_t>(k) * n_clouds + j;
-        if (mesh.count[idx] == 0) continue;
-        if (bound != j) bind_cloud(j);
-        bound = j;
-        glDrawArrays(GL_TRIANGLES, mesh.first[idx], mesh.count[idx]);
-      }
-    };
-
-    // The first pass draws into the eye buffer; later ones into their own, added in after.
-    const GlFramebuffer& target = pass == 0 ? s.eye_fbo : s.pass_fbo;
-    int cur = 0;
-    timer.time(kLight, [&] { glClearNamedFramebufferfv(s.light_fbo[0].id(), GL_COLOR, 0, zero); });
-    if (pass > 0)
-      timer.time(kEye, [&] {
-        glClearNamedFramebufferfv(s.pass_fbo.id(), GL_COLOR, 0, zero);
-        glClearNamedFramebufferfv(s.pass_fbo.id(), GL_COLOR, 1, zero);
-      });
-    glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
-    if (light_volume) glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
-    if (underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay->distance_texture);
-    glBindVertexArray(s.mesh_vao.id());
-    for (int k = 0; k < planes.count; ++k) {
-      bool any = false;
-      for (std::size_t j = 0; j < n_clouds; ++j) any = any || mesh.count[static_cast<std::size_t>(k) * n_clouds + j] > 0;
-      if (any) {
-        ++drawn;
-        timer.time(kEye, [&] {
-          glBindFramebuffer(GL_FRAMEBUFFER, target.id());
-          glViewport(0, 0, w, h);
-          glEnable(GL_BLEND);
-          if (axis.front_to_back) {
-            glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ONE);  // "under"
-          } else {
-            glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // "over"
-          }
-          glBindTextureUnit(contract::UNIT_LIGHT_BUFFER, s.light_tex[cur].id());
-          eye.use();
-          draw_slice(k);
-        });
-      }
-      if (k + 1 == planes.count) break;  // nothing reads the light buffer after the last slice
-      if (!any && !blur) continue;
-      timer.time(kLight, [&] {
-        glViewport(0, 0, s.light_res, s.light_res);
-        if (blur) {  // next = blur(previous) + this slice
-          const int next = 1 - cur;
-          glBindFramebuffer(GL_FRAMEBUFFER, s.light_fbo[next].id());
-          glDisable(GL_BLEND);
-          glBindTextureUnit(contract::UNIT_LIGHT_BUFFER, s.light_tex[cur].id());
-          s.blur_program.use();
-          draw_fullscreen_triangle(s.empty_vao);
-          glBindVertexArray(s.mesh_vao.id());
-          cur = next;
-        } else {
-          glBindFramebuffer(GL_FRAMEBUFFER, s.light_fbo[cur].id());
-        }
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        lp.use();
-        draw_slice(k);
-      });
-    }
-    if (pass > 0) {  // this light's radiance into the eye buffer; its coverage is already there
-      timer.time(kEye, [&] {
-        glBindFramebuffer(GL_FRAMEBUFFER, s.eye_fbo.id());
-        glViewport(0, 0, w, h);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
-        glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        glBindTextureUnit(contract::UNIT_CLOUD_COLOR, s.pass_color.id());
-        s.accumulate_program->use();
-        draw_fullscreen_triangle(s.empty_vao);
-        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      });
-    }
-    glDisable(GL_BLEND);
-    check_gl("cloud slices");
+    const LightPassPlan plan = plan_light_pass(s, camera, light, centre, settings, static_cast<int>(pass));
+    if (pass == 0) first_axis = plan.axis;
+    if (!plan.note.empty()) lamp_notes += (lamp_notes.empty() ? "" : "; ") + plan.note;
+    drawn += draw_light_pass(s, frame, light, plan, static_cast<int>(pass));
   }
 
-  Image img;
-  if (underlay) {
-    const ShaderProgram& cp = *s.composite_program;
-    const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
-    cp.set("u_sigma_t", static_cast<float>(fog.extinction_per_m));
-    cp.set("u_sigma_s", static_cast<float>(fog.scattering_per_m()));
-    cp.set("u_phase_kind", phase_code(fog.phase.kind));
-    cp.set("u_phase_g", static_cast<float>(fog.phase.g));
-    s.lights_ubo.update(scene ? lights_block(*scene) : no_lights_block());
-    s.lights_ubo.bind(contract::BLOCK_LIGHTS);
-    const auto& tables = scene && scene->sky ? scene->sky->atmosphere : nullptr;
-    if (tables) {
-      if (!s.aerial || s.aerial->tables != tables) s.aerial = upload_atmosphere(tables);
-      bind_aerial_perspective(cp, *s.aerial);
-    } else {
-      cp.set("u_aerial_on", 0);
-    }
-    timer.time(kComposite, [&] {
-      glBindFramebuffer(GL_FRAMEBUFFER, s.out_fbo.id());
-      glViewport(0, 0, w, h);
-      glBindTextureUnit(contract::UNIT_SCENE_COLOR, underlay->color_texture);
-      glBindTextureUnit(contract::UNIT_CLOUD_COLOR, s.eye_color.id());
-      glBindTextureUnit(contract::UNIT_CLOUD_DISTANCE, s.eye_distance.id());
-      glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, underlay->distance_texture);
-      cp.use();
-      draw_fullscreen_triangle(s.empty_vao);
-    });
-    check_gl("cloud composite");
-    img = read_rgba(s.out_fbo, w, h);
-  } else {
-    img = read_rgba(s.eye_fbo, w, h);
-  }
+  Image img = underlay ? s.composite(*underlay, timer, w, h) : read_rgba(s.eye_fbo, w, h);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-
   try {
     check_image(img, "cloud slices");
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
   }
-  if (scene) {
-    describe_frame(img, *scene, camera, "cloud-slices");
-  } else {
-    img.metadata["method"] = "cloud-slices";
-    img.metadata["camera"] = describe_camera(camera);
-  }
-  std::vector<CloudLight> drawn_lights;
-  for (const int i : order) drawn_lights.push_back(all_lights[i]);
-  describe_clouds(img, s.clouds, drawn_lights);
-  if (order.size() < all_lights.size()) {
-    std::vector<CloudLight> left;
-    for (std::size_t i = 0; i < all_lights.size(); ++i)
-      if (std::find(order.begin(), order.end(), static_cast<int>(i)) == order.end()) left.push_back(all_lights[i]);
-    img.metadata["lights_left_out"] = describe_lights(left);
-  }
-  describe_slices(img, settings);
-  std::ostringstream ax;
-  ax.precision(9);
-  ax << fmt3(first_axis.axis) << ", " << (first_axis.front_to_back ? "front-to-back (under)" : "back-to-front (over)")
-     << ", half angle " << first_axis.half_angle_rad << " rad";
-  if (!axes_text.empty()) ax << "; " << axes_text;
-  img.metadata["slice_axis"] = ax.str();
-  if (stats) {
-    CloudFrameStats st;
-    timer.finish();
-    st.light_ms = timer.ms(kLight);
-    st.slices_ms = timer.ms(kEye);
-    st.composite_ms = timer.ms(kComposite);
-    st.total_ms = timer.total_ms();
-    st.timing = timer.method() + " per pass";
-    st.slices_drawn = drawn;
-    st.front_to_back = first_axis.front_to_back;
-    st.half_angle_rad = first_axis.half_angle_rad;
-    st.light_passes = static_cast<int>(order.size());
-    *stats = st;
-  }
+  describe_slice_frame(img, s.clouds, all_lights, order, settings, camera, underlay ? underlay->scene : nullptr,
+                       first_axis, lamp_notes);
+  if (stats) *stats = frame_stats(timer, drawn, first_axis, order.size());
   return img;
 }
 

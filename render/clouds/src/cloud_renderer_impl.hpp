@@ -1,0 +1,93 @@
+// The half-angle slice renderer's state (cloud_renderer.hpp): the clouds' textures and hulls, the
+// compiled programs, the uniform blocks and the light, eye and pass buffers. Private to
+// render/clouds/src/cloud_*.cpp.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <tuple>
+#include <vector>
+
+#include "cloud_slice_geometry.hpp"
+#include "nimbus/render/clouds/cloud_renderer.hpp"
+#include "nimbus/render/gl/atmosphere_textures.hpp"
+#include "nimbus/render/gl/gpu_timer.hpp"
+#include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/shader_program.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
+
+namespace nimbus::render {
+namespace cloud_detail {
+
+constexpr int kJitterTile = 64;        // blue-noise tile side, pixels (power of two)
+constexpr std::uint32_t kJitterSeed = 5;
+
+// The frame's passes as GpuTimer slots.
+enum Pass { kLight = 0, kEye, kComposite, kPassCount };
+
+// Where set_clouds put a cloud; set_motion moves it from here.
+struct Placement {
+  glm::dmat4 index_to_world{1.0};
+  openvdb::math::Transform::Ptr transform;
+  glm::dvec3 world_min{0.0}, world_max{0.0};
+  glm::dmat4 world_to_texture{1.0};
+  ConvexHull hull;
+  std::vector<glm::dvec3> hull_vertices;
+};
+
+}  // namespace cloud_detail
+
+struct CloudRenderer::Impl {
+  std::vector<CloudVolume> clouds;         // as drawn (moved)
+  std::vector<VolumeTexture> textures;
+  std::vector<std::optional<VolumeTexture>> next_textures;  // the next keyframe, if any
+  std::vector<cloud_detail::Placement> placements;
+  std::vector<cloud_detail::ConvexHull> hulls;           // where each cloud's density can be non-zero
+  std::vector<glm::dvec3> hull_points;     // all their vertices
+  ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 0\n"};
+  ShaderProgram lamp_light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 1\n"};
+  ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
+  std::optional<ShaderProgram> accumulate_program;  // the second light's pass on
+  std::map<std::tuple<bool, int, bool, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, light volume, lamp)
+  std::optional<ShaderProgram> composite_program;
+  std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
+  UniformBuffer<CameraBlock> camera_ubo;
+  UniformBuffer<LightsBlock> lights_ubo;
+  UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
+  GlVertexArray empty_vao, mesh_vao;
+  GlBuffer mesh_buffer;
+  std::size_t mesh_capacity = 0;  // vertices
+  GlTexture jitter;
+
+  int light_res = 0;
+  GlTexture light_tex[2];
+  GlFramebuffer light_fbo[2];
+
+  int eye_w = 0, eye_h = 0;
+  bool eye_has_distance = false;
+  GlTexture eye_color, eye_distance, out_color;
+  GlFramebuffer eye_fbo, out_fbo;
+  // The second light's pass on draws here, then adds its radiance into eye_color.
+  int pass_w = 0, pass_h = 0;
+  GlTexture pass_color, pass_distance;
+  GlFramebuffer pass_fbo;
+
+  // The light volume (set_light_volume): fluence, flux and second moment side by side along x.
+  GlTexture light_volume_tex;
+  glm::dvec3 lv_world_min{0.0};
+  glm::dvec3 lv_cell_m{0.0};
+  glm::dvec3 lv_light_dir{0.0, -1.0, 0.0};
+  glm::ivec3 lv_cells{0};
+
+  const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume, bool lamp);
+  void upload_mesh(const cloud_detail::SliceMesh& mesh);
+  void ensure_light_buffers(int res);
+  void ensure_eye_buffers(int w, int h, bool distance);
+  void ensure_pass_buffers(int w, int h);
+  // Buffers and programs for a frame of w x h with `passes` lights (and an underlay or not).
+  void prepare_frame(int w, int h, const CloudSliceSettings& settings, std::size_t passes, bool underlay);
+  // The clouds (and the fog in front of them) over the underlay's scene, read back.
+  Image composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h);
+};
+
+}  // namespace nimbus::render

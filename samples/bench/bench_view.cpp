@@ -83,7 +83,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
   v.state().speed = path == Path::Orbit ? 10.0 : 30.0;
   const auto k0 = v.keyframes().stats();
   const auto volume_stats = [&v] {
-    return v.light_volumes() ? v.light_volumes()->stats() : render::KeyframeLightVolumes::Stats{};
+    return v.light_volumes() ? v.light_volumes()->stats() : render::KeyframeWorkerStats{};
   };
   const auto l0 = volume_stats();
   double clock = 0.0;          // real seconds the viewer has seen
@@ -96,7 +96,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     if (path == Path::Orbit) v.drag(0, 6.0, 0.0);  // 1.8 degrees a frame around the target
     v.advance(dt);
     const bool busy = v.keyframes().stats().busy;
-    const int64_t made = v.keyframes().stats().keyframes_made;
+    const int64_t made = v.keyframes().stats().made;
     v.draw(w, h, clock);
     const viewer::FrameReport& rep = v.report();
     r.ms.push_back(rep.cpu_ms);
@@ -104,7 +104,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     r.held += rep.info.waited;
     r.stale += rep.info.multiple == "light volume (stale)";
     r.stand_in += v.state().multiple_method == "light-volume" && rep.info.multiple == "octaves";
-    if (busy || v.keyframes().stats().keyframes_made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
+    if (busy || v.keyframes().stats().made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
     if (adaptive && error_every > 0 && f % error_every == 0) {
       // Outside the clock: the viewer does not see the time this takes.
       const render::Image full = v.full_quality_frame(w, h);
@@ -113,10 +113,10 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     }
   }
   const auto k1 = v.keyframes().stats();
-  r.keyframes = k1.keyframes_made - k0.keyframes_made;
+  r.keyframes = k1.made - k0.made;
   r.keyframe_s = k1.seconds_total - k0.seconds_total;
   const auto l1 = volume_stats();
-  r.volumes = l1.volumes_made - l0.volumes_made;
+  r.volumes = l1.made - l0.made;
   r.volume_s = l1.seconds_total - l0.seconds_total;
   return r;
 }

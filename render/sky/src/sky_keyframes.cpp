@@ -26,7 +26,7 @@ namespace {
 // nimbus's volumes are z-up, its renderer y-up: (x, y, z) -> (x, z, -y) (volume/up_axis.hpp).
 glm::dvec3 z_up_to_y_up(const glm::dvec3& v) { return {v.x, v.z, -v.y}; }
 
-constexpr int kKeep = 6;  // keyframes held at most (two for the frame, the rest ahead or behind)
+constexpr std::size_t kKeep = 6;  // keyframes held at most (two for the frame, the rest ahead or behind)
 
 }  // namespace
 
@@ -57,7 +57,8 @@ void check_sky_cloud_files(const volume::Sky& sky) {
   }
 }
 
-SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(std::move(sky)), optics_(optics) {
+SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics)
+    : sky_(std::move(sky)), optics_(optics), worker_("sky keyframe", [this](int64_t k, KeyframeWorkerNoContext) { return make(k); }) {
   volume::validate(sky_);
   validate(optics_);
   interval_s_ = sky_.keyframe_interval_s;
@@ -98,18 +99,9 @@ SkyKeyframes::SkyKeyframes(volume::Sky sky, const CloudOptics& optics) : sky_(st
   }
   // Held at once, at worst: kKeep keyframes of every preset's bounds, plus a pair's two copies.
   ensure_fits_in_memory(voxels * (kKeep + 2), sizeof(float), "the sky's keyframes");
-  worker_ = std::thread([this] { run(); });
 }
 
-SkyKeyframes::~SkyKeyframes() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  stopping_ = true;
-  wake_.notify_all();
-  worker_.join();
-}
+SkyKeyframes::~SkyKeyframes() = default;
 
 int64_t SkyKeyframes::keyframe_at(double t) const {
   return static_cast<int64_t>(std::floor(t / interval_s_));
@@ -122,52 +114,16 @@ double SkyKeyframes::blend_at(double t) const {
 }
 
 void SkyKeyframes::request(int64_t k, int direction) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const int64_t d = direction < 0 ? -1 : 1;
-    wanted_ = {k, k + 1, d > 0 ? k + 2 : k - 1, d > 0 ? k + 3 : k - 2};
-    // Drop what is far from the frame, keeping the nearest kKeep.
-    while (static_cast<int>(frames_.size()) > kKeep) {
-      auto far = frames_.begin();
-      int64_t worst = -1;
-      for (auto it = frames_.begin(); it != frames_.end(); ++it) {
-        const int64_t dist = std::abs(it->first - k - (d > 0 ? 1 : 0));
-        if (dist > worst) {
-          worst = dist;
-          far = it;
-        }
-      }
-      frames_.erase(far);
-    }
-  }
-  wake_.notify_all();
+  // Held: the kKeep nearest the pair drawn (its later keyframe going forward, its first going back).
+  const bool forward = direction >= 0;
+  worker_.want({}, {k, k + 1, forward ? k + 2 : k - 1, forward ? k + 3 : k - 2}, 2 * (k + (forward ? 1 : 0)), kKeep);
 }
 
-bool SkyKeyframes::ready(int64_t k) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return frames_.count(k) > 0;
-}
+bool SkyKeyframes::ready(int64_t k) const { return worker_.get({}, k) != nullptr; }
 
-void SkyKeyframes::wait(int64_t k) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  if (frames_.count(k)) return;
-  bool listed = false;
-  for (int64_t w : wanted_) listed = listed || w == k;
-  if (!listed) wanted_.insert(wanted_.begin(), k);
-  wake_.notify_all();
-  made_.wait(lock, [&] { return frames_.count(k) > 0 || !error_.empty(); });
-  if (!error_.empty()) throw std::runtime_error(error_);
-}
+void SkyKeyframes::wait(int64_t k) { worker_.wait({}, k); }
 
-std::string SkyKeyframes::error() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return error_;
-}
-
-SkyKeyframes::Stats SkyKeyframes::stats() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return stats_;
-}
+std::string SkyKeyframes::error() const { return worker_.error(); }
 
 SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
   Keyframe grids;
@@ -175,7 +131,7 @@ SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
   opt.voxel_size = sky_.voxel_size_m;
   opt.time = static_cast<double>(k) * interval_s_;
   for (const CloudSlot& s : slots_) {
-    if (stopping_) throw std::runtime_error("stopped");
+    if (worker_.stopping()) throw std::runtime_error("stopped");
     if (s.path.empty()) {
       grids.push_back(volume::rotate_z_up_to_y_up(*volume::generate_density(s.params, opt)));
     } else if (s.frames.empty()) {
@@ -195,59 +151,10 @@ SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
   return grids;
 }
 
-void SkyKeyframes::run() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  while (true) {
-    int64_t next = 0;
-    bool found = false;
-    wake_.wait(lock, [&] {
-      if (stop_ || !error_.empty()) return true;
-      for (int64_t w : wanted_) {
-        if (!frames_.count(w)) {
-          next = w;
-          found = true;
-          return true;
-        }
-      }
-      return false;
-    });
-    if (stop_ || !error_.empty()) return;
-    if (!found) continue;
-    stats_.busy = true;
-    lock.unlock();
-    const auto start = std::chrono::steady_clock::now();
-    std::shared_ptr<const Keyframe> made;
-    std::string failure;
-    try {
-      made = std::make_shared<const Keyframe>(make(next));
-    } catch (const std::exception& e) {
-      failure = "sky keyframe " + std::to_string(next) + ": " + e.what();
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    lock.lock();
-    stats_.busy = false;
-    if (made) {
-      frames_[next] = made;
-      ++stats_.keyframes_made;
-      stats_.seconds_total += seconds;
-      stats_.seconds_last = seconds;
-    } else if (!stop_) {
-      error_ = failure;
-    }
-    made_.notify_all();
-  }
-}
-
 std::vector<CloudVolume> SkyKeyframes::pair(int64_t k) const {
-  std::shared_ptr<const Keyframe> a, b;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto ia = frames_.find(k), ib = frames_.find(k + 1);
-    if (ia == frames_.end() || ib == frames_.end())
-      throw std::logic_error("sky keyframes " + std::to_string(k) + " and " + std::to_string(k + 1) + " are not both made");
-    a = ia->second;
-    b = ib->second;
-  }
+  const std::shared_ptr<const Keyframe> a = worker_.get({}, k), b = worker_.get({}, k + 1);
+  if (!a || !b)
+    throw std::logic_error("sky keyframes " + std::to_string(k) + " and " + std::to_string(k + 1) + " are not both made");
   std::vector<CloudVolume> clouds;
   for (std::size_t i = 0; i < slots_.size(); ++i) {
     const openvdb::FloatGrid& ga = *(*a)[i];

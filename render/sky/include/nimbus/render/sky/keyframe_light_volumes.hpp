@@ -5,19 +5,15 @@
 // the sky renderer shifts the volume). Every volume is for one light (KeyframeLight); asking under
 // a new one drops the old one's volumes, and a build under an old light is discarded when done.
 #pragma once
-#include <condition_variable>
 #include <cstdint>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/light_volume.hpp"
+#include "nimbus/render/sky/keyframe_worker.hpp"
 #include "nimbus/render/sky/sky_keyframes.hpp"
 
 namespace nimbus::render {
@@ -54,32 +50,15 @@ class KeyframeLightVolumes {
   // Blocks until it is made. Keyframes j and j + 1 must be made (std::logic_error otherwise);
   // rethrows the worker's error (std::runtime_error).
   std::shared_ptr<const LightVolume> wait(const KeyframeLight& light, int64_t j);
-  std::string error() const;
-
-  struct Stats {
-    int64_t volumes_made = 0;
-    double seconds_total = 0;  // building, all volumes
-    double seconds_last = 0;
-    bool busy = false;
-  };
-  Stats stats() const;
+  std::string error() const { return worker_.error(); }
+  // Volumes built (made), seconds building them, and whether one is being built.
+  KeyframeWorkerStats stats() const { return worker_.stats(); }
 
  private:
-  void run();
   bool buildable(int64_t j) const;  // its keyframe pair is made
-  bool use(const KeyframeLight& light);  // under mutex_: a new light drops the old volumes (true)
 
   std::shared_ptr<SkyKeyframes> keyframes_;
-  mutable std::mutex mutex_;
-  std::condition_variable wake_, made_;
-  KeyframeLight light_;
-  bool has_light_ = false;
-  std::map<int64_t, std::shared_ptr<const LightVolume>> volumes_;  // under light_
-  std::vector<int64_t> wanted_;
-  std::string error_;
-  Stats stats_;
-  bool stop_ = false;
-  std::thread worker_;
+  KeyframeWorker<LightVolume, KeyframeLight> worker_;  // last: its thread reads keyframes_
 };
 
 }  // namespace nimbus::render

@@ -6,15 +6,9 @@
 // (CloudVolume::next_box). The wind is not in the keyframes: it moves the density field as a
 // whole (CloudModel: q = p - wind t), which is a translation of the cloud by wind * t (motion()).
 #pragma once
-#include <atomic>
-#include <condition_variable>
 #include <cstdint>
-#include <exception>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -22,6 +16,7 @@
 #include "nimbus/base/sequence_pattern.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
+#include "nimbus/render/sky/keyframe_worker.hpp"
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {
@@ -67,13 +62,8 @@ class SkyKeyframes {
   // Each cloud's drift at sky time t (wind * t; the wind z-up, as in the sky file) and the blend.
   std::vector<CloudMotion> motion(double sky_time_s, const glm::dvec3& wind_m_s, double blend) const;
 
-  struct Stats {
-    int64_t keyframes_made = 0;
-    double seconds_total = 0;    // generating, all keyframes
-    double seconds_last = 0;     // the last keyframe (every cloud)
-    bool busy = false;           // making one now
-  };
-  Stats stats() const;
+  // Keyframes made, seconds generating them (the last: every cloud), and whether one is being made.
+  KeyframeWorkerStats stats() const { return worker_.stats(); }
 
  private:
   struct CloudSlot {
@@ -89,22 +79,15 @@ class SkyKeyframes {
     mutable openvdb::FloatGrid::ConstPtr file_grid;
   };
   using Keyframe = std::vector<openvdb::FloatGrid::ConstPtr>;
-  void run();
   Keyframe make(int64_t k) const;
 
   volume::Sky sky_;
   CloudOptics optics_;
   std::vector<CloudSlot> slots_;
-  mutable std::mutex mutex_;
-  std::condition_variable wake_, made_;
   double interval_s_ = 1.0;
-  std::map<int64_t, std::shared_ptr<const Keyframe>> frames_;
-  std::vector<int64_t> wanted_;
-  std::string error_;
-  Stats stats_;
-  bool stop_ = false;
-  std::atomic<bool> stopping_{false};  // read between clouds: a destructor waits one cloud at most
-  std::thread worker_;
+  // Last: its thread reads the members above. make() checks stopping() between clouds, so a
+  // destructor waits one cloud at most.
+  KeyframeWorker<Keyframe> worker_;
 };
 
 }  // namespace nimbus::render

@@ -6,6 +6,7 @@
 // slab along that ray is d / dot(l, s) with l the ray's direction; the part of a slice on the
 // lamp's near side (dot(x - lamp, s) <= 0) is not on the lamp's rays beyond it and adds nothing.
 #include "lib/cloud_block.glsl"
+#include "lib/cloud_light_block.glsl"
 #ifndef LAMP
 #define LAMP 0
 #endif
@@ -14,8 +15,6 @@ in vec3 v_tc;
 #if LAMP
 #include "lib/cloud_lamp.glsl"
 in vec3 v_world;
-uniform vec3 u_slice_axis;  // s, unit
-uniform float u_spacing_m;  // d
 #endif
 layout(location = 0) out vec4 o_tau;
 
@@ -23,9 +22,9 @@ void main() {
   float rho = cloud_density(v_tc);
 #if LAMP
   vec3 l = lamp_propagation(v_world);
-  float ls = dot(l, u_slice_axis);
-  if (dot(v_world - u_lamp_position, u_slice_axis) <= 0.0) discard;
-  o_tau = vec4(rho * cloud.sigma_t * u_spacing_m / max(ls, 1.0e-3), 0.0, 0.0, 0.0);
+  float ls = dot(l, slice_light.slice_axis);
+  if (dot(v_world - slice_light.lamp_position, slice_light.slice_axis) <= 0.0) discard;
+  o_tau = vec4(rho * cloud.sigma_t * slice_light.spacing_m / max(ls, 1.0e-3), 0.0, 0.0, 0.0);
 #else
   o_tau = vec4(rho * cloud.tau_per_density, 0.0, 0.0, 0.0);
 #endif

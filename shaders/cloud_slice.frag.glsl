@@ -15,12 +15,14 @@
 // single scattering at each sample.
 // LAMP 1: the light is a lamp (lib/cloud_lamp.glsl): per fragment its direction, its
 // irradiance (inverse square, spot cone) and the slab along its ray, d / dot(l, s); the light
-// buffer is its perspective view (u_world_to_light_clip). A sample on the lamp's near side of
+// buffer is its perspective view (slice_light.world_to_lamp_clip). A sample on the lamp's near side of
 // the slices (the lamp among them) reads no shadow from the buffer, only its own slab's.
-// The camera and the cloud (lib/camera_ray.glsl, lib/cloud_block.glsl) are uniform blocks.
+// The camera, the cloud and the pass's light (lib/camera_ray.glsl, lib/cloud_block.glsl,
+// lib/cloud_light_block.glsl) are uniform blocks.
 #include "lib/camera_ray.glsl"
 #include "lib/cloud_density.glsl"
 #include "lib/cloud_phase.glsl"
+#include "lib/cloud_light_block.glsl"
 #ifndef UNDERLAY
 #define UNDERLAY 0
 #endif
@@ -38,17 +40,10 @@
 #endif
 #if LAMP
 #include "lib/cloud_lamp.glsl"
-uniform mat4 u_world_to_light_clip;  // world -> the lamp's light-buffer clip coordinates
 #endif
 in vec3 v_world;
 in vec3 v_tc;
 in vec2 v_luv;
-uniform vec2 u_luv_eye;           // the eye's light-buffer coordinates
-uniform vec3 u_slice_axis;        // s, unit
-uniform float u_spacing_m;        // d, slice spacing along s
-uniform float u_light_slab_m;     // d / |dot(l, s)|: a slab's thickness along the light
-uniform vec3 u_light_dir;         // l, the light's propagation direction, unit
-uniform vec3 u_irradiance;        // E, W m^-2 per channel
 uniform vec3 u_octave_abc;        // occlusion a, contribution b, eccentricity c
 layout(binding = UNIT_LIGHT_BUFFER) uniform sampler2D u_light;  // R32F optical depth of the slices before this one
 layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // blue-noise tile (power-of-two side), values in (0, 1)
@@ -65,9 +60,9 @@ layout(location = 0) out vec4 o_color;
 void main() {
   vec3 q = v_world - camera.eye;
   float inv_len = inversesqrt(max(dot(q, q), 1.0e-30));
-  float qs = dot(q, u_slice_axis) * inv_len;  // dot(ray, s)
+  float qs = dot(q, slice_light.slice_axis) * inv_len;  // dot(ray, s)
   float cos_rs = max(abs(qs), 1.0e-3);
-  float dt = u_spacing_m / cos_rs;
+  float dt = slice_light.spacing_m / cos_rs;
   ivec2 px = ivec2(gl_FragCoord.xy);
   ivec2 tile = textureSize(u_jitter, 0);
   float noise = fract(texelFetch(u_jitter, (px + u_jitter_offset) & (tile - 1), 0).r + u_jitter_shift);
@@ -86,19 +81,19 @@ void main() {
   float k = offset * inv_len;
   float rho = cloud_density(v_tc + k * (v_tc - cloud.tc_eye));
   // Toward the light: the slices before this one, plus this slab up to the sample.
-  float own = clamp(0.5 + offset * qs / u_spacing_m, 0.0, 1.0);
+  float own = clamp(0.5 + offset * qs / slice_light.spacing_m, 0.0, 1.0);
 #if LAMP
   vec3 x = v_world + k * q;
   vec3 light_dir = lamp_propagation(x);
   vec3 irradiance = lamp_irradiance(x, light_dir);
-  vec4 lc = u_world_to_light_clip * vec4(x, 1.0);
-  bool beyond = dot(x - u_lamp_position, u_slice_axis) > 0.0 && lc.w > 0.0;
+  vec4 lc = slice_light.world_to_lamp_clip * vec4(x, 1.0);
+  bool beyond = dot(x - slice_light.lamp_position, slice_light.slice_axis) > 0.0 && lc.w > 0.0;
   float before = beyond ? texture(u_light, 0.5 + 0.5 * lc.xy / lc.w).r : 0.0;
-  float tau = before + own * cloud.sigma_t * rho * u_spacing_m / max(dot(light_dir, u_slice_axis), 1.0e-3);
+  float tau = before + own * cloud.sigma_t * rho * slice_light.spacing_m / max(dot(light_dir, slice_light.slice_axis), 1.0e-3);
 #else
-  vec3 light_dir = u_light_dir;
-  vec3 irradiance = u_irradiance;
-  float tau = texture(u_light, v_luv + k * (v_luv - u_luv_eye)).r + own * cloud.sigma_t * rho * u_light_slab_m;
+  vec3 light_dir = -slice_light.to_sun;  // l, the propagation direction
+  vec3 irradiance = slice_light.sun_irradiance;
+  float tau = texture(u_light, v_luv + k * (v_luv - slice_light.luv_eye)).r + own * cloud.sigma_t * rho * slice_light.light_slab_m;
 #endif
   float od = cloud.sigma_t * rho * slab;
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);

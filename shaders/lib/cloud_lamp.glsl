@@ -4,27 +4,23 @@
 #ifndef NIMBUS_CLOUD_LAMP_GLSL
 #define NIMBUS_CLOUD_LAMP_GLSL
 
-uniform vec3 u_lamp_position;      // metres
-uniform vec3 u_lamp_intensity;     // W/sr per channel
-uniform vec4 u_lamp_spot;          // unit axis (propagation), w = 1 for a spot, 0 for a lamp
-uniform vec2 u_lamp_cos;           // cos(outer), cos(inner) of the spot's cone
-uniform float u_lamp_min_distance; // metres, > 0
+#include "lib/cloud_light_block.glsl"  // the lamp: slice_light.lamp_*
 
 // The light's propagation direction at x (unit, from the lamp to x).
 vec3 lamp_propagation(vec3 x) {
-  vec3 d = x - u_lamp_position;
+  vec3 d = x - slice_light.lamp_position;
   return d * inversesqrt(max(dot(d, d), 1.0e-30));
 }
 
 // Unshadowed irradiance at x, given the propagation direction l there.
 vec3 lamp_irradiance(vec3 x, vec3 l) {
-  vec3 d = x - u_lamp_position;
-  float r2 = max(dot(d, d), u_lamp_min_distance * u_lamp_min_distance);
-  float c = dot(l, u_lamp_spot.xyz);
-  float span = u_lamp_cos.y - u_lamp_cos.x;
-  float t = span > 0.0 ? clamp((c - u_lamp_cos.x) / span, 0.0, 1.0) : (c >= u_lamp_cos.y ? 1.0 : 0.0);
-  float w = u_lamp_spot.w > 0.5 ? t * t * (3.0 - 2.0 * t) : 1.0;
-  return u_lamp_intensity * (w / r2);
+  vec3 d = x - slice_light.lamp_position;
+  float r2 = max(dot(d, d), slice_light.lamp_min_distance * slice_light.lamp_min_distance);
+  float c = dot(l, slice_light.lamp_spot.xyz);
+  float span = slice_light.lamp_cos.y - slice_light.lamp_cos.x;
+  float t = span > 0.0 ? clamp((c - slice_light.lamp_cos.x) / span, 0.0, 1.0) : (c >= slice_light.lamp_cos.y ? 1.0 : 0.0);
+  float w = slice_light.lamp_spot.w > 0.5 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  return slice_light.lamp_intensity * (w / r2);
 }
 
 #endif

@@ -76,5 +76,6 @@ const int STORAGE_SKIRT_COUNTER = 1;
 const int BLOCK_CAMERA = 0;            // CameraBlock (lib/camera_ray.glsl)
 const int BLOCK_LIGHTS = 1;            // LightsBlock (lib/light_list.glsl)
 const int BLOCK_CLOUD = 2;             // CloudBlock (lib/cloud_block.glsl), one range per cloud
+const int BLOCK_SLICE_LIGHT = 3;       // SliceLightBlock (lib/cloud_light_block.glsl): the slicer pass's light
 
 #endif

@@ -47,17 +47,28 @@ void plan_light_frame(LightPassPlan& p, const std::vector<glm::dvec3>& hull_poin
   p.note = a.str();
 }
 
-// The lamp's own uniforms, the same in the eye and the light program.
-void set_lamp_uniforms(const ShaderProgram& p, const CloudLight& light, const LightPassPlan& plan) {
-  p.set("u_lamp_position", to_float(light.position_m));
-  p.set("u_lamp_intensity", to_float(light.intensity_w_sr));
-  const bool spot = glm::length(light.spot_axis) > 0.0;
-  p.set("u_lamp_spot", glm::vec4(spot ? to_float(glm::normalize(light.spot_axis)) : glm::vec3(0.0f), spot ? 1.0f : 0.0f));
-  p.set("u_lamp_cos", glm::vec2(static_cast<float>(std::cos(light.spot_outer_rad)),
-                                static_cast<float>(std::cos(light.spot_inner_rad))));
-  p.set("u_lamp_min_distance", static_cast<float>(light.min_distance_m));
-  p.set("u_slice_axis", to_float(plan.axis.axis));
-  p.set("u_spacing_m", static_cast<float>(plan.planes.spacing_m));
+// The pass's light and slicing geometry as both slice programs read them (SliceLightBlock).
+SliceLightBlock slice_light_block(const FrameContext& frame, const CloudLight& light, const LightPassPlan& plan) {
+  SliceLightBlock b;
+  b.slice_axis = to_float(plan.axis.axis);
+  b.spacing_m = static_cast<float>(plan.planes.spacing_m);
+  if (plan.lamp) {
+    b.world_to_lamp_clip = to_float(plan.lamp_frame.world_to_clip);
+    b.lamp_position = to_float(light.position_m);
+    b.lamp_intensity = to_float(light.intensity_w_sr);
+    const bool spot = glm::length(light.spot_axis) > 0.0;
+    b.lamp_spot = glm::vec4(spot ? to_float(glm::normalize(light.spot_axis)) : glm::vec3(0.0f), spot ? 1.0f : 0.0f);
+    b.lamp_cos = glm::vec2(static_cast<float>(std::cos(light.spot_outer_rad)), static_cast<float>(std::cos(light.spot_inner_rad)));
+    b.lamp_min_distance = static_cast<float>(light.min_distance_m);
+  } else {
+    const LightFrame& lf = plan.light_frame;
+    b.world_to_light_uv = to_float(lf.world_to_uv);
+    b.light_slab_m = static_cast<float>(plan.light_slab_m);
+    b.to_sun = to_float(-plan.l);
+    b.sun_irradiance = to_float(light.irradiance_w_m2);
+    b.luv_eye = glm::vec2(lf.world_to_uv * glm::dvec4(frame.camera.eye, 1.0));
+  }
+  return b;
 }
 
 // This frame's jitter: the tile shifted along the R2 sequence, its values rotated by the golden
@@ -70,26 +81,14 @@ void set_jitter_uniforms(const ShaderProgram& eye, const CloudSliceSettings& set
   eye.set("u_jitter_on", settings.jitter ? 1.0f : 0.0f);
 }
 
-// Pass-constant uniforms of the eye and light programs: the slicing geometry and the light.
+// Pass-constant uniforms of the eye and light programs beside the light's block: the view, the
+// octaves, the light volume, the jitter and the fog.
 void set_pass_uniforms(const CloudRenderer::Impl& s, const FrameContext& frame, const ShaderProgram& eye,
-                       const ShaderProgram& lp, const CloudLight& light, const LightPassPlan& plan) {
+                       const ShaderProgram& lp, const LightPassPlan& plan) {
   const MultipleScattering& ms = frame.settings.multiple;
   eye.set("u_view_proj", frame.camera_block.view_proj);
-  eye.set("u_slice_axis", to_float(plan.axis.axis));
-  eye.set("u_spacing_m", static_cast<float>(plan.planes.spacing_m));
   eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                     static_cast<float>(ms.eccentricity)));
-  if (plan.lamp) {
-    for (const ShaderProgram* p : {&eye, &lp}) set_lamp_uniforms(*p, light, plan);
-    eye.set("u_world_to_light_clip", to_float(plan.lamp_frame.world_to_clip));
-  } else {
-    const LightFrame& lf = plan.light_frame;
-    eye.set("u_world_to_light", to_float(lf.world_to_uv));
-    eye.set("u_light_slab_m", static_cast<float>(plan.light_slab_m));
-    eye.set("u_light_dir", to_float(plan.l));
-    eye.set("u_irradiance", to_float(light.irradiance_w_m2));
-    eye.set("u_luv_eye", glm::vec2(lf.world_to_uv * glm::dvec4(frame.camera.eye, 1.0)));
-  }
   if (frame.light_volume) {
     eye.set("u_lv_world_min", to_float(s.lv_world_min));
     eye.set("u_lv_cell_m", to_float(s.lv_cell_m));
@@ -277,7 +276,9 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Clo
   const ShaderProgram& eye = s.eye_program(frame.underlay != nullptr, frame.light_volume ? 0 : settings.multiple.octaves,
                                            frame.light_volume, plan.lamp);
   const ShaderProgram& lp = plan.lamp ? s.lamp_light_program : s.light_program;
-  set_pass_uniforms(s, frame, eye, lp, light, plan);
+  s.slice_light_ubo.update(slice_light_block(frame, light, plan));
+  s.slice_light_ubo.bind(contract::BLOCK_SLICE_LIGHT);
+  set_pass_uniforms(s, frame, eye, lp, plan);
   if (settings.blur_cone_rad > 0.0) set_blur_uniforms(s.blur_program, plan, settings.blur_cone_rad);
   s.cloud_ubo.update(cloud_blocks(s, frame, plan, pass));
 

@@ -54,6 +54,7 @@ struct CloudRenderer::Impl {
   UniformBuffer<CameraBlock> camera_ubo;
   UniformBuffer<LightsBlock> lights_ubo;
   UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
+  UniformBuffer<SliceLightBlock> slice_light_ubo;  // the light of the pass being drawn
   GlVertexArray empty_vao, mesh_vao;
   GlBuffer mesh_buffer;
   std::size_t mesh_capacity = 0;  // vertices

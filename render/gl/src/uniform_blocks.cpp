@@ -41,6 +41,22 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CloudBlock.phase", offsetof(CloudBlock, phase)},
         {"CloudBlock.blend", offsetof(CloudBlock, blend)},
         {"CloudBlock.tc_eye", offsetof(CloudBlock, tc_eye)}}},
+      {"SliceLightBlock",
+       contract::BLOCK_SLICE_LIGHT,
+       sizeof(SliceLightBlock),
+       {{"SliceLightBlock.world_to_light_uv", offsetof(SliceLightBlock, world_to_light_uv)},
+        {"SliceLightBlock.world_to_lamp_clip", offsetof(SliceLightBlock, world_to_lamp_clip)},
+        {"SliceLightBlock.slice_axis", offsetof(SliceLightBlock, slice_axis)},
+        {"SliceLightBlock.spacing_m", offsetof(SliceLightBlock, spacing_m)},
+        {"SliceLightBlock.to_sun", offsetof(SliceLightBlock, to_sun)},
+        {"SliceLightBlock.light_slab_m", offsetof(SliceLightBlock, light_slab_m)},
+        {"SliceLightBlock.sun_irradiance", offsetof(SliceLightBlock, sun_irradiance)},
+        {"SliceLightBlock.lamp_min_distance", offsetof(SliceLightBlock, lamp_min_distance)},
+        {"SliceLightBlock.lamp_position", offsetof(SliceLightBlock, lamp_position)},
+        {"SliceLightBlock.lamp_intensity", offsetof(SliceLightBlock, lamp_intensity)},
+        {"SliceLightBlock.lamp_spot", offsetof(SliceLightBlock, lamp_spot)},
+        {"SliceLightBlock.luv_eye", offsetof(SliceLightBlock, luv_eye)},
+        {"SliceLightBlock.lamp_cos", offsetof(SliceLightBlock, lamp_cos)}}},
   };
 }
 

@@ -1,5 +1,5 @@
 // The shaders' uniform blocks as checked C++ structs (std140, shaders/lib/contract.glsl's
-// BLOCK_* bindings): the camera, the scene's lights and one cloud. Each struct's offsets are
+// BLOCK_* bindings): the camera, the scene's lights, one cloud and the slicer pass's light. Each struct's offsets are
 // static_asserted against the std140 rules here, and tests/gl/test_contract.cpp checks them
 // against the offsets the GL reports for every program that uses the block. Builders fill them
 // from the scene's double-precision values exactly as the shaders expect them.
@@ -74,6 +74,35 @@ static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock
               offsetof(CloudBlock, tau_per_density) == 92 && offsetof(CloudBlock, phase) == 96 && offsetof(CloudBlock, blend) == 108 &&
               offsetof(CloudBlock, tc_eye) == 112 && sizeof(CloudBlock) == 128,
               "CloudBlock must follow std140 as lib/cloud_block.glsl declares it");
+
+// lib/cloud_light_block.glsl: SliceLightBlock, the light of the slicer's current pass (the sun,
+// a lamp or a spot) with the pass's slicing geometry. The sun's direction points towards it, as
+// LightsBlock's sun_to does.
+struct SliceLightBlock {
+  glm::mat4 world_to_light_uv{1.0f};   // the sun: world -> its light buffer's (u, w)
+  glm::mat4 world_to_lamp_clip{1.0f};  // a lamp: world -> its light buffer's clip coordinates
+  glm::vec3 slice_axis{0.0f, 0.0f, 1.0f};  // s, unit
+  float spacing_m = 0.0f;                  // d
+  glm::vec3 to_sun{0.0f, 1.0f, 0.0f};      // the sun: unit, towards it
+  float light_slab_m = 0.0f;               // the sun: d / |dot(l, s)|
+  glm::vec3 sun_irradiance{0.0f};          // the sun: W m^-2 per channel
+  float lamp_min_distance = 0.0f;          // a lamp: metres
+  glm::vec3 lamp_position{0.0f};           // a lamp: metres
+  float pad0 = 0.0f;
+  glm::vec3 lamp_intensity{0.0f};          // a lamp: W/sr per channel
+  float pad1 = 0.0f;
+  glm::vec4 lamp_spot{0.0f};               // a lamp: unit axis, w = 1 for a spot
+  glm::vec2 luv_eye{0.0f};                 // the sun: the eye's light-buffer coordinates
+  glm::vec2 lamp_cos{0.0f};                // a spot: cos(outer), cos(inner)
+};
+static_assert(offsetof(SliceLightBlock, world_to_light_uv) == 0 && offsetof(SliceLightBlock, world_to_lamp_clip) == 64 &&
+              offsetof(SliceLightBlock, slice_axis) == 128 && offsetof(SliceLightBlock, spacing_m) == 140 &&
+              offsetof(SliceLightBlock, to_sun) == 144 && offsetof(SliceLightBlock, light_slab_m) == 156 &&
+              offsetof(SliceLightBlock, sun_irradiance) == 160 && offsetof(SliceLightBlock, lamp_min_distance) == 172 &&
+              offsetof(SliceLightBlock, lamp_position) == 176 && offsetof(SliceLightBlock, lamp_intensity) == 192 &&
+              offsetof(SliceLightBlock, lamp_spot) == 208 && offsetof(SliceLightBlock, luv_eye) == 224 &&
+              offsetof(SliceLightBlock, lamp_cos) == 232 && sizeof(SliceLightBlock) == 240,
+              "SliceLightBlock must follow std140 as lib/cloud_light_block.glsl declares it");
 
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).

@@ -39,7 +39,7 @@ void main() {
     air += (A * lights.point_intensity[i].rgb) *
            point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, 0.0, D, u_phase_kind, u_phase_g);
   }
-  float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun_to, -dir));
+  float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir));
   air += lights.sun_irradiance * (sun * max(weighted.g, 0.0));
   vec3 clouds = cloud.rgb;
   if (u_aerial_on != 0) {

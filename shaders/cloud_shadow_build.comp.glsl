@@ -10,8 +10,8 @@ layout(rg32f, binding = IMAGE_CLOUD_RANGE) uniform image2D u_range;
 uniform vec3 u_origin;             // world point of the map's corner (texel 0, 0) on its plane
 uniform vec3 u_axis_x;             // map width vector, metres
 uniform vec3 u_axis_y;             // map height vector, metres
-uniform vec3 u_dir;                // light propagation direction (unit)
-uniform float u_depth0;            // march from this depth (metres along u_dir from the plane)
+uniform vec3 u_to_sun;             // unit, towards the sun (light propagates along -u_to_sun)
+uniform float u_depth0;            // march from this depth (metres along the light from the plane)
 uniform float u_step;              // metres
 uniform int u_steps;
 uniform int u_res;
@@ -27,8 +27,9 @@ void main() {
   float first = 3.0e38, last = -3.0e38;
   // Only the steps whose midpoints can lie inside the support box: the rest sample zero. Most
   // texels of the map miss a given cloud entirely and march nothing.
-  vec3 d = vec3(abs(u_dir.x) > 1.0e-9 ? u_dir.x : 1.0e-9, abs(u_dir.y) > 1.0e-9 ? u_dir.y : 1.0e-9,
-                abs(u_dir.z) > 1.0e-9 ? u_dir.z : 1.0e-9);  // an axis-parallel sun: no 0 * inf
+  vec3 dir = -u_to_sun;  // the light's propagation direction
+  vec3 d = vec3(abs(dir.x) > 1.0e-9 ? dir.x : 1.0e-9, abs(dir.y) > 1.0e-9 ? dir.y : 1.0e-9,
+                abs(dir.z) > 1.0e-9 ? dir.z : 1.0e-9);  // an axis-parallel sun: no 0 * inf
   vec3 inv = 1.0 / d;
   vec3 ta = (u_box_min - p0) * inv, tb = (u_box_max - p0) * inv;
   float t0 = max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z));
@@ -38,7 +39,7 @@ void main() {
   if (!(t1 >= t0)) k1 = k0;
   for (int k = k0; k < k1; ++k) {
     float depth = u_depth0 + (float(k) + 0.5) * u_step;  // midpoint rule
-    vec3 tc = (cloud.world_to_texture * vec4(p0 + depth * u_dir, 1.0)).xyz;
+    vec3 tc = (cloud.world_to_texture * vec4(p0 + depth * dir, 1.0)).xyz;
     float rho = cloud_density(tc);
     tau += cloud.sigma_t * rho * u_step;
     bool matter = rho > 0.0;

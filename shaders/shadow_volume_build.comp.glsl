@@ -16,7 +16,7 @@ layout(binding = UNIT_SUN_SHADOW) uniform sampler2D u_map;
 uniform vec3 u_origin;       // light position, or the sun map's corner
 uniform vec3 u_axis_x;       // sun map width vector (metres)
 uniform vec3 u_axis_y;       // sun map height vector (metres)
-uniform vec3 u_dir;          // sun propagation direction (unit)
+uniform vec3 u_to_sun;       // unit, towards the sun (light propagates along -u_to_sun)
 uniform float u_rel_threshold;  // relative distance jump that makes a silhouette
 uniform float u_max_distance;   // skirts end here (metres): beyond it the airlight is negligible
 uniform uint u_max_quads;
@@ -74,7 +74,8 @@ void sun_skirt(vec2 p0, vec2 p1, float a, float b) {
   vec3 e2 = u_origin + u_axis_x * ((p1.x + along.x) / r) + u_axis_y * ((p1.y + along.y) / r);
   float n = min(min(a, b), u_max_distance), x = min(max(a, b), u_max_distance);
   if (x <= n) return;
-  emit(e1 + u_dir * n, e2 + u_dir * n, e2 + u_dir * x, e1 + u_dir * x);
+  vec3 l = -u_to_sun;  // the sun's propagation direction
+  emit(e1 + l * n, e2 + l * n, e2 + l * x, e1 + l * x);
 }
 
 void main() {

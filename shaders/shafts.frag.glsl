@@ -88,7 +88,7 @@ float march_sun(vec3 dir, float a, float b, int n, float jitter) {
     float x = a + (float(k) + jitter) * h;
     sum += sun_light_visibility(camera.eye + dir * x) * exp(-u_sigma_t * x);
   }
-  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun_to, -dir)) * sum * h;
+  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir)) * sum * h;
 }
 
 float closed_point(int i, vec3 dir, float x0, float x1) {
@@ -100,7 +100,7 @@ float closed_point(int i, vec3 dir, float x0, float x1) {
 }
 
 float closed_sun(vec3 dir, float x0, float x1) {
-  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.sun_to, -dir), x0, x1, u_phase_kind, u_phase_g);
+  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.to_sun, -dir), x0, x1, u_phase_kind, u_phase_g);
 }
 
 // The part [lo, hi] of [a, b] below the shadow ceiling (lo > hi: none). Above it the sun (above

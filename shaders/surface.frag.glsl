@@ -44,7 +44,7 @@ void main() {
       L += v_albedo / 3.14159265358979 * lights.point_intensity[i].rgb * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
-      float cos_s = max(dot(n, lights.sun_to), 0.0);
+      float cos_s = max(dot(n, lights.to_sun), 0.0);
       if (cos_s > 0.0)
         L += v_albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
     }

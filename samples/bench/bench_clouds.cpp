@@ -180,7 +180,7 @@ void vdb_render_row(const SunRows& r, const Lit& lit, const std::string& name) {
   VdbRenderRun v;
   for (int k = 0; k < a.repeat; ++k) {
     VdbRenderRun run = run_vdb_render(a.vdb_render, r.volume.vdb, r.volume.tmp / ("vdb_" + name + ".exr"), r.camera,
-                                      lit.light.direction_to_light, app::VdbRenderSettings{});
+                                      lit.light.direction_to_sun, app::VdbRenderSettings{});
     if (k == 0 || run.render_s < v.render_s) v = std::move(run);
   }
   const render::Image img = normalise_vdb(v.image);
@@ -227,8 +227,8 @@ void slicer_grid_rows(const SunRows& r, const Lit& lit, const std::string& name)
 Lit sun_rows(const SunRows& r, bool back) {
   const std::string name = back ? "back" : "front";
   Lit lit{back, bench_light(back), {}};
-  std::printf("\n## %s-lit: light towards (%.1f, %.1f, %.1f)\n\n", name.c_str(), lit.light.direction_to_light.x,
-              lit.light.direction_to_light.y, lit.light.direction_to_light.z);
+  std::printf("\n## %s-lit: light towards (%.1f, %.1f, %.1f)\n\n", name.c_str(), lit.light.direction_to_sun.x,
+              lit.light.direction_to_sun.y, lit.light.direction_to_sun.z);
   std::printf("| renderer | setting | GPU ms | wall ms | rel. RMSE | bias | alpha RMSE |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|\n");
   lit.reference = lit_reference(r, lit, name);

@@ -30,7 +30,7 @@ struct LampRows {
 
 // A lamp at distance d along the front- or back-lit direction, intensity d^2 W/sr.
 render::CloudLight lamp(bool back, double d) {
-  const glm::dvec3 dir = glm::normalize(app::bench_light(back).direction_to_light);
+  const glm::dvec3 dir = glm::normalize(app::bench_light(back).direction_to_sun);
   return render::point_light(d * dir, glm::dvec3(d * d));
 }
 

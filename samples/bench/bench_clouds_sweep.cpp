@@ -65,7 +65,7 @@ void sweep_rows(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const
   for (int k = 0; k < frames; ++k) {
     const double deg = 90.0 - a.sweep_half_deg + (k + 0.5) * a.sweep_step_deg;
     render::CloudLight light = app::bench_light(false);
-    light.direction_to_light = std::cos(deg * kPi / 180.0) * view + std::sin(deg * kPi / 180.0) * side;
+    light.direction_to_sun = std::cos(deg * kPi / 180.0) * view + std::sin(deg * kPi / 180.0) * side;
     render::CloudFrameStats st;
     images.push_back(renderer.render(camera, light, s, nullptr, &st));
     ftb.push_back(st.front_to_back);

@@ -235,7 +235,7 @@ LookCase look_case(const BenchLookArgs& a, const LookPlan& p, const Lighting& l,
   cam.height = p.h;
   cam.fov_deg = 44.8;
   c.camera = a.view == "below" ? view_from_below(cam, c.clouds) : render::frame_clouds(cam, c.clouds, false);
-  c.light.direction_to_light = l.to_sun;
+  c.light.direction_to_sun = l.to_sun;
   render::PathTracerSettings ps;
   ps.samples_per_pixel = a.ref_spp;
   c.reference = render::render_cloud_path_traced(c.clouds, c.camera, c.light, ps);

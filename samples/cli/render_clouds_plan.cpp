@@ -196,15 +196,15 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
   bool sun = false;
   if (!a.sun.empty()) {
     sun = true;
-    light.direction_to_light = parse_vec3("--sun", a.sun);
-    if (glm::length(light.direction_to_light) == 0.0) throw UsageError("--sun: the direction must not be zero");
+    light.direction_to_sun = parse_vec3("--sun", a.sun);
+    if (glm::length(light.direction_to_sun) == 0.0) throw UsageError("--sun: the direction must not be zero");
     if (!p.no_scene) {
       if (!scene.sun) scene.sun = render::SunLight{};
-      scene.sun->direction_to_sun = light.direction_to_light;
+      scene.sun->direction_to_sun = light.direction_to_sun;
       if (scene.sky && scene.sky->atmosphere) {
         // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
         try {
-          const render::Daylight d = render::daylight(light.direction_to_light, scene.sky->atmosphere->view.altitude_m);
+          const render::Daylight d = render::daylight(light.direction_to_sun, scene.sky->atmosphere->view.altitude_m);
           scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
           scene.sky = d.sky;
         } catch (const std::invalid_argument& e) {
@@ -215,7 +215,7 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
     }
   } else if (!p.no_scene && scene.sun) {
     sun = true;
-    light.direction_to_light = scene.sun->direction_to_sun;
+    light.direction_to_sun = scene.sun->direction_to_sun;
     light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
   } else if (!p.no_scene && scene.point_lights.empty() && p.lights.empty()) {
     throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene.name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");

@@ -3,7 +3,7 @@
 #include "lib/light_list.glsl"
 #include "lib/cloud_shadow.glsl"
 layout(binding = UNIT_POINT_SHADOW) uniform samplerCubeArray u_point_shadow;  // layer = light index, R32F distance
-layout(binding = UNIT_SUN_SHADOW) uniform sampler2D u_sun_shadow;  // R32F distance along -sun_to from the map's plane
+layout(binding = UNIT_SUN_SHADOW) uniform sampler2D u_sun_shadow;  // R32F distance along -to_sun from the map's plane
 uniform vec3 u_sun_origin;      // the map's corner (texel coords 0,0) on its plane
 uniform vec3 u_sun_axis_x;      // map width vector, metres
 uniform vec3 u_sun_axis_y;      // map height vector, metres
@@ -24,7 +24,7 @@ float sun_visibility(vec3 p) {
   vec2 st = vec2(dot(q, u_sun_axis_x) / dot(u_sun_axis_x, u_sun_axis_x),
                  dot(q, u_sun_axis_y) / dot(u_sun_axis_y, u_sun_axis_y));
   if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0)))) return 1.0;
-  float d = dot(q, -lights.sun_to);
+  float d = dot(q, -lights.to_sun);
   float stored = textureLod(u_sun_shadow, st, 0.0).r;
   return d <= stored + u_sun_shadow_bias ? 1.0 : 0.0;
 }

@@ -62,7 +62,7 @@ TEST(CloudPathTracer, OneBounceIsTheSingleScatteringReferenceWithinItsNoise) {
     const std::vector<CloudVolume> clouds = {ball(24, 1.0 / 24, 8.0, phase, 0.9)};
     const Camera cam = camera_at({0.4, 0.3, 2.5}, {0, 0, 0}, 32, 30.0);
     CloudLight light;
-    light.direction_to_light = glm::dvec3(0.5, 0.6, 0.8);
+    light.direction_to_sun = glm::dvec3(0.5, 0.6, 0.8);
     CloudReferenceSettings rs;
     rs.view_step_voxels = 0.1;
     rs.shadow_step_voxels = 0.1;
@@ -220,7 +220,7 @@ TEST(CloudPathTracer, SlabReflectionIsReciprocal) {
   auto reflected = [&](const glm::dvec3& to_eye, const glm::dvec3& to_sun) {
     const Camera cam = camera_at(centre + 30.0 * to_eye, centre, 1, 0.01);
     CloudLight light;
-    light.direction_to_light = to_sun;
+    light.direction_to_sun = to_sun;
     light.irradiance_w_m2 = glm::dvec3(1.0);
     PathTracerSettings ps;
     ps.samples_per_pixel = 60000;

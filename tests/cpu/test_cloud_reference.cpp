@@ -185,7 +185,7 @@ TEST(CloudReference, SlabSingleScatteringMatchesClosedForm) {
     for (const double zenith_deg : {0.0, 45.0}) {
       const double mu = std::cos(zenith_deg * kPi / 180.0);
       nr::CloudLight sun;
-      sun.direction_to_light = {std::sin(zenith_deg * kPi / 180.0), mu, 0.0};
+      sun.direction_to_sun = {std::sin(zenith_deg * kPi / 180.0), mu, 0.0};
       sun.irradiance_w_m2 = {2.0, 3.0, 4.0};
       const double k = 1.0 + 1.0 / mu;
       const double factor = albedo * hg(g, -mu) * (1.0 - std::exp(-tau * k)) / k;
@@ -212,7 +212,7 @@ TEST(CloudReference, ImageConvergesWhenStepsHalve) {
   cam.fov_deg = 40;
   cam.width = cam.height = 24;
   nr::CloudLight sun;
-  sun.direction_to_light = {0.6, 0.8, 0.3};
+  sun.direction_to_sun = {0.6, 0.8, 0.3};
   std::vector<nr::Image> images;
   for (const double h : {1.0, 0.5, 0.25, 0.125})
     images.push_back(nr::render_cloud_reference(clouds, cam, sun, steps(h, 2 * h)));
@@ -251,13 +251,13 @@ TEST(CloudReference, LightTransmittanceOutsideShadowAndThroughBox) {
   const float rho = 0.8f;
   const std::vector<nr::CloudVolume> clouds = {box_cloud(4, 6, 4, rho, voxel, {0, 0, 0}, grey(sigma, 0.9))};
   nr::CloudLight sun;
-  sun.direction_to_light = {0, 2, 0};  // normalised on use
+  sun.direction_to_sun = {0, 2, 0};  // normalised on use
   const glm::dvec3 below = voxel * glm::dvec3(1.0, -10.0, 2.0);
   EXPECT_NEAR(nr::cloud_light_transmittance(clouds, sun, below), std::exp(-sigma * rho * 6 * voxel), 1e-12);
   EXPECT_EQ(nr::cloud_light_transmittance(clouds, sun, voxel * glm::dvec3(1.0, 10.0, 2.0)), 1.0);   // above
   EXPECT_EQ(nr::cloud_light_transmittance(clouds, sun, voxel * glm::dvec3(10.0, -10.0, 2.0)), 1.0);  // beside
   EXPECT_EQ(nr::cloud_light_transmittance({}, sun, below), 1.0);
-  sun.direction_to_light = {1, 0, 0};  // the same box, the light now to the side
+  sun.direction_to_sun = {1, 0, 0};  // the same box, the light now to the side
   EXPECT_EQ(nr::cloud_light_transmittance(clouds, sun, below), 1.0);
   EXPECT_NEAR(nr::cloud_light_transmittance(clouds, sun, voxel * glm::dvec3(-5.0, 2.0, 1.0)),
               std::exp(-sigma * rho * 4 * voxel), 1e-12);
@@ -483,8 +483,8 @@ TEST(CloudReference, BadInputRejected) {
   expect_invalid([&] { nr::render_cloud_reference({}, cam, nr::CloudLight{}); }, "clouds");
   expect_invalid([&] { nr::cloud_reference_ray(clouds, nr::CloudLight{}, cam.eye, {0, 0, 0}); }, "dir");
   nr::CloudLight no_light;
-  no_light.direction_to_light = {0, 0, 0};
-  expect_invalid([&] { nr::render_cloud_reference(clouds, cam, no_light); }, "direction_to_light");
+  no_light.direction_to_sun = {0, 0, 0};
+  expect_invalid([&] { nr::render_cloud_reference(clouds, cam, no_light); }, "direction_to_sun");
   nr::Camera bad_cam = cam;
   bad_cam.width = 0;
   expect_invalid([&] { nr::render_cloud_reference(clouds, bad_cam, nr::CloudLight{}); }, "width");

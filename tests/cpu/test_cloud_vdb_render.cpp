@@ -76,7 +76,7 @@ TEST(CloudVdbRender, ReferenceMatchesVdbRender) {
   const std::vector<nr::CloudVolume> clouds = {
       nr::make_cloud_volume(*grid, nimbus::app::vdb_render_optics(vr, voxel), "sphere")};
   nr::CloudLight light;
-  light.direction_to_light = to_light;
+  light.direction_to_sun = to_light;
   light.irradiance_w_m2 = glm::dvec3(1.0);
   nr::CloudReferenceSettings settings;
   settings.view_step_voxels = 0.25;

@@ -64,7 +64,7 @@ LayerFluence central_layer(const LightVolume& v, int j) {
 
 CloudLight overhead_sun() {
   CloudLight l;
-  l.direction_to_light = glm::dvec3(0.0, 1.0, 0.0);  // the beam travels down, -y, at mu0 = 1
+  l.direction_to_sun = glm::dvec3(0.0, 1.0, 0.0);  // the beam travels down, -y, at mu0 = 1
   l.irradiance_w_m2 = glm::dvec3(1.0);
   return l;
 }

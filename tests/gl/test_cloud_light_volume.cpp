@@ -66,7 +66,7 @@ CloudSliceSettings settings(bool light_volume) {
 
 CloudLight side_sun() {
   CloudLight l;
-  l.direction_to_light = glm::dvec3(0.6, 0.7, 0.3);
+  l.direction_to_sun = glm::dvec3(0.6, 0.7, 0.3);
   l.irradiance_w_m2 = glm::dvec3(2.0);
   return l;
 }
@@ -158,7 +158,7 @@ TEST(CloudLightVolume, FrameRendererBuildsOnceAndAgainOnlyForANewSunDirection) {
   EXPECT_FALSE(st.light_volume_rebuilt);
   for (std::size_t i = 0; i < first.rgba.size(); i += 4) EXPECT_NEAR(twice.rgba[i], 2.0f * first.rgba[i], 1e-5f + 1e-5f * first.rgba[i]);
   CloudLight moved = brighter;
-  moved.direction_to_light = glm::dvec3(-0.6, 0.7, 0.3);
+  moved.direction_to_sun = glm::dvec3(-0.6, 0.7, 0.3);
   frame.set_light(moved);
   frame.render(cam, &st);
   EXPECT_TRUE(st.light_volume_rebuilt);

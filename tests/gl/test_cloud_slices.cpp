@@ -38,7 +38,7 @@ TEST_P(HomogeneousBox, AlphaIsClosedFormTransmittance) {
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(p.sigma_per_m))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 64, 20.0);
   CloudLight light;
-  light.direction_to_light = p.to_light;
+  light.direction_to_sun = p.to_light;
   CloudSliceSettings s;
   s.slices = 64;
   s.light_res = 64;
@@ -165,7 +165,7 @@ TEST(CloudSlices, BlurConservesAUniformLightField) {
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(3.0))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 24.0);
   CloudLight light;
-  light.direction_to_light = {0.0, 0.0, 1.0};  // along the box's z axis, from the camera's side
+  light.direction_to_sun = {0.0, 0.0, 1.0};  // along the box's z axis, from the camera's side
   CloudSliceSettings s;
   s.slices = 64;
   s.light_res = 128;
@@ -200,7 +200,7 @@ TEST(CloudSlices, ReportsTheSlicingAxisAndOrder) {
   s.light_res = 32;
   CloudFrameStats st;
   CloudLight light;
-  light.direction_to_light = {0.0, 0.0, 1.0};  // behind the camera: propagation along the view
+  light.direction_to_sun = {0.0, 0.0, 1.0};  // behind the camera: propagation along the view
   Image img = r.render(cam, light, s, nullptr, &st);
   EXPECT_TRUE(st.front_to_back);
   EXPECT_NEAR(st.half_angle_rad, 0.0, 1e-9);
@@ -210,11 +210,11 @@ TEST(CloudSlices, ReportsTheSlicingAxisAndOrder) {
   EXPECT_FALSE(st.timing.empty());
   EXPECT_EQ(img.metadata.at("method"), "cloud-slices");
   EXPECT_NE(img.metadata.at("slices").find("40 slices"), std::string::npos);
-  light.direction_to_light = {1.0, 0.0, 0.0};  // exactly 90 degrees: the switch, 45 degrees each
+  light.direction_to_sun = {1.0, 0.0, 0.0};  // exactly 90 degrees: the switch, 45 degrees each
   r.render(cam, light, s, nullptr, &st);
   EXPECT_TRUE(st.front_to_back);
   EXPECT_NEAR(st.half_angle_rad, M_PI / 4, 1e-9);
-  light.direction_to_light = {0.0, 0.6, -0.8};  // behind the cloud
+  light.direction_to_sun = {0.0, 0.6, -0.8};  // behind the cloud
   r.render(cam, light, s, nullptr, &st);
   EXPECT_FALSE(st.front_to_back);
   s.branch = CloudSliceSettings::Branch::FrontToBack;
@@ -243,7 +243,7 @@ TEST_P(HardCases, NoNanOrInf) {
   const auto density = [&](int i, int j, int k) { return p.empty ? 0.0f : lumpy_ball(i, j, k); };
   CloudRenderer r({cube_cloud(kN, kVoxel, density, o)});
   CloudLight light;
-  light.direction_to_light = p.to_light;
+  light.direction_to_sun = p.to_light;
   CloudSliceSettings s;
   s.slices = 24;
   s.light_res = 32;

@@ -66,7 +66,7 @@ TEST(CloudSlicesUnderlay, SurfacesHideWhatIsBehindThemAndCloudsCoverTheScene) {
   CloudRenderer front_only({front}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.5}, 48, 24.0);
   CloudLight light;
-  light.direction_to_light = {0.2, 0.3, 1.0};
+  light.direction_to_sun = {0.2, 0.3, 1.0};
   CloudSliceSettings s;
   s.slices = 96;
   s.light_res = 128;
@@ -144,7 +144,7 @@ TEST(CloudSlicesUnderlay, FogAttenuatesTheCloudAndAddsItsAirlight) {
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(300.0))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 30.0);
   CloudLight light;
-  light.direction_to_light = {0.3, 0.8, 0.5};
+  light.direction_to_sun = {0.3, 0.8, 0.5};
   CloudSliceSettings s;
   s.slices = 96;
   s.light_res = 64;
@@ -160,7 +160,7 @@ TEST(CloudSlicesUnderlay, FogAttenuatesTheCloudAndAddsItsAirlight) {
   const Image clouds = r.render(cam, light, s);
   const double plateau = 0.5 * (kN - 1) * kVoxel, face = plateau + kVoxel;
   const double sigma = scene.medium.extinction_per_m, sigma_s = scene.medium.scattering_per_m();
-  const glm::dvec3 sun_to = glm::normalize(scene.sun->direction_to_sun);
+  const glm::dvec3 to_sun = glm::normalize(scene.sun->direction_to_sun);
   int checked = 0, clear = 0;
   double worst = 0.0;
   for (int y = 0; y < cam.height; ++y)
@@ -176,7 +176,7 @@ TEST(CloudSlicesUnderlay, FogAttenuatesTheCloudAndAddsItsAirlight) {
       const double t = (face - cam.eye.z) / d.z;  // to the support's front face
       const glm::dvec3 q = cam.eye + t * d;
       if (c[3] < 1.0f || std::abs(q.x) > plateau || std::abs(q.y) > plateau) continue;
-      const double sun = sigma_s * phase_value(fog_phase, glm::dot(sun_to, d)) * (1.0 - std::exp(-sigma * t)) / sigma;
+      const double sun = sigma_s * phase_value(fog_phase, glm::dot(to_sun, d)) * (1.0 - std::exp(-sigma * t)) / sigma;
       const glm::dvec3 to_lamp = lamp.position_m - cam.eye;
       SegmentQuery seg;
       seg.sigma_t = sigma;

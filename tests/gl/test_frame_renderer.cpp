@@ -46,7 +46,7 @@ Camera sky_camera() {
 
 CloudLight light_of(const Scene& scene) {
   CloudLight l;
-  l.direction_to_light = scene.sun->direction_to_sun;
+  l.direction_to_sun = scene.sun->direction_to_sun;
   l.irradiance_w_m2 = scene.sun->irradiance_w_m2;
   return l;
 }
@@ -103,7 +103,7 @@ TEST(FrameRenderer, AloneItIsTheSlicerWithoutAnUnderlay) {
                                        grey_optics(6.0, 0.9));
   const Camera cam = look_at_origin({0.4, 0.5, 2.5}, 40);
   CloudLight light;
-  light.direction_to_light = {0.5, 0.7, 0.4};
+  light.direction_to_sun = {0.5, 0.7, 0.4};
   FrameSettings settings = small_settings();
   FrameRenderer frame(std::nullopt, light, settings);
   frame.set_clouds({cloud});
@@ -140,17 +140,17 @@ TEST(FrameRenderer, TheSunLightsTheSceneAndMovingItChangesTheFrame) {
   Scene scene = make_scene("sky");
   scene.sun.reset();  // the frame gives the scene the clouds' sun
   CloudLight light;
-  light.direction_to_light = {0.4, 0.6, 0.3};
+  light.direction_to_sun = {0.4, 0.6, 0.3};
   light.irradiance_w_m2 = glm::dvec3(2.0);
   FrameRenderer frame(scene, light, small_settings());
   ASSERT_TRUE(frame.scene()->sun.has_value());
-  EXPECT_EQ(frame.scene()->sun->direction_to_sun, light.direction_to_light);
+  EXPECT_EQ(frame.scene()->sun->direction_to_sun, light.direction_to_sun);
   EXPECT_EQ(frame.scene()->sun->irradiance_w_m2, light.irradiance_w_m2);
   frame.set_clouds({sky_cloud()});
   const Image a = frame.render(sky_camera());
-  light.direction_to_light = {-0.5, 0.3, -0.2};
+  light.direction_to_sun = {-0.5, 0.3, -0.2};
   frame.set_light(light);
-  EXPECT_EQ(frame.scene()->sun->direction_to_sun, light.direction_to_light);
+  EXPECT_EQ(frame.scene()->sun->direction_to_sun, light.direction_to_sun);
   const Image b = frame.render(sky_camera());
   ASSERT_TRUE(all_finite(a) && all_finite(b));
   EXPECT_GT(rms_difference(a, b), 1e-4);
@@ -175,7 +175,7 @@ TEST(FrameRenderer, BadSettingsAndMissingCloudsAreRefused) {
   bad.slices.slices = 1;
   EXPECT_THROW(FrameRenderer(std::nullopt, light, bad), std::invalid_argument);
   CloudLight dark;
-  dark.direction_to_light = glm::dvec3(0.0);
+  dark.direction_to_sun = glm::dvec3(0.0);
   EXPECT_THROW(FrameRenderer(std::nullopt, dark, small_settings()), std::invalid_argument);
 
   FrameRenderer frame(std::nullopt, light, small_settings());

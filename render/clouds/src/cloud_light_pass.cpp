@@ -255,7 +255,7 @@ LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera
   // light's direction at the clouds' centre (Kniss et al. for local lights).
   p.l = p.lamp ? (glm::length(centre - light.position_m) > 0.0 ? glm::normalize(centre - light.position_m)
                                                                : glm::dvec3(0.0, -1.0, 0.0))
-               : -glm::normalize(light.direction_to_light);
+               : -glm::normalize(light.direction_to_sun);
   p.axis = choose_slice_axis(camera_frame(camera).forward, p.l, settings.branch);
   p.planes = slice_planes(s.hull_points, p.axis.axis, settings.slices);
   const double margin_m = settings.jitter ? jitter_margin_m(camera, p.axis, p.planes) : 0.0;

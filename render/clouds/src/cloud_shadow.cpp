@@ -52,7 +52,7 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
                                 std::to_string(clouds.size()) + " clouds");
   if (resolution < 16 || resolution > 8192)
     throw std::invalid_argument("cloud shadow map resolution must be in [16, 8192], got " + std::to_string(resolution));
-  const glm::dvec3 dir = -glm::normalize(light.direction_to_light);  // propagation
+  const glm::dvec3 dir = -glm::normalize(light.direction_to_sun);  // propagation
   glm::dvec3 u, v;
   basis(dir, u, v);
 
@@ -115,7 +115,7 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
   p.set("u_origin", to_float(origin));
   p.set("u_axis_x", to_float(axis_x));
   p.set("u_axis_y", to_float(axis_y));
-  p.set("u_dir", to_float(dir));
+  p.set("u_to_sun", to_float(-dir));
   p.set("u_res", resolution);
   const GLuint groups = static_cast<GLuint>((resolution + 7) / 8);
   for (std::size_t i = 0; i < clouds.size(); ++i) {

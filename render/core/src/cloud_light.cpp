@@ -43,8 +43,8 @@ CloudLight point_light(const glm::dvec3& position_m, const glm::dvec3& intensity
 
 void validate(const CloudLight& l) {
   if (l.kind == CloudLightKind::Sun) {
-    require(finite3(l.direction_to_light) && glm::length(l.direction_to_light) > 1e-12,
-            "light direction_to_light must be finite and non-zero");
+    require(finite3(l.direction_to_sun) && glm::length(l.direction_to_sun) > 1e-12,
+            "light direction_to_sun must be finite and non-zero");
     require_colour(l.irradiance_w_m2, "irradiance_w_m2");
     return;
   }
@@ -69,7 +69,7 @@ double spot_weight(const CloudLight& l, const glm::dvec3& dir) {
 LightAtPoint light_at(const CloudLight& l, const glm::dvec3& x) {
   LightAtPoint a;
   if (l.kind == CloudLightKind::Sun) {
-    a.to_light = glm::normalize(l.direction_to_light);
+    a.to_light = glm::normalize(l.direction_to_sun);
     a.distance_m = std::numeric_limits<double>::infinity();
     a.irradiance_w_m2 = l.irradiance_w_m2;
     return a;

@@ -19,7 +19,7 @@ std::string describe_camera(const Camera& camera) {
 
 std::string describe_light(const CloudLight& light) {
   if (light.kind == CloudLightKind::Sun)
-    return "sun towards " + fmt3(light.direction_to_light) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
+    return "sun towards " + fmt3(light.direction_to_sun) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
   std::ostringstream s;
   s.precision(9);
   s << "point " << fmt3(light.position_m) << " I_w_sr " << fmt3(light.intensity_w_sr);

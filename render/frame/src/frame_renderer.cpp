@@ -65,7 +65,7 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight>
   }
   if (scene_ && scene_->sun && !has_sun_) {  // the scene's own sun
     CloudLight sun;
-    sun.direction_to_light = scene_->sun->direction_to_sun;
+    sun.direction_to_sun = scene_->sun->direction_to_sun;
     sun.irradiance_w_m2 = scene_->sun->irradiance_w_m2;
     set_light(sun);
   }
@@ -91,15 +91,15 @@ std::vector<CloudLight> FrameRenderer::cloud_lights() const {
 void FrameRenderer::set_light(const CloudLight& light) {
   validate(light);
   if (light.kind != CloudLightKind::Sun) throw std::invalid_argument("frame light: set_light moves the sun; this is a lamp");
-  if (!has_sun_ || glm::normalize(light.direction_to_light) != glm::normalize(light_.direction_to_light))
+  if (!has_sun_ || glm::normalize(light.direction_to_sun) != glm::normalize(light_.direction_to_sun))
     light_volume_stale_ = true;
   light_ = light;
   has_sun_ = true;
   if (!scene_) return;
   if (!scene_->sun) scene_->sun = SunLight{};
-  const bool moved = scene_->sun->direction_to_sun != light.direction_to_light ||
+  const bool moved = scene_->sun->direction_to_sun != light.direction_to_sun ||
                      scene_->sun->irradiance_w_m2 != light.irradiance_w_m2;
-  scene_->sun->direction_to_sun = light.direction_to_light;
+  scene_->sun->direction_to_sun = light.direction_to_sun;
   scene_->sun->irradiance_w_m2 = light.irradiance_w_m2;
   if (moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
 }

@@ -26,7 +26,7 @@ std::vector<BlockLayout> uniform_block_layouts() {
        sizeof(LightsBlock),
        {{"LightsBlock.point_position[0]", offsetof(LightsBlock, point_position)},
         {"LightsBlock.point_intensity[0]", offsetof(LightsBlock, point_intensity)},
-        {"LightsBlock.sun_to", offsetof(LightsBlock, sun_to)},
+        {"LightsBlock.to_sun", offsetof(LightsBlock, to_sun)},
         {"LightsBlock.point_count", offsetof(LightsBlock, point_count)},
         {"LightsBlock.sun_irradiance", offsetof(LightsBlock, sun_irradiance)},
         {"LightsBlock.has_sun", offsetof(LightsBlock, has_sun)}}},
@@ -89,7 +89,7 @@ LightsBlock lights_block(const Scene& scene) {
   }
   if (scene.sun) {
     b.has_sun = 1;
-    b.sun_to = to_float(glm::normalize(scene.sun->direction_to_sun));
+    b.to_sun = to_float(glm::normalize(scene.sun->direction_to_sun));
     b.sun_irradiance = to_float(scene.sun->irradiance_w_m2);
   }
   return b;

@@ -84,7 +84,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
   if (clouds.empty()) throw std::invalid_argument("path tracer clouds: the list is empty");
   const std::vector<TracedCloud> media = media_of(clouds);
   const auto start = std::chrono::steady_clock::now();
-  const glm::dvec3 to_light = glm::normalize(light.direction_to_light);
+  const glm::dvec3 to_light = glm::normalize(light.direction_to_sun);
   const int w = camera.width, h = camera.height, n = settings.samples_per_pixel;
   PathTracedImage out;
   out.image = Image(w, h);

@@ -295,7 +295,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Clo
   const CellGrid g{v.size[0], v.size[1], v.size[2]};
   std::vector<TracedCloud> media = media_of(clouds);
   raise_majorants(media, std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z}));
-  const LaunchRect rect = launch_rect(v, light.direction_to_light);
+  const LaunchRect rect = launch_rect(v, light.direction_to_sun);
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
 
   const Tallies tallies = trace_photons(v, g, media, rect, settings, arena);

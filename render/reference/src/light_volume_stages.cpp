@@ -15,10 +15,10 @@ double mean_fluence(const std::vector<float>& value, std::size_t q) {
 
 }  // namespace
 
-LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_light) {
+LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_sun) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   LaunchRect r;
-  r.l = -glm::normalize(direction_to_light);  // propagation
+  r.l = -glm::normalize(direction_to_sun);  // propagation
   const glm::dvec3 a = std::abs(r.l.x) > 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
   r.eu = glm::normalize(glm::cross(a, r.l));
   r.ev = glm::cross(r.l, r.eu);

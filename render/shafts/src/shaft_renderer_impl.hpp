@@ -60,7 +60,8 @@ struct ShaftRenderer::Impl {
   GlTexture point_depth;
   GlTexture sun_map;
   GlTexture sun_depth;
-  glm::dvec3 sun_origin{0.0}, sun_axis_x{1, 0, 0}, sun_axis_y{0, 0, 1}, sun_dir{0, -1, 0};
+  glm::dvec3 sun_origin{0.0}, sun_axis_x{1, 0, 0}, sun_axis_y{0, 0, 1};
+  glm::dvec3 sun_propagation{0, -1, 0};  // -direction_to_sun: the sun map's depth axis
   glm::dmat4 sun_view_proj{1.0};
   double sun_texel_m = 1.0;
   bool shadow_maps_ready = false;

@@ -78,14 +78,14 @@ void ShaftRenderer::Impl::build_sun_map() {
   const float clear_far[4] = {kFarDistanceM, 0, 0, 0};
   const float clear_depth = 1.0f;
   const int sres = settings.sun_shadow_res;
-  sun_dir = -glm::normalize(scene.sun->direction_to_sun);
-  glm::dvec3 helper = std::abs(sun_dir.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 u = glm::normalize(glm::cross(helper, sun_dir));
-  const glm::dvec3 v = glm::cross(sun_dir, u);
+  sun_propagation = -glm::normalize(scene.sun->direction_to_sun);
+  glm::dvec3 helper = std::abs(sun_propagation.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(helper, sun_propagation));
+  const glm::dvec3 v = glm::cross(sun_propagation, u);
   // Bounds of the occluders along u, v and the propagation direction.
   glm::dvec3 lo(1e300), hi(-1e300);
   auto extend = [&](const glm::dvec3& p) {
-    const glm::dvec3 c(glm::dot(p, u), glm::dot(p, v), glm::dot(p, sun_dir));
+    const glm::dvec3 c(glm::dot(p, u), glm::dot(p, v), glm::dot(p, sun_propagation));
     lo = glm::min(lo, c);
     hi = glm::max(hi, c);
   };
@@ -99,14 +99,14 @@ void ShaftRenderer::Impl::build_sun_map() {
   const glm::dvec3 pad = 0.01 * (hi - lo) + glm::dvec3(0.5);
   lo -= pad;
   hi += pad;
-  sun_origin = lo.x * u + lo.y * v + lo.z * sun_dir;
+  sun_origin = lo.x * u + lo.y * v + lo.z * sun_propagation;
   sun_axis_x = (hi.x - lo.x) * u;
   sun_axis_y = (hi.y - lo.y) * v;
   sun_texel_m = std::max(hi.x - lo.x, hi.y - lo.y) / sres;
   const double depth = hi.z - lo.z;
   // World -> clip: x, y from the map's axes, z from the distance along the propagation direction.
   glm::dmat4 m(0.0);
-  const glm::dvec3 rx = 2.0 * u / (hi.x - lo.x), ry = 2.0 * v / (hi.y - lo.y), rz = 2.0 * sun_dir / depth;
+  const glm::dvec3 rx = 2.0 * u / (hi.x - lo.x), ry = 2.0 * v / (hi.y - lo.y), rz = 2.0 * sun_propagation / depth;
   for (int c = 0; c < 3; ++c) {
     m[c][0] = rx[c];
     m[c][1] = ry[c];
@@ -126,7 +126,7 @@ void ShaftRenderer::Impl::build_sun_map() {
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &clear_depth);
   shadow_program.set("u_mode", contract::SHADOW_SUN);
   shadow_program.set("u_origin", to_float(sun_origin));
-  shadow_program.set("u_dir", to_float(sun_dir));
+  shadow_program.set("u_to_sun", to_float(-sun_propagation));
   shadow_program.set("u_view_proj", to_float(sun_view_proj));
   draw(occluders);
 }
@@ -158,7 +158,7 @@ void ShaftRenderer::Impl::build_skirts() {
       b.set("u_origin", to_float(sun_origin));
       b.set("u_axis_x", to_float(sun_axis_x));
       b.set("u_axis_y", to_float(sun_axis_y));
-      b.set("u_dir", to_float(sun_dir));
+      b.set("u_to_sun", to_float(-sun_propagation));
     } else {
       res = settings.point_shadow_res;
       b.set("u_origin", to_float(scene.point_lights[static_cast<std::size_t>(layer)].position_m));

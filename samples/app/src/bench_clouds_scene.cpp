@@ -73,7 +73,7 @@ render::Camera bench_camera(int width, int height) {
 
 render::CloudLight bench_light(bool back_lit) {
   render::CloudLight l;
-  l.direction_to_light = back_lit ? glm::dvec3(0.3, 0.5, -0.8) : glm::dvec3(0.6, 0.8, 0.3);
+  l.direction_to_sun = back_lit ? glm::dvec3(0.3, 0.5, -0.8) : glm::dvec3(0.6, 0.8, 0.3);
   l.irradiance_w_m2 = glm::dvec3(1.0);
   return l;
 }
@@ -90,7 +90,7 @@ render::CloudOptics bench_optics(double voxel_m) { return vdb_render_optics(VdbR
 
 VdbRenderRun run_vdb_render(const std::string& vdb_render, const std::filesystem::path& vdb,
                             const std::filesystem::path& exr, const render::Camera& camera,
-                            const glm::dvec3& direction_to_light, const VdbRenderSettings& s) {
+                            const glm::dvec3& direction_to_sun, const VdbRenderSettings& s) {
   VdbRenderRun run;
   const auto rgb = [](double v) { return vec3(glm::dvec3(v)); };
   std::ostringstream cmd;
@@ -98,7 +98,7 @@ VdbRenderRun run_vdb_render(const std::string& vdb_render, const std::filesystem
       << camera.width << "x" << camera.height << " -translate " << vec3(camera.eye) << " -lookat "
       << vec3(camera.look_at) << " -up " << vec3(camera.up) << " -fov " << camera.fov_deg << " -absorb "
       << rgb(s.absorb_per_voxel) << " -scatter " << rgb(s.scatter_per_voxel) << " -light "
-      << vec3(glm::normalize(direction_to_light)) << ",1,1,1 -gain 0 -step " << s.step << " -shadowstep "
+      << vec3(glm::normalize(direction_to_sun)) << ",1,1,1 -gain 0 -step " << s.step << " -shadowstep "
       << s.shadow_step << " -v";
   if (s.cutoff > 0.0) cmd << " -cutoff " << s.cutoff;
   if (s.cpus > 0) cmd << " -cpus " << s.cpus;

@@ -59,10 +59,10 @@ struct VdbRenderRun {
 };
 
 // Runs vdb_render on `vdb` with `camera` (its horizontal field of view, eye, look-at and up), a
-// light of colour 1 towards `direction_to_light`, -gain 0 and `s`, writing `exr`, and reads the
+// light of colour 1 towards `direction_to_sun`, -gain 0 and `s`, writing `exr`, and reads the
 // image back. Throws std::runtime_error naming the command when it fails.
 VdbRenderRun run_vdb_render(const std::string& vdb_render, const std::filesystem::path& vdb,
                             const std::filesystem::path& exr, const render::Camera& camera,
-                            const glm::dvec3& direction_to_light, const VdbRenderSettings& s);
+                            const glm::dvec3& direction_to_sun, const VdbRenderSettings& s);
 
 }  // namespace nimbus::app

@@ -13,9 +13,9 @@ namespace nimbus::render {
 enum class CloudLightKind { Sun, Point };
 
 struct CloudLight {
-  // Sun: parallel light arriving from `direction_to_light`, of irradiance `irradiance_w_m2`
+  // Sun: parallel light arriving from `direction_to_sun`, of irradiance `irradiance_w_m2`
   // where it enters the clouds.
-  glm::dvec3 direction_to_light{0.3, 0.8, -0.5};  // normalised on use
+  glm::dvec3 direction_to_sun{0.3, 0.8, -0.5};  // normalised on use
   glm::dvec3 irradiance_w_m2{3.0};                 // per channel
   CloudLightKind kind = CloudLightKind::Sun;
   // Point: at `position_m`, radiant intensity `intensity_w_sr` per channel; the irradiance at

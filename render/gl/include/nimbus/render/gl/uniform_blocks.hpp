@@ -43,14 +43,14 @@ static_assert(offsetof(CameraBlock, view_proj) == 0 && offsetof(CameraBlock, eye
 struct LightsBlock {
   glm::vec4 point_position[contract::MAX_POINT_LIGHTS] = {};   // xyz metres
   glm::vec4 point_intensity[contract::MAX_POINT_LIGHTS] = {};  // rgb W/sr
-  glm::vec3 sun_to{0.0f, 1.0f, 0.0f};                          // unit, towards the sun
+  glm::vec3 to_sun{0.0f, 1.0f, 0.0f};                          // unit, towards the sun
   int point_count = 0;
   glm::vec3 sun_irradiance{0.0f};                              // W/m^2 per channel
   int has_sun = 0;
 };
 static_assert(offsetof(LightsBlock, point_position) == 0 &&
               offsetof(LightsBlock, point_intensity) == 16 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, sun_to) == 32 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, to_sun) == 32 * contract::MAX_POINT_LIGHTS &&
               offsetof(LightsBlock, point_count) == 32 * contract::MAX_POINT_LIGHTS + 12 &&
               offsetof(LightsBlock, sun_irradiance) == 32 * contract::MAX_POINT_LIGHTS + 16 &&
               offsetof(LightsBlock, has_sun) == 32 * contract::MAX_POINT_LIGHTS + 28 &&
@@ -77,7 +77,7 @@ static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock
 
 // lib/cloud_light_block.glsl: SliceLightBlock, the light of the slicer's current pass (the sun,
 // a lamp or a spot) with the pass's slicing geometry. The sun's direction points towards it, as
-// LightsBlock's sun_to does.
+// LightsBlock's to_sun does.
 struct SliceLightBlock {
   glm::mat4 world_to_light_uv{1.0f};   // the sun: world -> its light buffer's (u, w)
   glm::mat4 world_to_lamp_clip{1.0f};  // a lamp: world -> its light buffer's clip coordinates

@@ -58,7 +58,7 @@ struct LaunchRect {
     return eu * (umin + x * (umax - umin)) + ev * (vmin + y * (vmax - vmin)) + l * (lmin - back_m);
   }
 };
-LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_light);
+LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_sun);
 
 // The part of each cell where tentative collisions can happen (some brick's majorant > 0), the
 // centroid of that part about the cell's centre and its variance per axis, in cells.

@@ -41,27 +41,24 @@ CellValues cell_values(const CellGrid& g, const std::vector<std::atomic<std::int
   CellValues v;
   v.value.assign(n_cells * kTallies, 0.0f);
   v.known.assign(n_cells, 0);
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const std::size_t q = g.index(i, j, k);
-        if (!(covered[q] > 0.0)) continue;
-        v.known[q] = 1;
-        if (covered[q] >= kPoolBelow) {
-          for (int c = 0; c < kTallies; ++c)
-            v.value[q * kTallies + c] =
-                static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
-          continue;
-        }
-        // A cell the cloud barely touches would divide a few rare collisions by a small covered
-        // fraction (a firefly): it pools its neighbourhood instead (measured: no specks).
-        double area = 0.0, sum[kTallies] = {};
-        g.for_neighbourhood(i, j, k, [&](std::size_t r) {
-          area += covered[r];
-          for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
-        });
-        for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(scale * sum[c] / area);
-      }
+  g.for_each_cell([&](int i, int j, int k, std::size_t q) {
+    if (!(covered[q] > 0.0)) return;
+    v.known[q] = 1;
+    if (covered[q] >= kPoolBelow) {
+      for (int c = 0; c < kTallies; ++c)
+        v.value[q * kTallies + c] =
+            static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
+      return;
+    }
+    // A cell the cloud barely touches would divide a few rare collisions by a small covered
+    // fraction (a firefly): it pools its neighbourhood instead (measured: no specks).
+    double area = 0.0, sum[kTallies] = {};
+    g.for_neighbourhood(i, j, k, [&](std::size_t r) {
+      area += covered[r];
+      for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
+    });
+    for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(scale * sum[c] / area);
+  });
   return v;
 }
 
@@ -73,23 +70,20 @@ void clamp_spikes(const CellGrid& g, CellValues& v) {
   // what photon noise is left. Scattered light diffuses, so a cell may not stand far above its
   // neighbours.
   const std::vector<float> before = v.value;
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const std::size_t q = g.index(i, j, k);
-        if (!v.known[q]) continue;
-        double sum = 0.0;
-        int count = 0;
-        g.for_neighbourhood(i, j, k, [&](std::size_t r) {
-          if (r == q || !v.known[r]) return;
-          sum += mean_fluence(before, r);
-          ++count;
-        });
-        const double own = mean_fluence(before, q);
-        if (count < 6 || !(own > kSpike * sum / count)) continue;
-        const double f = kSpike * (sum / count) / own;
-        for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(before[q * kTallies + c] * f);
-      }
+  g.for_each_cell([&](int i, int j, int k, std::size_t q) {
+    if (!v.known[q]) return;
+    double sum = 0.0;
+    int count = 0;
+    g.for_neighbourhood(i, j, k, [&](std::size_t r) {
+      if (r == q || !v.known[r]) return;
+      sum += mean_fluence(before, r);
+      ++count;
+    });
+    const double own = mean_fluence(before, q);
+    if (count < 6 || !(own > kSpike * sum / count)) return;
+    const double f = kSpike * (sum / count) / own;
+    for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(before[q * kTallies + c] * f);
+  });
 }
 
 void smooth_anisotropy(const CellGrid& g, CellValues& v) {
@@ -98,73 +92,64 @@ void smooth_anisotropy(const CellGrid& g, CellValues& v) {
   // cumulus-mediocris, none at seed 2). They vary slowly in space; a fluence-weighted mean of the
   // neighbours' F / phi keeps |F| <= phi.
   const std::vector<float> before = v.value;
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const std::size_t q = g.index(i, j, k);
-        if (!v.known[q]) continue;
-        double sum[kTallies] = {}, phi = 0.0;
-        g.for_neighbourhood(i, j, k, [&](std::size_t r) {
-          if (!v.known[r]) return;
-          phi += mean_fluence(before, r);  // F, Q: the channels' mean
-          for (int c = 3; c < kMomentTally; ++c) sum[c] += before[r * kTallies + c];
-        });
-        const double own = mean_fluence(before, q);
-        for (int c = 3; c < kMomentTally; ++c)
-          v.value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
-      }
+  g.for_each_cell([&](int i, int j, int k, std::size_t q) {
+    if (!v.known[q]) return;
+    double sum[kTallies] = {}, phi = 0.0;
+    g.for_neighbourhood(i, j, k, [&](std::size_t r) {
+      if (!v.known[r]) return;
+      phi += mean_fluence(before, r);  // F, Q: the channels' mean
+      for (int c = 3; c < kMomentTally; ++c) sum[c] += before[r * kTallies + c];
+    });
+    const double own = mean_fluence(before, q);
+    for (int c = 3; c < kMomentTally; ++c)
+      v.value[q * kTallies + c] = phi > 0.0 ? static_cast<float>(own * sum[c] / phi) : 0.0f;
+  });
 }
 
 std::vector<float> linear_fits(const CellGrid& g, const CellValues& v, const Coverage& cov) {
   // With phi(u) = phi_bar + g . (u - ubar) over the covered part, the first moment about the
   // centre M = phi_bar ubar + diag(spread) g, so g = (M - phi_bar ubar) / spread per axis.
   std::vector<float> fit(g.cells() * 4, 0.0f);
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const std::size_t q = g.index(i, j, k);
-        if (!(cov.covered[q] >= kPoolBelow)) continue;
-        const double phi = mean_fluence(v.value, q);
-        if (!(phi > 0.0)) continue;
-        glm::dvec3 grad(0.0);
-        for (int ax = 0; ax < 3; ++ax)
-          if (cov.spread[q][ax] > 1e-3)
-            grad[ax] = (v.value[q * kTallies + kMomentTally + ax] - phi * cov.centroid[q][ax]) / cov.spread[q][ax];
-        const double reach = glm::dot(glm::abs(grad), 0.5 + glm::abs(cov.centroid[q]));
-        if (reach > phi) grad *= phi / reach;
-        const glm::dvec3 ubar = glm::dvec3(i, j, k) + 0.5 + cov.centroid[q];
-        for (int ax = 0; ax < 3; ++ax) fit[4 * q + ax] = static_cast<float>(grad[ax]);
-        fit[4 * q + 3] = static_cast<float>(glm::dot(grad, ubar));
-      }
+  g.for_each_cell([&](int i, int j, int k, std::size_t q) {
+    if (!(cov.covered[q] >= kPoolBelow)) return;
+    const double phi = mean_fluence(v.value, q);
+    if (!(phi > 0.0)) return;
+    glm::dvec3 grad(0.0);
+    for (int ax = 0; ax < 3; ++ax)
+      if (cov.spread[q][ax] > 1e-3)
+        grad[ax] = (v.value[q * kTallies + kMomentTally + ax] - phi * cov.centroid[q][ax]) / cov.spread[q][ax];
+    const double reach = glm::dot(glm::abs(grad), 0.5 + glm::abs(cov.centroid[q]));
+    if (reach > phi) grad *= phi / reach;
+    const glm::dvec3 ubar = glm::dvec3(i, j, k) + 0.5 + cov.centroid[q];
+    for (int ax = 0; ax < 3; ++ax) fit[4 * q + ax] = static_cast<float>(grad[ax]);
+    fit[4 * q + 3] = static_cast<float>(glm::dot(grad, ubar));
+  });
   return fit;
 }
 
 void fill_empty_rings(const CellGrid& g, CellValues& v, std::vector<float>& fit, int rings) {
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<char> next = v.known;
-    for (int k = 0; k < g.nz; ++k)
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-          const std::size_t q = g.index(i, j, k);
-          if (v.known[q]) continue;
-          const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
-          int count = 0;
-          double sum[kTallies] = {}, fit_sum[4] = {};
-          for (const auto& b : nb) {
-            if (b[0] < 0 || b[0] >= g.nx || b[1] < 0 || b[1] >= g.ny || b[2] < 0 || b[2] >= g.nz) continue;
-            const std::size_t r = g.index(b[0], b[1], b[2]);
-            if (!v.known[r]) continue;
-            ++count;
-            for (int c = 0; c < kTallies; ++c) sum[c] += v.value[r * kTallies + c];
-            for (int c = 0; c < 4; ++c) fit_sum[c] += fit[4 * r + c];
-          }
-          if (count == 0) continue;
-          // The mean of the neighbours' fits too (eq. MS-4 is linear in them): the lookups
-          // between an edge cell and this one follow the edge cell's fit, not a constant.
-          for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(sum[c] / count);
-          for (int c = 0; c < 4; ++c) fit[4 * q + c] = static_cast<float>(fit_sum[c] / count);
-          next[q] = 1;
-        }
+    g.for_each_cell([&](int i, int j, int k, std::size_t q) {
+      if (v.known[q]) return;
+      const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+      int count = 0;
+      double sum[kTallies] = {}, fit_sum[4] = {};
+      for (const auto& b : nb) {
+        if (b[0] < 0 || b[0] >= g.nx || b[1] < 0 || b[1] >= g.ny || b[2] < 0 || b[2] >= g.nz) continue;
+        const std::size_t r = g.index(b[0], b[1], b[2]);
+        if (!v.known[r]) continue;
+        ++count;
+        for (int c = 0; c < kTallies; ++c) sum[c] += v.value[r * kTallies + c];
+        for (int c = 0; c < 4; ++c) fit_sum[c] += fit[4 * r + c];
+      }
+      if (count == 0) return;
+      // The mean of the neighbours' fits too (eq. MS-4 is linear in them): the lookups
+      // between an edge cell and this one follow the edge cell's fit, not a constant.
+      for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(sum[c] / count);
+      for (int c = 0; c < 4; ++c) fit[4 * q + c] = static_cast<float>(fit_sum[c] / count);
+      next[q] = 1;
+    });
     v.known.swap(next);
   }
 }

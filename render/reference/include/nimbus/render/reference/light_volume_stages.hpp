@@ -33,6 +33,13 @@ struct CellGrid {
   std::size_t index(int i, int j, int k) const {
     return std::size_t(i) + std::size_t(nx) * (std::size_t(j) + std::size_t(ny) * std::size_t(k));
   }
+  // Calls f(i, j, k, q) for every cell, x fastest (q = index(i, j, k)).
+  template <class F>
+  void for_each_cell(const F& f) const {
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) f(i, j, k, index(i, j, k));
+  }
   // Calls f(r) for each cell r of the 3^3 neighbourhood of (i, j, k) inside the grid, itself included.
   template <class F>
   void for_neighbourhood(int i, int j, int k, const F& f) const {

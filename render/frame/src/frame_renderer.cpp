@@ -251,11 +251,9 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
       std::snprintf(buf, sizeof buf, "scene %.0f ms (%s), clouds: light %.0f ms, slices %.0f ms, composite %.0f ms",
                     st.scene.total_ms, to_string(settings_.shafts).c_str(), st.clouds.light_ms, st.clouds.slices_ms,
                     st.clouds.composite_ms);
-      describe_frame(image, *scene_, camera, "slices over " + to_string(settings_.shafts));
-      const std::string drawn = image.metadata.at("light");
-      describe_clouds(image, cloud_renderer_->clouds(), cloud_lights());
-      image.metadata["light"] = drawn;  // the lights drawn (the slicer's choice)
-      describe_slices(image, settings_.slices);
+      // The cloud renderer described the frame (scene, camera, clouds, the lights it drew, its
+      // slicing); the method is the whole pipeline's.
+      image.metadata["method"] = "slices over " + to_string(settings_.shafts);
     } else {
       image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, nullptr, stats ? &st.clouds : nullptr);
       std::snprintf(buf, sizeof buf, "clouds: light %.0f ms, slices %.0f ms", st.clouds.light_ms, st.clouds.slices_ms);

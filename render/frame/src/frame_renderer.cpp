@@ -63,12 +63,6 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight>
       lamps_.push_back(l);
     }
   }
-  if (scene_ && scene_->sun && !has_sun_) {  // the scene's own sun
-    CloudLight sun;
-    sun.direction_to_sun = scene_->sun->direction_to_sun;
-    sun.irradiance_w_m2 = scene_->sun->irradiance_w_m2;
-    set_light(sun);
-  }
   if (cloud_lights().empty()) throw std::invalid_argument("frame lights: nothing lights the clouds (no sun, no lamp)");
   if (settings_.method == CloudMethod::PathTrace && !lamps_.empty())
     throw std::invalid_argument("frame lights: the cloud path tracer takes the sun only, not lamps");
@@ -77,9 +71,18 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight>
 
 FrameRenderer::~FrameRenderer() = default;
 
+CloudLight FrameRenderer::light() const {
+  CloudLight l;
+  if (const std::optional<SunLight>& s = sun()) {
+    l.direction_to_sun = s->direction_to_sun;
+    l.irradiance_w_m2 = s->irradiance_w_m2;
+  }
+  return l;
+}
+
 std::vector<CloudLight> FrameRenderer::cloud_lights() const {
   std::vector<CloudLight> out;
-  if (has_sun_) out.push_back(light_);
+  if (has_sun()) out.push_back(light());
   if (scene_) {
     for (const PointLight& p : scene_->point_lights) out.push_back(point_light(p.position_m, p.intensity_w_sr));
   } else {
@@ -91,17 +94,11 @@ std::vector<CloudLight> FrameRenderer::cloud_lights() const {
 void FrameRenderer::set_light(const CloudLight& light) {
   validate(light);
   if (light.kind != CloudLightKind::Sun) throw std::invalid_argument("frame light: set_light moves the sun; this is a lamp");
-  if (!has_sun_ || glm::normalize(light.direction_to_sun) != glm::normalize(light_.direction_to_sun))
-    light_volume_stale_ = true;
-  light_ = light;
-  has_sun_ = true;
-  if (!scene_) return;
-  if (!scene_->sun) scene_->sun = SunLight{};
-  const bool moved = scene_->sun->direction_to_sun != light.direction_to_sun ||
-                     scene_->sun->irradiance_w_m2 != light.irradiance_w_m2;
-  scene_->sun->direction_to_sun = light.direction_to_sun;
-  scene_->sun->irradiance_w_m2 = light.irradiance_w_m2;
-  if (moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
+  const std::optional<SunLight>& old = sun();
+  if (!old || glm::normalize(light.direction_to_sun) != glm::normalize(old->direction_to_sun)) light_volume_stale_ = true;
+  const bool moved = !old || old->direction_to_sun != light.direction_to_sun || old->irradiance_w_m2 != light.irradiance_w_m2;
+  (scene_ ? scene_->sun : sun_) = SunLight{light.direction_to_sun, light.irradiance_w_m2};
+  if (scene_ && moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
 }
 
 void FrameRenderer::set_sky(const Sky& sky) {
@@ -199,11 +196,11 @@ bool FrameRenderer::has_light_volume() const { return cloud_renderer_ && cloud_r
 double FrameRenderer::update_light_volume() {
   const MultipleScattering& ms = settings_.slices.multiple;
   if (ms.method != MultipleScatteringMethod::LightVolume || light_volume_given_) return 0.0;
-  if (!has_sun_)
+  if (!has_sun())
     throw std::invalid_argument("frame settings slices: the light volume of multiple scattering is built from the sun, and "
                                 "there is none; lamps take the octaves method");
   if (!light_volume_stale_ && cloud_renderer_->has_light_volume() && ms.light_volume == light_volume_built_) return 0.0;
-  const LightVolume v = build_light_volume(cloud_renderer_->clouds(), light_, ms.light_volume);
+  const LightVolume v = build_light_volume(cloud_renderer_->clouds(), light(), ms.light_volume);
   cloud_renderer_->set_light_volume(v);
   light_volume_stale_ = false;
   light_volume_built_ = ms.light_volume;
@@ -221,7 +218,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
     st.device = "CPU (double precision)";
   } else if (settings_.method == CloudMethod::PathTrace) {
     if (reference_clouds_.empty()) throw std::logic_error("frame renderer: no clouds set");
-    image = render_cloud_path_traced(reference_moved_, camera, light_, settings_.path_tracer).image;
+    image = render_cloud_path_traced(reference_moved_, camera, light(), settings_.path_tracer).image;
     st.device = "CPU (double precision, path traced)";
   } else {
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
@@ -235,8 +232,8 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
       if (!shadow_builder_) shadow_builder_ = std::make_unique<CloudShadowBuilder>();
       // The clouds' shadow on the scene is the sun's; under lamps alone the clouds cast none.
       std::optional<CloudShadowMap> map;
-      if (has_sun_)
-        map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light_,
+      if (has_sun())
+        map = shadow_builder_->build(cloud_renderer_->clouds(), cloud_renderer_->textures(), light(),
                                      settings_.cloud_shadow_res, cloud_renderer_->next_textures());
       shaft_renderer_->set_cloud_shadow(map ? &*map : nullptr);
       try {

@@ -105,8 +105,11 @@ class FrameRenderer {
   void set_light(const CloudLight& light);
   // A new sky behind the scene (its gradient follows the sun in the viewer).
   void set_sky(const Sky& sky);
-  const CloudLight& light() const { return light_; }  // the sun (meaningful when has_sun())
-  bool has_sun() const { return has_sun_; }
+  // The sun, held once: in the scene when there is one, else here. light() is it as a cloud light
+  // (meaningful when has_sun()).
+  const std::optional<SunLight>& sun() const { return scene_ ? scene_->sun : sun_; }
+  bool has_sun() const { return sun().has_value(); }
+  CloudLight light() const;
   // Every light on the clouds: the sun, then the lamps (the scene's point lights, or those given
   // without a scene).
   std::vector<CloudLight> cloud_lights() const;
@@ -122,8 +125,7 @@ class FrameRenderer {
 
  private:
   std::optional<Scene> scene_;
-  CloudLight light_;               // the sun
-  bool has_sun_ = false;
+  std::optional<SunLight> sun_;    // the sun without a scene (with one, scene_->sun)
   std::vector<CloudLight> lamps_;  // lamps on clouds without a scene
   FrameSettings settings_;
   std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds as set (Slices keeps them in cloud_renderer_)

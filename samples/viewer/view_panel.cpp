@@ -116,9 +116,9 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     slider("phase g forward", s.phase.g_forward, 0.0, 0.95);
     slider("phase g back", s.phase.g_back, -0.95, 0.0);
     slider("phase forward weight", s.phase.forward_weight, 0.0, 1.0);
-    bool volume = s.multiple_method == "light-volume";
+    bool volume = s.multiple_method == render::MultipleScatteringMethod::LightVolume;
     if (ImGui::Checkbox("light volume (photon-traced multiple scattering)", &volume))
-      s.multiple_method = volume ? "light-volume" : "octaves";
+      s.multiple_method = volume ? render::MultipleScatteringMethod::LightVolume : render::MultipleScatteringMethod::Octaves;
     if (volume) {
       ImGui::SliderInt("light volume cells", &s.ms_grid, 16, 96);
       int photons_log2 = static_cast<int>(std::lround(std::log2(static_cast<double>(s.ms_photons))));
@@ -135,9 +135,10 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
       ImGui::EndCombo();
     }
     static const char* shafts[] = {"analytic", "raymarch:8", "raymarch:24", "raymarch:48", "shadowvolume"};
-    if (ImGui::BeginCombo("shafts", s.shafts.c_str())) {
+    const std::string current = render::to_string(s.shafts);
+    if (ImGui::BeginCombo("shafts", current.c_str())) {
       for (const char* m : shafts)
-        if (ImGui::Selectable(m, s.shafts == m)) s.shafts = m;
+        if (ImGui::Selectable(m, current == render::to_string(render::parse_shaft_method(m)))) s.shafts = render::parse_shaft_method(m);
       ImGui::EndCombo();
     }
     slider("render scale", s.render_scale, 0.1, 1.0, "%.2f");
@@ -155,7 +156,7 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     ImGui::Text("GPU composite  %7.1f ms", st.clouds.composite_ms);
     ImGui::Text("keyframe upload%7.1f ms", r.info.upload_ms);
     ImGui::Text("multiple scattering: %s", r.info.multiple.c_str());
-    if (s.multiple_method == "light-volume") ImGui::Text("light volume mix %6.1f ms", r.info.light_volume_ms);
+    if (s.multiple_method == render::MultipleScatteringMethod::LightVolume) ImGui::Text("light volume mix %6.1f ms", r.info.light_volume_ms);
     ImGui::Text("keyframes %lld+1, blend %.2f", static_cast<long long>(r.info.keyframe), r.info.blend);
     ImGui::TextWrapped("%s", st.clouds.timing.c_str());
   }

@@ -31,10 +31,10 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   s.paused = true;
   s.phase = DualLobePhase{0.6, -0.3, 0.7};
   s.multiple_octaves = 3;
-  s.multiple_method = "octaves";
+  s.multiple_method = MultipleScatteringMethod::Octaves;
   s.ms_grid = 64;
   s.ms_photons = 123456;
-  s.shafts = "analytic";
+  s.shafts = parse_shaft_method("analytic");
   s.render_scale = 0.5;
   s.exposure_stops = -1.5;
   s.jitter = false;
@@ -45,14 +45,14 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   EXPECT_EQ(t.paused, true);
   EXPECT_EQ(t.jitter, false);
   EXPECT_EQ(t.phase.g_back, -0.3);
-  EXPECT_EQ(t.multiple_method, "octaves");
+  EXPECT_EQ(t.multiple_method, MultipleScatteringMethod::Octaves);
   EXPECT_EQ(t.ms_grid, 64);
   EXPECT_EQ(t.ms_photons, 123456);
   // A state saved before the light volume reached the viewer gets its defaults.
   json old = j;
   for (const char* k : {"ms_method", "ms_grid", "ms_photons"}) old["optics"].erase(k);
   const ViewState u = view_state_from_json(old, "old state");
-  EXPECT_EQ(u.multiple_method, "light-volume");
+  EXPECT_EQ(u.multiple_method, MultipleScatteringMethod::LightVolume);
   EXPECT_EQ(u.ms_photons, ViewState{}.ms_photons);
 }
 

@@ -23,10 +23,10 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   fs.slices.frame = 0;
   fs.slices.ambient = true;
   fs.slices.multiple.octaves = s.multiple_octaves;
-  fs.slices.multiple.method = parse_multiple_scattering_method(s.multiple_method);
+  fs.slices.multiple.method = s.multiple_method;
   fs.slices.multiple.light_volume.resolution = s.ms_grid;
   fs.slices.multiple.light_volume.photons = s.ms_photons;
-  fs.shafts = parse_shaft_method(s.shafts);
+  fs.shafts = s.shafts;
   fs.cloud_shadow_res = s.cloud_shadow_res;
   return fs;
 }
@@ -207,7 +207,7 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
   drawn_blend_ = blend;
   const std::vector<CloudMotion> motion = drawn_->motion(state.sky_time_s, state.sky.wind_m_s, blend);
   frame_->set_motion(motion);
-  if (state.multiple_method == "light-volume") {
+  if (state.multiple_method == MultipleScatteringMethod::LightVolume) {
     const auto start = std::chrono::steady_clock::now();
     if (update_light_volume(state, k, blend, wait)) {
       frame_->move_light_volume(shown_min_ + (motion.empty() ? glm::dvec3(0.0) : motion.front().offset_m));

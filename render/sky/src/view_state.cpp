@@ -71,11 +71,6 @@ void validate(const ViewState& s) {
     bad(std::string("view state optics: ") + e.what());
   }
   if (s.multiple_octaves < 0 || s.multiple_octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
-  try {
-    parse_multiple_scattering_method(s.multiple_method);
-  } catch (const std::invalid_argument& e) {
-    bad(std::string("view state optics.ms_method: ") + e.what());
-  }
   if (s.ms_grid < 4 || s.ms_grid > 192) bad("view state optics.ms_grid: must be in [4, 192] cells");
   if (s.ms_photons < 1024 || s.ms_photons > (std::int64_t{1} << 26)) bad("view state optics.ms_photons: must be in [1024, 67108864]");
   if (s.slices < 8 || s.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
@@ -85,12 +80,8 @@ void validate(const ViewState& s) {
   // scale would be silently raised.
   if (!(s.render_scale >= 0.01 && s.render_scale <= 1.0)) bad("view state renderer.render_scale: must be in [0.01, 1]");
   if (!(s.exposure_stops >= -20.0 && s.exposure_stops <= 20.0)) bad("view state renderer.exposure: must be in [-20, 20] stops");
-  try {
-    const ShaftMethod m = parse_shaft_method(s.shafts);
-    if (m.kind == ShaftMethod::Kind::Reference) bad("the scene under GPU clouds needs a GPU method, not reference");
-  } catch (const std::invalid_argument& e) {
-    bad(std::string("view state renderer.shafts: ") + e.what());
-  }
+  if (s.shafts.kind == ShaftMethod::Kind::Reference)
+    bad("view state renderer.shafts: the scene under GPU clouds needs a GPU method, not reference");
 }
 
 ViewState view_state_from_json(const json& doc, const std::string& where) {
@@ -132,7 +123,11 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         } else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
         else if (ok == "ms_method") {
           if (!ov.is_string()) bad(okey + " must be light-volume or octaves");
-          s.multiple_method = ov.get<std::string>();
+          try {
+            s.multiple_method = parse_multiple_scattering_method(ov.get<std::string>());
+          } catch (const std::invalid_argument& e) {
+            bad(okey + ": " + e.what());
+          }
         } else if (ok == "ms_grid") s.ms_grid = integer(ov, okey);
         else if (ok == "ms_photons") {
           if (!ov.is_number_integer()) bad(okey + " must be an integer");
@@ -149,7 +144,11 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         else if (rk == "jitter") s.jitter = volume::json_bool(rv, rkey);
         else if (rk == "shafts") {
           if (!rv.is_string()) bad(rkey + " must be a shaft method such as raymarch:24");
-          s.shafts = rv.get<std::string>();
+          try {
+            s.shafts = parse_shaft_method(rv.get<std::string>());
+          } catch (const std::invalid_argument& e) {
+            bad(rkey + ": " + e.what());
+          }
         } else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
       });
     } else if (k != "nimbus") {
@@ -176,7 +175,7 @@ json view_state_to_json(const ViewState& s) {
             {"albedo", to_json(s.albedo)},
             {"phase", to_string(s.phase)},
             {"multiple", s.multiple_octaves},
-            {"ms_method", s.multiple_method},
+            {"ms_method", to_string(s.multiple_method)},
             {"ms_grid", s.ms_grid},
             {"ms_photons", s.ms_photons}}},
           {"renderer",
@@ -186,7 +185,7 @@ json view_state_to_json(const ViewState& s) {
             {"render_scale", s.render_scale},
             {"exposure", s.exposure_stops},
             {"jitter", s.jitter},
-            {"shafts", s.shafts}}}};
+            {"shafts", to_string(s.shafts)}}}};
 }
 
 ViewState load_view_state(const std::string& path) {

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {
@@ -34,10 +35,11 @@ struct ViewState {
   double extinction_per_m = 0.04;
   glm::dvec3 albedo{0.99};
   DualLobePhase phase{0.7, -0.25, 0.8};
-  // Multiple scattering: "light-volume" (the photon-traced light volume, built per keyframe in
-  // the background: keyframe_light_volumes.hpp) or "octaves" (multiple_octaves of them, 0: single
-  // scattering; also drawn while the first light volume is being built).
-  std::string multiple_method = "light-volume";
+  // Multiple scattering: LightVolume (the photon-traced light volume, built per keyframe in the
+  // background: keyframe_light_volumes.hpp) or Octaves (multiple_octaves of them, 0: single
+  // scattering; also drawn while the first light volume is being built). Parsed once, where the
+  // JSON is read ("light-volume", "octaves").
+  MultipleScatteringMethod multiple_method = MultipleScatteringMethod::LightVolume;
   int multiple_octaves = 2;   // [0, 3]
   int ms_grid = 48;                  // light volume cells along the clouds' longest axis, [4, 192]
   // Light volume photons, [1024, 1 << 26]: 2^19, a quarter of `nimbus render`'s, so a keyframe's
@@ -46,7 +48,12 @@ struct ViewState {
   // Renderer at full quality (the viewer's adaptive quality lowers slices and scale in motion).
   int slices = 128;           // [8, 1024]
   int light_res = 256;        // [32, 4096]
-  std::string shafts = "raymarch:24";
+  ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)
+    ShaftMethod m;
+    m.kind = ShaftMethod::Kind::RayMarch;
+    m.steps = 24;
+    return m;
+  }();
   int cloud_shadow_res = 256; // [16, 8192]
   double render_scale = 1.0;  // (0, 1]: the frame is rendered at this share of the window's size
   bool jitter = true;         // blue-noise sample offsets within the slabs (one fixed pattern: no flicker)

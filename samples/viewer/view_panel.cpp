@@ -137,8 +137,10 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     static const char* shafts[] = {"analytic", "raymarch:8", "raymarch:24", "raymarch:48", "shadowvolume"};
     const std::string current = render::to_string(s.shafts);
     if (ImGui::BeginCombo("shafts", current.c_str())) {
-      for (const char* m : shafts)
-        if (ImGui::Selectable(m, current == render::to_string(render::parse_shaft_method(m)))) s.shafts = render::parse_shaft_method(m);
+      for (const char* m : shafts) {
+        const render::ShaftMethod option = render::parse_shaft_method(m);
+        if (ImGui::Selectable(m, current == render::to_string(option))) s.shafts = option;
+      }
       ImGui::EndCombo();
     }
     slider("render scale", s.render_scale, 0.1, 1.0, "%.2f");

@@ -25,6 +25,18 @@ glm::dvec3 vec3(const json& v, const std::string& key) { return volume::json_vec
 
 json to_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+// A string value read through its parser (parse_cloud_phase, parse_shaft_method...): the key is
+// named when it is not a string (`expected` says what it should be) or the parser refuses it.
+template <typename Parse>
+auto parsed(const json& v, const std::string& key, const char* expected, Parse parse) {
+  if (!v.is_string()) bad(key + " must be " + expected);
+  try {
+    return parse(v.get<std::string>());
+  } catch (const std::invalid_argument& e) {
+    bad(key + ": " + e.what());
+  }
+}
+
 // Calls f(key, value) for every member of the object `v` at `key`, which must be one.
 template <typename F>
 void members(const json& v, const std::string& key, F f) {
@@ -113,22 +125,11 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
       members(v, key, [&](const std::string& ok, const json& ov, const std::string& okey) {
         if (ok == "extinction") s.extinction_per_m = number(ov, okey);
         else if (ok == "albedo") s.albedo = vec3(ov, okey);
-        else if (ok == "phase") {
-          if (!ov.is_string()) bad(okey + " must be isotropic, hg:G or dual:GF,GB,W");
-          try {
-            s.phase = parse_cloud_phase(ov.get<std::string>());
-          } catch (const std::invalid_argument& e) {
-            bad(okey + ": " + e.what());
-          }
-        } else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
-        else if (ok == "ms_method") {
-          if (!ov.is_string()) bad(okey + " must be light-volume or octaves");
-          try {
-            s.multiple_method = parse_multiple_scattering_method(ov.get<std::string>());
-          } catch (const std::invalid_argument& e) {
-            bad(okey + ": " + e.what());
-          }
-        } else if (ok == "ms_grid") s.ms_grid = integer(ov, okey);
+        else if (ok == "phase") s.phase = parsed(ov, okey, "isotropic, hg:G or dual:GF,GB,W", parse_cloud_phase);
+        else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
+        else if (ok == "ms_method")
+          s.multiple_method = parsed(ov, okey, "light-volume or octaves", parse_multiple_scattering_method);
+        else if (ok == "ms_grid") s.ms_grid = integer(ov, okey);
         else if (ok == "ms_photons") {
           if (!ov.is_number_integer()) bad(okey + " must be an integer");
           s.ms_photons = ov.get<std::int64_t>();
@@ -142,14 +143,8 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         else if (rk == "render_scale") s.render_scale = number(rv, rkey);
         else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
         else if (rk == "jitter") s.jitter = volume::json_bool(rv, rkey);
-        else if (rk == "shafts") {
-          if (!rv.is_string()) bad(rkey + " must be a shaft method such as raymarch:24");
-          try {
-            s.shafts = parse_shaft_method(rv.get<std::string>());
-          } catch (const std::invalid_argument& e) {
-            bad(rkey + ": " + e.what());
-          }
-        } else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
+        else if (rk == "shafts") s.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
+        else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
       });
     } else if (k != "nimbus") {
       bad(key + ": unknown key (known: sky, scene, camera, time, optics, renderer)");

@@ -60,20 +60,20 @@ struct Timed {
   render::CloudFrameStats best;  // best GPU total of the repeats
   double best_wall_ms = 1e300;
 };
-Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::CloudLight>& lights,
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::Light>& lights,
                    const render::CloudSliceSettings& s, int repeat);
-Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::CloudLight& light,
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::Light& light,
                    const render::CloudSliceSettings& s, int repeat);
 
 // The CPU single-scattering reference (double precision) at the given steps, with a progress line.
 render::Image reference_with_progress(const std::vector<render::CloudVolume>& clouds, const render::Camera& cam,
-                                      const std::vector<render::CloudLight>& light, double view_step,
+                                      const std::vector<render::Light>& light, double view_step,
                                       double shadow_step, const std::string& what);
 
 // A sun-lit case and its reference.
 struct Lit {
   bool back;
-  render::CloudLight light;
+  render::Light light;
   render::Image reference;
 };
 

@@ -29,7 +29,7 @@ struct LampRows {
 };
 
 // A lamp at distance d along the front- or back-lit direction, intensity d^2 W/sr.
-render::CloudLight lamp(bool back, double d) {
+render::Light lamp(bool back, double d) {
   const glm::dvec3 dir = glm::normalize(app::bench_light(back).direction_to_sun);
   return render::point_light(d * dir, glm::dvec3(d * d));
 }
@@ -58,7 +58,7 @@ std::map<bool, render::Image> single_lamp_rows(const LampRows& r) {
   for (const bool back : r.back_lit) {
     for (std::size_t di = 0; di < distances.size(); ++di) {
       const double d = distances[di];
-      const std::vector<render::CloudLight> lights = {lamp(back, d)};
+      const std::vector<render::Light> lights = {lamp(back, d)};
       const auto t0 = std::chrono::steady_clock::now();
       const render::Image ref = reference_with_progress(r.clouds, r.camera, lights, r.ref_view, r.ref_shadow,
                                                         std::string("reference lamp ") + (back ? "back" : "front"));
@@ -90,7 +90,7 @@ void two_lamp_rows(const LampRows& r, std::map<bool, render::Image>& mid_referen
   const BenchCloudsArgs& a = r.a;
   if (mid_reference.size() != 2) return;
   const double d = lamp_distances(a).front();
-  const std::vector<render::CloudLight> both = {lamp(false, d), lamp(true, d)};
+  const std::vector<render::Light> both = {lamp(false, d), lamp(true, d)};
   render::Image sum = mid_reference[false];
   for (int y = 0; y < sum.height; ++y)
     for (int x = 0; x < sum.width; ++x)
@@ -121,8 +121,8 @@ void steam_rows(const LampRows& r) {
   render::Camera cam = scene.camera;
   cam.width = r.camera.width;
   cam.height = r.camera.height;
-  const std::vector<render::CloudLight> lights = {
-      render::point_light(scene.point_lights[0].position_m, scene.point_lights[0].intensity_w_sr)};
+  const std::vector<render::Light> lights = {
+      scene.lamps[0]};
   const auto t0 = std::chrono::steady_clock::now();
   const render::Image ref = reference_with_progress(steam, cam, lights, r.ref_view, r.ref_shadow, "reference steam");
   const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

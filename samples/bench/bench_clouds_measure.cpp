@@ -65,7 +65,7 @@ void save(const std::string& dir, const std::string& name, const render::Image& 
   render::write_png_preview(std::filesystem::path(dir) / (name + ".png"), img, o);
 }
 
-Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::CloudLight>& lights,
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const std::vector<render::Light>& lights,
                    const render::CloudSliceSettings& s, int repeat) {
   Timed t;
   render::CloudFrameStats st;
@@ -81,13 +81,13 @@ Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const st
   return t;
 }
 
-Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::CloudLight& light,
+Timed timed_render(render::CloudRenderer& r, const render::Camera& cam, const render::Light& light,
                    const render::CloudSliceSettings& s, int repeat) {
-  return timed_render(r, cam, std::vector<render::CloudLight>{light}, s, repeat);
+  return timed_render(r, cam, std::vector<render::Light>{light}, s, repeat);
 }
 
 render::Image reference_with_progress(const std::vector<render::CloudVolume>& clouds, const render::Camera& cam,
-                                      const std::vector<render::CloudLight>& light, double view_step,
+                                      const std::vector<render::Light>& light, double view_step,
                                       double shadow_step, const std::string& what) {
   Progress progress(what);
   render::CloudReferenceSettings s;

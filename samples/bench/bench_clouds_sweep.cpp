@@ -64,7 +64,7 @@ void sweep_rows(const BenchCloudsArgs& a, render::CloudRenderer& renderer, const
   std::vector<double> angle;
   for (int k = 0; k < frames; ++k) {
     const double deg = 90.0 - a.sweep_half_deg + (k + 0.5) * a.sweep_step_deg;
-    render::CloudLight light = app::bench_light(false);
+    render::Light light = app::bench_light(false);
     light.direction_to_sun = std::cos(deg * kPi / 180.0) * view + std::sin(deg * kPi / 180.0) * side;
     render::CloudFrameStats st;
     images.push_back(renderer.render(camera, light, s, nullptr, &st));

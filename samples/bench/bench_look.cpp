@@ -220,7 +220,7 @@ struct LookCase {
   const PhaseCase& phase;
   std::vector<render::CloudVolume> clouds;
   render::Camera camera;
-  render::CloudLight light;
+  render::Light light;
   render::PathTracedImage reference;
   std::filesystem::path stem;  // --images: the case's file names start here
 };

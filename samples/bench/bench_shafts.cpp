@@ -60,7 +60,7 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
   // A light seen directly is the same in every method and its few pixels would outweigh the
   // fog in the error: bulbs are hidden unless asked for.
   if (!a.bulbs)
-    for (render::PointLight& l : scene.point_lights) l.bulb_radius_m = 0.0;
+    for (render::Light& l : scene.lamps) l.bulb_radius_m = 0.0;
   render::Camera camera = scene.camera;
   camera.width = 1280;
   camera.height = 720;
@@ -151,7 +151,7 @@ int run_bench_shafts(const BenchShaftsArgs& a) {
   }
   std::printf("# shadow maps: %.1f ms (once); lit pixels compared: %zu\n", shadow_ms,
               render::compare_images(reference, reference).pixels);
-  if (!scene.point_lights.empty()) {
+  if (!scene.lamps.empty()) {
     bench_surface_airlight_gpu(scene, camera, reference, settings, a.repeat);
     bench_surface_airlight_cpu();
   }

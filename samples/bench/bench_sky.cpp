@@ -91,7 +91,7 @@ int run_bench_sky(const BenchSkyArgs& a) {
       const render::Daylight d = render::daylight(sun);
       scene.sky = d.sky;
       if (kind == 1) scene.sky->atmosphere = nullptr;
-      render::CloudLight light{sun, d.cloud_sun_irradiance_w_m2};
+      render::Light light{sun, d.cloud_sun_irradiance_w_m2};
       render::FrameSettings fs;
       render::FrameRenderer fr(scene, light, fs);
       fr.set_clouds(clouds);

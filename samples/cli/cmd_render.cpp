@@ -80,7 +80,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
     throw UsageError(std::string("--scene: ") + e.what());
   }
   if (a.hide_bulbs)
-    for (render::PointLight& l : scene.point_lights) l.bulb_radius_m = 0.0;
+    for (render::Light& l : scene.lamps) l.bulb_radius_m = 0.0;
   if (a.extinction && !(std::abs(*a.extinction) <= kMaxFlagMagnitude))
     throw UsageError("--extinction: must be at most 1e12 per metre");
   if (a.extinction) scene.medium.extinction_per_m = *a.extinction;

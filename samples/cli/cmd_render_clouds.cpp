@@ -177,14 +177,15 @@ void check_cloud_render_files(const CloudRenderArgs& a, const FrameRange& range,
 // its gas (steam-lamp: its camera is aimed where the steam rises).
 render::Camera frame_camera(const CloudRenderArgs& a, const CloudRenderPlan& plan, const CameraArgs& camera_args,
                             const std::vector<render::CloudVolume>& clouds, int frame) {
-  render::Camera camera = plan.base_camera;
-  const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !plan.scene.cloud_extinction_per_m;
+  const std::optional<render::Scene>& scene = plan.frame.scene;
+  render::Camera camera = plan.frame.camera;
+  const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !(scene && scene->cloud_extinction_per_m);
   if (framed) {
     CameraArgs size_only;
     size_only.res = camera_args.res;
     size_only.fov_deg = camera_args.fov_deg;
-    camera = render::frame_clouds(apply_camera_args(size_only, plan.base_camera), clouds,
-                                  !plan.no_scene && plan.scene.ground.has_value());
+    camera = render::frame_clouds(apply_camera_args(size_only, plan.frame.camera), clouds,
+                                  scene && scene->ground.has_value());
   }
   try {
     camera = apply_camera_args(camera_args, camera);
@@ -214,7 +215,7 @@ void write_cloud_frame(render::Image& image, const CloudRenderPlan& plan, const 
   write_image_files(out, preview.empty() ? "" : frame_path(preview, frame, range.sequence), image, po);
   warn_half_float_clipping(image, out, "--lamp-intensity, --ambient or the scene's lights");
   std::fprintf(stderr, "%s: %zu cloud(s) over %s, %dx%d, %s, %.2f s on %s%s%s\n", out.c_str(), n_clouds,
-               plan.no_scene ? "nothing" : plan.scene.name.c_str(), camera.width, camera.height, plan.method.c_str(),
+               plan.frame.scene ? plan.frame.scene->name.c_str() : "nothing", camera.width, camera.height, plan.method.c_str(),
                seconds, stats.device.c_str(), stats.summary.empty() ? "" : "; ", stats.summary.c_str());
 }
 
@@ -229,7 +230,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   check_cloud_render_files(a, plan.range, output, preview);
   checks_done();
 
-  render::FrameSettings& fs = plan.settings;
+  render::FrameSettings& fs = plan.frame.settings;
   std::unique_ptr<render::GlContext> gl;
   if (fs.method == render::CloudMethod::Slices) {
     try {
@@ -245,13 +246,12 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (reference_progress) reference_progress->update(x);
   };
   fs.path_tracer.progress = fs.reference.progress;
-  render::FrameRenderer renderer(plan.no_scene ? std::nullopt : std::optional<render::Scene>(plan.scene), plan.lights,
-                                 fs);
+  render::FrameRenderer renderer(plan.frame);
 
   const FrameRange& range = plan.range;
   for (int frame = range.first; frame <= range.last; ++frame) {
     const auto start = std::chrono::steady_clock::now();
-    renderer.set_clouds(load_clouds(a, plan.presets, plan.optics, range, frame));
+    renderer.set_clouds(load_clouds(a, plan.presets, plan.frame.optics, range, frame));
     const render::Camera camera = frame_camera(a, plan, camera_args, renderer.clouds(), frame);
     if (render::is_cpu_method(fs.method))
       reference_progress = std::make_unique<Progress>("cloud " + plan.method +

@@ -9,7 +9,7 @@
 #include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/sun_setup.hpp"
 #include "outputs.hpp"
 
 namespace nimbus::cli {
@@ -20,6 +20,7 @@ using app::has_frame_field;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kLampBulbRadiusM = 0.05;  // a --lamp's bulb, seen in a scene
 
 // UsageError "<flag>: <why>" when `flag` was given but what it qualifies is not in effect (it
 // would be ignored without a word).
@@ -93,12 +94,12 @@ void plan_method_and_scene(CloudRenderPlan& p, const std::string& scene_name, bo
     throw UsageError("--method: '" + p.method + "' is not a cloud method (slices, reference or pathtrace)");
   }
   const std::string scene_choice = scene_given ? scene_name : "sky";
-  p.no_scene = scene_choice == "none";
-  if (render::is_cpu_method(p.cloud_method) && !p.no_scene)
+  const bool no_scene = scene_choice == "none";
+  if (render::is_cpu_method(p.cloud_method) && !no_scene)
     throw UsageError("--method " + p.method + " renders clouds alone, without a scene: add --scene none");
-  if (!p.no_scene) {
+  if (!no_scene) {
     try {
-      p.scene = render::make_scene(scene_choice);
+      p.frame.scene = render::make_scene(scene_choice);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--scene: ") + e.what() + " (or none)");
     }
@@ -128,13 +129,14 @@ void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const s
 
 // Stage 3: the clouds' optics (the scene's gas, the flags, the sky's ambient light).
 void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
-  render::CloudOptics& optics = p.optics;
+  render::CloudOptics& optics = p.frame.optics;
+  const std::optional<render::Scene>& scene = p.frame.scene;
   if (a.cloud_extinction) {
     if (!(std::abs(*a.cloud_extinction) <= kMaxFlagMagnitude))
       throw UsageError("--cloud-extinction: must be at most 1e12 per metre (per unit density)");
     optics.extinction_per_m = *a.cloud_extinction;
-  } else if (p.scene.cloud_extinction_per_m) {
-    optics.extinction_per_m = *p.scene.cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
+  } else if (scene && scene->cloud_extinction_per_m) {
+    optics.extinction_per_m = *scene->cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
   }
   if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
   try {
@@ -142,11 +144,8 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--cloud-phase: ") + e.what());
   }
-  if (a.ambient == "auto") {
-    optics.ambient_radiance = p.scene.sky ? render::sky_mean_radiance(*p.scene.sky) : glm::dvec3(0.0);
-  } else {
-    optics.ambient_radiance = parse_colour("--ambient", a.ambient);
-  }
+  // auto: the sky's mean radiance, set with the sun (plan_sun); 0 without a sky.
+  if (a.ambient != "auto") optics.ambient_radiance = parse_colour("--ambient", a.ambient);
   try {
     render::validate(optics);
   } catch (const std::invalid_argument& e) {
@@ -158,7 +157,8 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
 void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
   for (const std::string& text : a.lamps) {
     const glm::dvec3 at = parse_vec3("--lamp", text);
-    p.lights.push_back(render::point_light(at, parse_colour("--lamp-intensity", a.lamp_intensity)));
+    // In a scene its bulb shows (a 5 cm sphere); clouds never see bulbs.
+    p.frame.lights.push_back(render::bulb_light(at, parse_colour("--lamp-intensity", a.lamp_intensity), kLampBulbRadiusM));
   }
   refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
   refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
@@ -166,20 +166,20 @@ void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
     refuse_if_given_without(a, flag, p.cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
   if (!a.spot.empty()) {
     if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
-    if (!p.no_scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
+    if (p.frame.scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
     const glm::dvec3 axis = parse_vec3("--spot", a.spot);
     const std::size_t comma = a.spot_cone.find(',');
     const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
     const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));
     if (!inner || !outer || !(*inner > 0.0) || !(*inner <= *outer) || !(*outer <= 180.0))
       throw UsageError("--spot-cone: '" + a.spot_cone + "' must be INNER,OUTER degrees with 0 < INNER <= OUTER <= 180");
-    for (render::CloudLight& l : p.lights) {
+    for (render::Light& l : p.frame.lights) {
       l.spot_axis = axis;
       l.spot_inner_rad = *inner * kPi / 180.0;
       l.spot_outer_rad = *outer * kPi / 180.0;
     }
   }
-  for (const render::CloudLight& l : p.lights) {
+  for (const render::Light& l : p.frame.lights) {
     try {
       render::validate(l);
     } catch (const std::invalid_argument& e) {
@@ -191,40 +191,33 @@ void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
 // Stage 4b: the sun (--sun, else the scene's, else the default for clouds alone), which a physical
 // sky follows; first in the list. True when there is one.
 bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
-  render::Scene& scene = p.scene;
-  render::CloudLight light;
-  bool sun = false;
+  render::Scene* scene = p.frame.scene ? &*p.frame.scene : nullptr;
+  std::vector<render::Light>& lights = p.frame.lights;
+  std::optional<render::Light> sun;
+  std::optional<glm::dvec3> ambient = scene ? render::sky_ambient(*scene) : std::nullopt;
   if (!a.sun.empty()) {
-    sun = true;
-    light.direction_to_sun = parse_vec3("--sun", a.sun);
-    if (glm::length(light.direction_to_sun) == 0.0) throw UsageError("--sun: the direction must not be zero");
-    if (!p.no_scene) {
-      if (!scene.sun) scene.sun = render::SunLight{};
-      scene.sun->direction_to_sun = light.direction_to_sun;
-      if (scene.sky && scene.sky->atmosphere) {
-        // The physical sky follows the sun: its colour, the sky behind, the light on the clouds.
-        try {
-          const render::Daylight d = render::daylight(light.direction_to_sun, scene.sky->atmosphere->view.altitude_m);
-          scene.sun->irradiance_w_m2 = d.cloud_sun_irradiance_w_m2;
-          scene.sky = d.sky;
-        } catch (const std::invalid_argument& e) {
-          throw UsageError(std::string("--sun: ") + e.what());
-        }
-      }
-      light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
+    const glm::dvec3 to_sun = parse_vec3("--sun", a.sun);
+    if (glm::length(to_sun) == 0.0) throw UsageError("--sun: the direction must not be zero");
+    try {
+      // The one set-up of the sun (sun_setup.hpp): under the physical sky its colour, the sky
+      // behind and the light on the clouds follow it.
+      const render::SunSetup setup = render::set_up_sun(scene, to_sun, render::SunColour::Scene);
+      if (scene) render::place_sun(*scene, setup);
+      sun = setup.sun;
+      ambient = setup.ambient_w_sr_m2;
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--sun: ") + e.what());
     }
-  } else if (!p.no_scene && scene.sun) {
-    sun = true;
-    light.direction_to_sun = scene.sun->direction_to_sun;
-    light.irradiance_w_m2 = scene.sun->irradiance_w_m2;
-  } else if (!p.no_scene && scene.point_lights.empty() && p.lights.empty()) {
-    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene.name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
-  } else if (p.no_scene && p.lights.empty()) {
-    sun = true;  // clouds alone: the default sun
+  } else if (scene && scene->sun) {
+    sun = scene->sun;
+  } else if (scene && scene->lamps.empty() && lights.empty()) {
+    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene->name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
+  } else if (!scene && lights.empty()) {
+    sun = render::Light{};  // clouds alone: the default sun
   }
-  if (sun) p.lights.insert(p.lights.begin(), light);
-  if (a.ambient == "auto" && scene.sky) p.optics.ambient_radiance = render::sky_mean_radiance(*scene.sky);  // after --sun moved it
-  return sun;
+  if (sun) lights.insert(lights.begin(), *sun);
+  if (a.ambient == "auto" && ambient) p.frame.optics.ambient_radiance = *ambient;
+  return sun.has_value();
 }
 
 // Stage 5: the renderer's settings: the method, the slicer, the scene's shaft method.
@@ -246,7 +239,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
     throw UsageError(std::string("--slices/--light-res/--multiple/--blur/--max-lights: ") + e.what());
   }
   render::ShaftMethod shafts;
-  if (!p.no_scene) {
+  if (p.frame.scene) {
     try {
       shafts = render::parse_shaft_method(a.shafts);
     } catch (const std::invalid_argument& e) {
@@ -255,7 +248,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
     if (shafts.kind == render::ShaftMethod::Kind::Reference)
       throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
   }
-  render::FrameSettings& fs = p.settings;
+  render::FrameSettings& fs = p.frame.settings;
   fs.method = p.cloud_method;
   fs.slices = slices;
   fs.shafts = shafts;
@@ -265,7 +258,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
 
 // Stage 7: the path tracer's settings, and the one light it traces.
 void plan_path_tracer(CloudRenderPlan& p, const CloudRenderArgs& a) {
-  render::FrameSettings& fs = p.settings;
+  render::FrameSettings& fs = p.frame.settings;
   fs.path_tracer.samples_per_pixel = a.spp;
   fs.path_tracer.max_bounces = a.bounces;
   fs.path_tracer.seed = a.seed;
@@ -275,17 +268,18 @@ void plan_path_tracer(CloudRenderPlan& p, const CloudRenderArgs& a) {
     throw UsageError(std::string("--spp/--bounces: ") + e.what());
   }
   if (fs.method == render::CloudMethod::PathTrace &&
-      (p.lights.size() != 1 || p.lights[0].kind != render::CloudLightKind::Sun))
+      (p.frame.lights.size() != 1 || p.frame.lights[0].kind != render::LightKind::Sun))
     throw UsageError("--lamp: --method pathtrace traces the sun only");
 }
 
 // Stage 6: the camera before framing, and the presets to generate.
 void plan_camera_and_presets(CloudRenderPlan& p, const CloudRenderArgs& a) {
-  p.base_camera = p.no_scene ? render::Camera{} : p.scene.camera;
-  if (p.no_scene) {
-    p.base_camera.width = 512;
-    p.base_camera.height = 512;
-    p.base_camera.fov_deg = 44.8;  // vdb_render's default
+  render::Camera& camera = p.frame.camera;
+  camera = p.frame.scene ? p.frame.scene->camera : render::Camera{};
+  if (!p.frame.scene) {
+    camera.width = 512;
+    camera.height = 512;
+    camera.fov_deg = 44.8;  // vdb_render's default
   }
   for (const std::string& name : a.presets) {
     try {

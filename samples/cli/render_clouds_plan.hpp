@@ -9,7 +9,7 @@
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/scene.hpp"
-#include "nimbus/render/frame/frame_renderer.hpp"
+#include "nimbus/render/frame/frame_description.hpp"
 #include "render_clouds.hpp"
 
 namespace nimbus::cli {
@@ -17,13 +17,12 @@ namespace nimbus::cli {
 struct CloudRenderPlan {
   std::string method;                       // as named on the command line ("slices" by default)
   render::CloudMethod cloud_method{};
-  render::Scene scene;                      // empty with --scene none
-  bool no_scene = false;
+  // The frame (frame_description.hpp): the scene (none with --scene none) and its sun, the --sun
+  // and --lamp lights (the sun first, when there is one), the optics, the camera before framing
+  // (the scene's, or 512x512 at vdb_render's fov alone) and the settings (method, slicer,
+  // shafts, path tracer).
+  render::FrameDescription frame;
   FrameRange range;                         // this run's frames
-  render::CloudOptics optics;
-  std::vector<render::CloudLight> lights;   // the sun first, when there is one
-  render::FrameSettings settings;           // method, slicer, shafts, path tracer
-  render::Camera base_camera;               // the scene's, or 512x512 at vdb_render's fov alone
   std::vector<render::PresetCloud> presets; // --preset, loaded
 };
 

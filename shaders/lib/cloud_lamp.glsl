@@ -1,4 +1,4 @@
-// The lamp that lights the slicer's current pass (LAMP 1; cloud_light.hpp: a point light, or a
+// The lamp that lights the slicer's current pass (LAMP 1; light.hpp: a point light, or a
 // spot): where the light comes from at a world point, and how much arrives there unshadowed,
 // I w / max(r, r_min)^2 with the spot's weight w = smoothstep(cos outer, cos inner, cos angle).
 #ifndef NIMBUS_CLOUD_LAMP_GLSL

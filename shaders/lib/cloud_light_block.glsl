@@ -1,4 +1,4 @@
-// The light of the slicer's current pass (cloud_light.hpp's CloudLight, one pass each: the sun, a
+// The light of the slicer's current pass (light.hpp's Light, one pass each: the sun, a
 // lamp or a spot) with the pass's slicing geometry, as both slice programs see it
 // (SliceLightBlock of lib/contract.glsl; C++: render/gl/uniform_blocks.hpp, filled by
 // render/clouds/src/cloud_light_pass.cpp). One sign convention with LightsBlock: the sun's

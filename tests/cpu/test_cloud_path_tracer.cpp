@@ -61,7 +61,7 @@ TEST(CloudPathTracer, OneBounceIsTheSingleScatteringReferenceWithinItsNoise) {
   for (const DualLobePhase phase : {DualLobePhase{0.0, 0.0, 1.0}, DualLobePhase{0.7, -0.25, 0.8}}) {
     const std::vector<CloudVolume> clouds = {ball(24, 1.0 / 24, 8.0, phase, 0.9)};
     const Camera cam = camera_at({0.4, 0.3, 2.5}, {0, 0, 0}, 32, 30.0);
-    CloudLight light;
+    Light light;
     light.direction_to_sun = glm::dvec3(0.5, 0.6, 0.8);
     CloudReferenceSettings rs;
     rs.view_step_voxels = 0.1;
@@ -101,15 +101,15 @@ TEST(CloudPathTracer, SameSeedSameImageOtherSeedOtherNoise) {
   const Camera cam = camera_at({0.4, 0.3, 2.5}, {0, 0, 0}, 12, 30.0);
   PathTracerSettings ps;
   ps.samples_per_pixel = 8;
-  const PathTracedImage a = render_cloud_path_traced(clouds, cam, CloudLight{}, ps);
+  const PathTracedImage a = render_cloud_path_traced(clouds, cam, Light{}, ps);
   ps.threads = 1;
-  const PathTracedImage b = render_cloud_path_traced(clouds, cam, CloudLight{}, ps);
+  const PathTracedImage b = render_cloud_path_traced(clouds, cam, Light{}, ps);
   EXPECT_EQ(a.image.rgba, b.image.rgba) << "threads do not change the image";
   ps.seed = 2;
-  const PathTracedImage c = render_cloud_path_traced(clouds, cam, CloudLight{}, ps);
+  const PathTracedImage c = render_cloud_path_traced(clouds, cam, Light{}, ps);
   EXPECT_NE(a.image.rgba, c.image.rgba);
   ps.samples_per_pixel = 0;
-  EXPECT_THROW(render_cloud_path_traced(clouds, cam, CloudLight{}, ps), std::invalid_argument);
+  EXPECT_THROW(render_cloud_path_traced(clouds, cam, Light{}, ps), std::invalid_argument);
 }
 
 // The slab's deterministic solution (slab_discrete_ordinates.hpp): its total reflectance and
@@ -219,7 +219,7 @@ TEST(CloudPathTracer, SlabReflectionIsReciprocal) {
   const glm::dvec3 l = glm::normalize(glm::dvec3(0.7, 0.5, 0.1)), v = glm::normalize(glm::dvec3(-0.2, 0.9, 0.4));
   auto reflected = [&](const glm::dvec3& to_eye, const glm::dvec3& to_sun) {
     const Camera cam = camera_at(centre + 30.0 * to_eye, centre, 1, 0.01);
-    CloudLight light;
+    Light light;
     light.direction_to_sun = to_sun;
     light.irradiance_w_m2 = glm::dvec3(1.0);
     PathTracerSettings ps;

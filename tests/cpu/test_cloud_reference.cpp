@@ -123,14 +123,14 @@ TEST(CloudReference, AxisRayThroughBoxHasClosedFormAlpha) {
   const std::vector<nr::CloudVolume> clouds = {box_cloud(6, 6, 8, rho, voxel, offset, grey(sigma, 0.9))};
   const glm::dvec3 eye = offset + voxel * glm::dvec3(3.0, 2.0, -20.0);
   const double expected = 1.0 - std::exp(-sigma * rho * 8 * voxel);
-  const nr::CloudSample s = nr::cloud_reference_ray(clouds, nr::CloudLight{}, eye, {0, 0, 1}, steps(0.25, 0.5));
+  const nr::CloudSample s = nr::cloud_reference_ray(clouds, nr::Light{}, eye, {0, 0, 1}, steps(0.25, 0.5));
   EXPECT_NEAR(s.alpha, expected, 1e-12);
   // Unaligned steps: the kinks fall inside steps, an O(h^2) error per kink.
-  const nr::CloudSample u = nr::cloud_reference_ray(clouds, nr::CloudLight{}, eye, {0, 0, 1}, steps(0.3, 0.5));
+  const nr::CloudSample u = nr::cloud_reference_ray(clouds, nr::Light{}, eye, {0, 0, 1}, steps(0.3, 0.5));
   EXPECT_NEAR(u.alpha, expected, 1e-3);
   // Two copies of the same cloud add their extinction.
   const std::vector<nr::CloudVolume> twice = {clouds[0], clouds[0]};
-  EXPECT_NEAR(nr::cloud_reference_ray(twice, nr::CloudLight{}, eye, {0, 0, 1}, steps(0.25, 0.5)).alpha,
+  EXPECT_NEAR(nr::cloud_reference_ray(twice, nr::Light{}, eye, {0, 0, 1}, steps(0.25, 0.5)).alpha,
               1.0 - std::exp(-2.0 * sigma * rho * 8 * voxel), 1e-12);
   // The same ray as a camera's centre pixel (odd size: its ray is the view direction).
   nr::Camera cam;
@@ -139,7 +139,7 @@ TEST(CloudReference, AxisRayThroughBoxHasClosedFormAlpha) {
   cam.up = {0, 1, 0};
   cam.width = cam.height = 5;
   cam.fov_deg = 10.0;
-  const nr::Image img = nr::render_cloud_reference(clouds, cam, nr::CloudLight{}, steps(0.25, 0.5));
+  const nr::Image img = nr::render_cloud_reference(clouds, cam, nr::Light{}, steps(0.25, 0.5));
   EXPECT_NEAR(img.pixel(2, 2)[3], expected, 1e-6);
   EXPECT_EQ(img.metadata.at("method"), "cloud-reference");
   EXPECT_EQ(img.metadata.at("view_step_voxels"), "0.25");
@@ -160,8 +160,8 @@ TEST(CloudReference, ObliqueRayMatchesExactTrilinearIntegral) {
   const double tau = exact_optical_depth(nx, ny, nz, values, voxel, offset, sigma, eye, dir, 10.0);
   ASSERT_GT(tau, 0.5);  // the ray really crosses the cloud
   const double exact = 1.0 - std::exp(-tau);
-  const double coarse = nr::cloud_reference_ray(clouds, nr::CloudLight{}, eye, dir, steps(0.25, 0.5)).alpha;
-  const double fine = nr::cloud_reference_ray(clouds, nr::CloudLight{}, eye, dir, steps(0.02, 0.5)).alpha;
+  const double coarse = nr::cloud_reference_ray(clouds, nr::Light{}, eye, dir, steps(0.25, 0.5)).alpha;
+  const double fine = nr::cloud_reference_ray(clouds, nr::Light{}, eye, dir, steps(0.02, 0.5)).alpha;
   EXPECT_NEAR(coarse, exact, 2e-3);
   EXPECT_NEAR(fine, exact, 2e-5);
   EXPECT_LT(std::abs(fine - exact), std::abs(coarse - exact));
@@ -184,7 +184,7 @@ TEST(CloudReference, SlabSingleScatteringMatchesClosedForm) {
     const glm::dvec3 eye = voxel * glm::dvec3(20.0, 30.0, 20.0);
     for (const double zenith_deg : {0.0, 45.0}) {
       const double mu = std::cos(zenith_deg * kPi / 180.0);
-      nr::CloudLight sun;
+      nr::Light sun;
       sun.direction_to_sun = {std::sin(zenith_deg * kPi / 180.0), mu, 0.0};
       sun.irradiance_w_m2 = {2.0, 3.0, 4.0};
       const double k = 1.0 + 1.0 / mu;
@@ -211,7 +211,7 @@ TEST(CloudReference, ImageConvergesWhenStepsHalve) {
   cam.up = {0, 1, 0};
   cam.fov_deg = 40;
   cam.width = cam.height = 24;
-  nr::CloudLight sun;
+  nr::Light sun;
   sun.direction_to_sun = {0.6, 0.8, 0.3};
   std::vector<nr::Image> images;
   for (const double h : {1.0, 0.5, 0.25, 0.125})
@@ -234,7 +234,7 @@ TEST(CloudReference, AmbientAloneGivesAlbedoTimesAmbientTimesAlpha) {
   o.albedo = {0.9, 0.8, 0.7};
   o.ambient_radiance = {0.5, 1.0, 2.0};
   const std::vector<nr::CloudVolume> clouds = {box_cloud(6, 6, 6, rho, voxel, {0, 0, 0}, o)};
-  nr::CloudLight dark;
+  nr::Light dark;
   dark.irradiance_w_m2 = glm::dvec3(0.0);
   const glm::dvec3 eye = voxel * glm::dvec3(2.0, 3.0, -10.0);
   const nr::CloudSample s = nr::cloud_reference_ray(clouds, dark, eye, {0, 0, 1});
@@ -250,7 +250,7 @@ TEST(CloudReference, LightTransmittanceOutsideShadowAndThroughBox) {
   const double voxel = 0.1, sigma = 2.5;
   const float rho = 0.8f;
   const std::vector<nr::CloudVolume> clouds = {box_cloud(4, 6, 4, rho, voxel, {0, 0, 0}, grey(sigma, 0.9))};
-  nr::CloudLight sun;
+  nr::Light sun;
   sun.direction_to_sun = {0, 2, 0};  // normalised on use
   const glm::dvec3 below = voxel * glm::dvec3(1.0, -10.0, 2.0);
   EXPECT_NEAR(nr::cloud_light_transmittance(clouds, sun, below), std::exp(-sigma * rho * 6 * voxel), 1e-12);
@@ -274,7 +274,7 @@ TEST(CloudReference, ProgressGrowsToOne) {
   std::vector<double> seen;
   s.progress = [&](double f) { seen.push_back(f); };
   s.threads = 2;
-  nr::render_cloud_reference(clouds, cam, nr::CloudLight{}, s);
+  nr::render_cloud_reference(clouds, cam, nr::Light{}, s);
   ASSERT_EQ(seen.size(), 7u);
   for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_GT(seen[i], seen[i - 1]);
   EXPECT_EQ(seen.back(), 1.0);
@@ -371,30 +371,30 @@ TEST(CloudReference, LampOnTheAxisOfABoxMatchesClosedForms) {
     SCOPED_TRACE("g " + std::to_string(g));
     {
       const double Lz = 2.0;  // back-lit: the lamp beyond the box, light travelling towards the eye
-      const nr::CloudLight lamp = nr::point_light({centre, centre, Lz}, I);
+      const nr::Light lamp = nr::point_light({centre, centre, Lz}, I);
       const nr::CloudSample s = nr::cloud_reference_ray(clouds, lamp, eye, {0, 0, 1}, steps(0.25, 0.1));
       const double k = b.sigma * b.albedo * hg(g, 1.0) * std::exp(-tau) * back_lit_integral(b, Lz);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.radiance[c] / (I[c] * k), 1.0, 2e-3) << "back-lit channel " << c;
       EXPECT_NEAR(s.alpha, 1.0 - std::exp(-tau), 1e-12);
       // The inverse square: the lamp twice as far (from the box's middle) is about four times dimmer.
-      const nr::CloudLight far = nr::point_light({centre, centre, 0.5 + 2.0 * (Lz - 0.5)}, I);
+      const nr::Light far = nr::point_light({centre, centre, 0.5 + 2.0 * (Lz - 0.5)}, I);
       const double k_far = b.sigma * b.albedo * hg(g, 1.0) * std::exp(-tau) * back_lit_integral(b, 0.5 + 2.0 * (Lz - 0.5));
       EXPECT_NEAR(nr::cloud_reference_ray(clouds, far, eye, {0, 0, 1}, steps(0.25, 0.1)).radiance[0] / (I[0] * k_far), 1.0, 2e-3);
       // A spot aimed at the box lights it as the lamp does; aimed away, not at all.
-      const nr::CloudLight at = nr::point_light(lamp.position_m, I, {0, 0, -1}, 0.1, 0.2);
-      const nr::CloudLight away = nr::point_light(lamp.position_m, I, {0, 0, 1}, 0.1, 0.2);
+      const nr::Light at = nr::point_light(lamp.position_m, I, {0, 0, -1}, 0.1, 0.2);
+      const nr::Light away = nr::point_light(lamp.position_m, I, {0, 0, 1}, 0.1, 0.2);
       EXPECT_NEAR(nr::cloud_reference_ray(clouds, at, eye, {0, 0, 1}, steps(0.25, 0.1)).radiance[1], s.radiance[1], 1e-12);
       const nr::CloudSample dark = nr::cloud_reference_ray(clouds, away, eye, {0, 0, 1}, steps(0.25, 0.1));
       EXPECT_EQ(dark.radiance[1], 0.0);
       EXPECT_NEAR(dark.alpha, s.alpha, 1e-15);
       // Two lamps add.
       const nr::CloudSample both =
-          nr::cloud_reference_ray(clouds, std::vector<nr::CloudLight>{lamp, far}, eye, {0, 0, 1}, steps(0.25, 0.1));
+          nr::cloud_reference_ray(clouds, std::vector<nr::Light>{lamp, far}, eye, {0, 0, 1}, steps(0.25, 0.1));
       EXPECT_NEAR(both.radiance[2] / (I[2] * (k + k_far)), 1.0, 2e-3);
     }
     {
       const double Lz = -0.5;  // front-lit: the lamp between the eye and the box
-      const nr::CloudLight lamp = nr::point_light({centre, centre, Lz}, I);
+      const nr::Light lamp = nr::point_light({centre, centre, Lz}, I);
       const nr::CloudSample s = nr::cloud_reference_ray(clouds, lamp, eye, {0, 0, 1}, steps(0.25, 0.1));
       const double k = b.sigma * b.albedo * hg(g, -1.0) * front_lit_integral(b, Lz);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.radiance[c] / (I[c] * k), 1.0, 2e-3) << "front-lit channel " << c;
@@ -408,7 +408,7 @@ TEST(CloudReference, ShadowRayToALampInsideABoxEndsAtTheLamp) {
   const AxisBox b;
   const std::vector<nr::CloudVolume> clouds = {box_cloud(6, 6, b.n, b.rho0, b.voxel, {0, 0, 0}, grey(b.sigma, 0.9))};
   const double centre = 2.5 * b.voxel;
-  const nr::CloudLight lamp = nr::point_light({centre, centre, 0.7}, glm::dvec3(1.0));
+  const nr::Light lamp = nr::point_light({centre, centre, 0.7}, glm::dvec3(1.0));
   for (const double z : {0.1, 0.4, 0.65}) {
     EXPECT_NEAR(nr::cloud_light_transmittance(clouds, lamp, {centre, centre, z}, 0.1),
                 std::exp(-(b.tau_to(0.7) - b.tau_to(z))), 1e-12)
@@ -420,8 +420,8 @@ TEST(CloudReference, ShadowRayToALampInsideABoxEndsAtTheLamp) {
 
 // The light model itself: inverse square, the spot's smoothstep, the floor on the distance, and
 // the ranking of lights by their irradiance at a point.
-TEST(CloudLight, InverseSquareSpotFloorAndRanking) {
-  const nr::CloudLight lamp = nr::point_light({0, 4, 0}, glm::dvec3(100.0));
+TEST(Light, InverseSquareSpotFloorAndRanking) {
+  const nr::Light lamp = nr::point_light({0, 4, 0}, glm::dvec3(100.0));
   const nr::LightAtPoint a = nr::light_at(lamp, {0, 0, 0});
   EXPECT_NEAR(a.irradiance_w_m2.x, 100.0 / 16.0, 1e-12);
   EXPECT_NEAR(a.distance_m, 4.0, 1e-15);
@@ -429,19 +429,19 @@ TEST(CloudLight, InverseSquareSpotFloorAndRanking) {
   EXPECT_NEAR(nr::light_at(lamp, {0, 4, 0}).irradiance_w_m2.x, 100.0 / (1e-3 * 1e-3), 1e-3);  // at the lamp: the floor
   // Spot pointing down, full within 20 degrees, none beyond 40: at 30 degrees, cos halfway -> 0.5.
   const double inner = 20.0 * kPi / 180.0, outer = 40.0 * kPi / 180.0;
-  const nr::CloudLight spot = nr::point_light({0, 0, 0}, glm::dvec3(1.0), {0, -1, 0}, inner, outer);
+  const nr::Light spot = nr::point_light({0, 0, 0}, glm::dvec3(1.0), {0, -1, 0}, inner, outer);
   const double c_mid = 0.5 * (std::cos(inner) + std::cos(outer));
   const double s_mid = std::sqrt(1.0 - c_mid * c_mid);
   EXPECT_NEAR(nr::spot_weight(spot, {s_mid, -c_mid, 0}), 0.5, 1e-12);
   EXPECT_EQ(nr::spot_weight(spot, {0, -1, 0}), 1.0);
   EXPECT_EQ(nr::spot_weight(spot, {1, 0, 0}), 0.0);
   EXPECT_EQ(nr::spot_weight(lamp, {1, 0, 0}), 1.0);
-  nr::CloudLight sun;
+  nr::Light sun;
   sun.irradiance_w_m2 = glm::dvec3(1.0);  // 1 W m^-2, against the lamps' 100 / r^2
-  const std::vector<nr::CloudLight> lights = {sun, lamp, nr::point_light({0, 2, 0}, glm::dvec3(100.0))};
+  const std::vector<nr::Light> lights = {sun, lamp, nr::point_light({0, 2, 0}, glm::dvec3(100.0))};
   EXPECT_EQ(nr::strongest_lights(lights, {0, 0, 0}, 2), (std::vector<int>{2, 1}));
   EXPECT_EQ(nr::strongest_lights(lights, {0, -40, 0}, 5), (std::vector<int>{0, 2, 1}));
-  nr::CloudLight bad = nr::point_light({0, 0, 0}, glm::dvec3(1.0), {0, -1, 0}, 0.5, 0.2);
+  nr::Light bad = nr::point_light({0, 0, 0}, glm::dvec3(1.0), {0, -1, 0}, 0.5, 0.2);
   expect_invalid([&] { nr::validate(bad); }, "spot");
   bad = nr::point_light({0, NAN, 0}, glm::dvec3(1.0));
   expect_invalid([&] { nr::validate(bad); }, "position_m");
@@ -476,21 +476,21 @@ TEST(CloudReference, BadInputRejected) {
   };
   for (const auto& [s, field] : bad) {
     expect_invalid([&] { nr::validate(s); }, field);
-    expect_invalid([&] { nr::render_cloud_reference(clouds, cam, nr::CloudLight{}, s); }, field);
-    expect_invalid([&] { nr::cloud_reference_ray(clouds, nr::CloudLight{}, cam.eye, {0, 0, -1}, s); }, field);
+    expect_invalid([&] { nr::render_cloud_reference(clouds, cam, nr::Light{}, s); }, field);
+    expect_invalid([&] { nr::cloud_reference_ray(clouds, nr::Light{}, cam.eye, {0, 0, -1}, s); }, field);
   }
-  expect_invalid([&] { nr::cloud_light_transmittance(clouds, nr::CloudLight{}, cam.eye, 0.0); }, "shadow_step_voxels");
-  expect_invalid([&] { nr::render_cloud_reference({}, cam, nr::CloudLight{}); }, "clouds");
-  expect_invalid([&] { nr::cloud_reference_ray(clouds, nr::CloudLight{}, cam.eye, {0, 0, 0}); }, "dir");
-  nr::CloudLight no_light;
+  expect_invalid([&] { nr::cloud_light_transmittance(clouds, nr::Light{}, cam.eye, 0.0); }, "shadow_step_voxels");
+  expect_invalid([&] { nr::render_cloud_reference({}, cam, nr::Light{}); }, "clouds");
+  expect_invalid([&] { nr::cloud_reference_ray(clouds, nr::Light{}, cam.eye, {0, 0, 0}); }, "dir");
+  nr::Light no_light;
   no_light.direction_to_sun = {0, 0, 0};
   expect_invalid([&] { nr::render_cloud_reference(clouds, cam, no_light); }, "direction_to_sun");
   nr::Camera bad_cam = cam;
   bad_cam.width = 0;
-  expect_invalid([&] { nr::render_cloud_reference(clouds, bad_cam, nr::CloudLight{}); }, "width");
+  expect_invalid([&] { nr::render_cloud_reference(clouds, bad_cam, nr::Light{}); }, "width");
   std::vector<nr::CloudVolume> bad_optics = clouds;
   bad_optics[0].optics.extinction_per_m = nan;
-  expect_invalid([&] { nr::render_cloud_reference(bad_optics, cam, nr::CloudLight{}); }, "extinction_per_m");
+  expect_invalid([&] { nr::render_cloud_reference(bad_optics, cam, nr::Light{}); }, "extinction_per_m");
 }
 
 // An infinite density makes the step integral inf / inf: the pixel is refused, not written.
@@ -502,5 +502,5 @@ TEST(CloudReference, NonFinitePixelRefused) {
   cam.look_at = {0.1, 0.1, 0.1};
   cam.width = cam.height = 3;
   cam.fov_deg = 5;
-  EXPECT_THROW(nr::render_cloud_reference(clouds, cam, nr::CloudLight{}), std::runtime_error);
+  EXPECT_THROW(nr::render_cloud_reference(clouds, cam, nr::Light{}), std::runtime_error);
 }

@@ -75,7 +75,7 @@ TEST(CloudVdbRender, ReferenceMatchesVdbRender) {
   const double voxel = grid->voxelSize()[0];
   const std::vector<nr::CloudVolume> clouds = {
       nr::make_cloud_volume(*grid, nimbus::app::vdb_render_optics(vr, voxel), "sphere")};
-  nr::CloudLight light;
+  nr::Light light;
   light.direction_to_sun = to_light;
   light.irradiance_w_m2 = glm::dvec3(1.0);
   nr::CloudReferenceSettings settings;

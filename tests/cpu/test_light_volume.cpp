@@ -62,8 +62,8 @@ LayerFluence central_layer(const LightVolume& v, int j) {
   return f;
 }
 
-CloudLight overhead_sun() {
-  CloudLight l;
+Light overhead_sun() {
+  Light l;
   l.direction_to_sun = glm::dvec3(0.0, 1.0, 0.0);  // the beam travels down, -y, at mu0 = 1
   l.irradiance_w_m2 = glm::dvec3(1.0);
   return l;
@@ -305,7 +305,7 @@ TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
   one.threads = 1;
   two.threads = 2;
   other.seed = 2;
-  const CloudLight sun = overhead_sun();
+  const Light sun = overhead_sun();
   const LightVolume a = build_light_volume(small_slab(0.9), sun, one);
   const LightVolume b = build_light_volume(small_slab(0.9), sun, two);
   const LightVolume c = build_light_volume(small_slab(0.9), sun, other);
@@ -316,7 +316,7 @@ TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
 
 TEST(LightVolume, RefusesBadSettingsNamingThem) {
   const std::vector<CloudVolume> clouds = small_slab(0.9);
-  const CloudLight sun = overhead_sun();
+  const Light sun = overhead_sun();
   auto message = [&](LightVolumeSettings s) {
     try {
       build_light_volume(clouds, sun, s);

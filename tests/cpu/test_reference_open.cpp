@@ -22,7 +22,7 @@ nr::Scene open_scene(double sigma_t, double albedo, nr::Phase phase, bool wall) 
   s.medium.extinction_per_m = sigma_t;
   s.medium.albedo = albedo;
   s.medium.phase = phase;
-  s.point_lights.push_back({{1.0, 2.0, -4.0}, glm::dvec3{100.0, 50.0, 25.0}, 0.05});
+  s.lamps.push_back(nr::bulb_light({1.0, 2.0, -4.0}, glm::dvec3{100.0, 50.0, 25.0}, 0.05));
   if (wall) s.boxes.push_back({{-500, -500, -31}, {500, 500, -30}, {{0.0, 0.0, 0.0}}});
   s.camera.eye = {0.0, 0.0, 10.0};
   s.camera.look_at = {0.0, 0.0, 0.0};
@@ -33,7 +33,7 @@ struct Geometry {
   double dsv, gamma, d_end;  // light distance, angle between ray and light, ray length (or inf)
 };
 Geometry geometry(const nr::Scene& s, const glm::dvec3& dir, bool wall) {
-  const glm::dvec3 v = s.point_lights[0].position_m - s.camera.eye;
+  const glm::dvec3 v = s.lamps[0].position_m - s.camera.eye;
   Geometry g;
   g.dsv = glm::length(v);
   g.gamma = std::acos(glm::dot(v, dir) / g.dsv);
@@ -51,7 +51,7 @@ double thin_limit(double sigma_s, const Geometry& g) {
 
 // Composite Simpson over [0, D] with n intervals of sigma_s p(theta) e^(-sigma_t (x + d)) / d^2.
 double simpson(const nr::Scene& s, const glm::dvec3& dir, double D, long n) {
-  const glm::dvec3 o = s.camera.eye, L = s.point_lights[0].position_m;
+  const glm::dvec3 o = s.camera.eye, L = s.lamps[0].position_m;
   const double st = s.medium.extinction_per_m, ss = s.medium.scattering_per_m();
   auto f = [&](double x) {
     const glm::dvec3 p = o + x * dir;
@@ -108,7 +108,7 @@ TEST(ReferenceOpen, VacuumIsTransparentAndDark) {
   EXPECT_EQ(r.alpha, 0.0);
   EXPECT_EQ(r.radiance, glm::dvec3(0.0));
   // The bulb seen directly: radiance I0 / (pi r^2), unattenuated in vacuum.
-  const glm::dvec3 to_bulb = s.point_lights[0].position_m - s.camera.eye;
+  const glm::dvec3 to_bulb = s.lamps[0].position_m - s.camera.eye;
   const nr::ReferenceSample b = nr::reference_ray(s, s.camera.eye, to_bulb);
   EXPECT_EQ(b.alpha, 1.0);
   EXPECT_NEAR(b.radiance.x, 100.0 / (M_PI * 0.05 * 0.05), 1e-9);
@@ -117,7 +117,7 @@ TEST(ReferenceOpen, VacuumIsTransparentAndDark) {
 TEST(ReferenceOpen, BulbIsAttenuatedAndAddsTheAirlightInFrontOfIt) {
   // Absorbing-only fog (albedo 0): only the bulb's own attenuated radiance.
   const nr::Scene s = open_scene(0.07, 0.0, nr::Phase{}, false);
-  const glm::dvec3 to_bulb = s.point_lights[0].position_m - s.camera.eye;
+  const glm::dvec3 to_bulb = s.lamps[0].position_m - s.camera.eye;
   const double t = glm::length(to_bulb) - 0.05;
   const nr::ReferenceSample b = nr::reference_ray(s, s.camera.eye, to_bulb);
   EXPECT_NEAR(b.radiance.y, 50.0 / (M_PI * 0.05 * 0.05) * std::exp(-0.07 * t), 1e-9 * b.radiance.y);

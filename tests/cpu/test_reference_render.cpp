@@ -75,7 +75,7 @@ TEST(ReferenceRender, MirrorSymmetricSceneGivesAMirrorSymmetricImage) {
   for (const double x : {-3.0, -1.0, 1.0, 3.0}) s.boxes.push_back({{x - 0.3, 0, -0.3}, {x + 0.3, 4, 0.3}, {}});
   s.spheres.push_back({{-1.5, 2.0, 3.0}, 0.4, {}});
   s.spheres.push_back({{1.5, 2.0, 3.0}, 0.4, {}});
-  s.point_lights.push_back({{0.0, 2.0, -2.0}, glm::dvec3{50.0}, 0.05});
+  s.lamps.push_back(nr::bulb_light({0.0, 2.0, -2.0}, glm::dvec3{50.0}, 0.05));
   s.camera.eye = {0.0, 1.5, 9.0};
   s.camera.look_at = {0.0, 2.0, 0.0};
   const nr::Camera c = tiny(s.camera, 24, 14);

@@ -33,7 +33,7 @@ double exp_integral(double s, double a, double b) {
 TEST(ReferenceShadow, UnoccludedSunAirlightIsClosedForm) {
   nr::Scene s = base_scene(0.05, 0.9, nr::Phase{nr::PhaseKind::HenyeyGreenstein, 0.4});
   s.ground = nr::GroundPlane{0.0, {{0.0, 0.0, 0.0}}};  // black: the airlight alone
-  s.sun = nr::SunLight{{0.3, 0.8, -0.5}, {3.0, 2.0, 1.0}};
+  s.sun = nr::sun_light({0.3, 0.8, -0.5}, {3.0, 2.0, 1.0});
   const glm::dvec3 u = glm::normalize(s.sun->direction_to_sun);
   const double ss = s.medium.scattering_per_m(), st = s.medium.extinction_per_m;
   // A ray reaching the ground at t, and one escaping to infinity.
@@ -49,7 +49,7 @@ TEST(ReferenceShadow, UnoccludedSunAirlightIsClosedForm) {
 
 TEST(ReferenceShadow, BoxOverTheRayRemovesExactlyItsSegmentOfSunAirlight) {
   nr::Scene s = base_scene(0.05, 1.0, nr::Phase{nr::PhaseKind::Rayleigh, 0.0});
-  s.sun = nr::SunLight{{0.0, 1.0, 0.0}, {2.0, 2.0, 2.0}};  // overhead
+  s.sun = nr::sun_light({0.0, 1.0, 0.0}, {2.0, 2.0, 2.0});  // overhead
   s.boxes.push_back({{4.0, 5.0, -1.0}, {7.0, 6.0, 1.0}, {}});
   s.boxes.push_back({{-10.0, 0.0, -10.0}, {-9.0, 10.0, 10.0}, {{0.0, 0.0, 0.0}}});  // behind, black
   s.boxes.push_back({{20.0, -10.0, -10.0}, {21.0, 10.0, 10.0}, {{0.0, 0.0, 0.0}}});  // ray ends at 20 m
@@ -66,7 +66,7 @@ TEST(ReferenceShadow, PlateUnderAPointLightShadowsAKnownSegment) {
   // ray whose segment to the light crosses it (x (1 - y / 5) in [a, b]): x in [a / 0.48, 2b],
   // before the light, where HG g > 0 scatters most toward the eye.
   nr::Scene s = base_scene(0.03, 1.0, nr::Phase{nr::PhaseKind::HenyeyGreenstein, 0.3});
-  s.point_lights.push_back({{0.0, 5.0, 0.0}, glm::dvec3{80.0}, 0.1});
+  s.lamps.push_back(nr::bulb_light({0.0, 5.0, 0.0}, glm::dvec3{80.0}, 0.1));
   const double a = -6.0, b = -3.0;
   s.boxes.push_back({{a, 2.5, -1.0}, {b, 2.6, 1.0}, {}});
   s.boxes.push_back({{40.0, -10.0, -10.0}, {41.0, 10.0, 10.0}, {{0.0, 0.0, 0.0}}});
@@ -103,7 +103,7 @@ TEST(ReferenceShadow, GroundInASpheresShadowGetsNoDirectLight) {
   nr::Scene s = base_scene(0.04, 0.0, nr::Phase{});
   s.ground = nr::GroundPlane{0.0, {{0.5, 0.4, 0.3}}};
   s.spheres.push_back({{0.0, 2.0, 0.0}, 0.5, {}});
-  s.point_lights.push_back({{0.0, 4.0, 0.0}, glm::dvec3{60.0}, 0.05});
+  s.lamps.push_back(nr::bulb_light({0.0, 4.0, 0.0}, glm::dvec3{60.0}, 0.05));
   s.camera.eye = {6.0, 3.0, 0.0};
   s.camera.look_at = {0.0, 0.0, 0.0};
   const double st = s.medium.extinction_per_m;
@@ -116,7 +116,7 @@ TEST(ReferenceShadow, GroundInASpheresShadowGetsNoDirectLight) {
     if (glm::length(ground) < 1.0) {
       EXPECT_EQ(r.radiance, glm::dvec3(0.0)) << ground.x;
     } else {
-      const glm::dvec3 to_light = s.point_lights[0].position_m - ground;
+      const glm::dvec3 to_light = s.lamps[0].position_m - ground;
       const double dist = glm::length(to_light), cos_i = to_light.y / dist;
       const double e = 0.5 / M_PI * 60.0 * cos_i * std::exp(-st * dist) / (dist * dist) * std::exp(-st * t);
       EXPECT_NEAR(r.radiance.x, e, 1e-12 * e);

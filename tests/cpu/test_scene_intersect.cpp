@@ -158,7 +158,7 @@ TEST(Intersect, SceneNearestHitShadowRaysAndBulbs) {
   s.ground = nr::GroundPlane{0.0, {{0.1, 0.2, 0.3}}};
   s.boxes.push_back({{-1, 0, -1}, {1, 2, 1}, {{0.9, 0.9, 0.9}}});
   s.spheres.push_back({{0, 4, 0}, 1.0, {{0.5, 0.4, 0.3}}});
-  s.point_lights.push_back({{0, 8, 0}, glm::dvec3{10.0}, 0.5});
+  s.lamps.push_back(nr::bulb_light({0, 8, 0}, glm::dvec3{10.0}, 0.5));
   // Straight down from above: sphere first, with its albedo.
   auto h = nr::intersect(s, {0, 20, 0}, {0, -1, 0});
   ASSERT_TRUE(h);

@@ -106,10 +106,10 @@ TEST(SceneMesh, TerrainTrianglesAreTheHeightfieldSurface) {
 TEST(SceneMesh, BulbsCarryTheirRadiance) {
   const nr::Scene s = nr::make_scene("lamps");
   const nr::SceneMesh all = nr::build_bulb_mesh(s);
-  const nr::SceneMesh one = nr::build_bulb_mesh(s.point_lights[1]);
+  const nr::SceneMesh one = nr::build_bulb_mesh(s.lamps[1]);
   expect_oriented(all);
   EXPECT_EQ(all.vertices.size(), 3 * one.vertices.size());
-  const nr::PointLight& l = s.point_lights[1];
+  const nr::Light& l = s.lamps[1];
   const glm::dvec3 radiance = l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m);
   for (const nr::MeshVertex& v : one.vertices) {
     EXPECT_NEAR(glm::length(glm::dvec3(v.position) - l.position_m), l.bulb_radius_m, 1e-6);
@@ -121,11 +121,11 @@ TEST(SceneMesh, BulbsCarryTheirRadiance) {
 // A radius of 0 hides a bulb: no triangles, and the reference sees no bulb either.
 TEST(SceneMesh, HiddenBulbsHaveNoGeometry) {
   nr::Scene s = nr::make_scene("lamps");
-  for (nr::PointLight& l : s.point_lights) l.bulb_radius_m = 0.0;
+  for (nr::Light& l : s.lamps) l.bulb_radius_m = 0.0;
   nr::validate(s);
   EXPECT_TRUE(nr::build_bulb_mesh(s).indices.empty());
-  EXPECT_TRUE(nr::build_bulb_mesh(s.point_lights[0]).vertices.empty());
-  const glm::dvec3 dir = glm::normalize(s.point_lights[0].position_m - s.camera.eye);
+  EXPECT_TRUE(nr::build_bulb_mesh(s.lamps[0]).vertices.empty());
+  const glm::dvec3 dir = glm::normalize(s.lamps[0].position_m - s.camera.eye);
   EXPECT_FALSE(nr::intersect_bulbs(s, s.camera.eye, dir, 1e9).has_value());
 }
 

@@ -57,10 +57,10 @@ TEST(ScenePresets, UnknownNameListsTheKnownOnes) {
 
 TEST(ScenePresets, LampsAreIdenticalAtDifferentDistances) {
   const nr::Scene s = nr::make_scene("lamps");
-  ASSERT_EQ(s.point_lights.size(), 3u);
+  ASSERT_EQ(s.lamps.size(), 3u);
   std::set<double> distances;
-  for (const nr::PointLight& l : s.point_lights) {
-    EXPECT_EQ(l.intensity_w_sr, s.point_lights[0].intensity_w_sr);
+  for (const nr::Light& l : s.lamps) {
+    EXPECT_EQ(l.intensity_w_sr, s.lamps[0].intensity_w_sr);
     EXPECT_NEAR(l.position_m.y, 5.0, 0.5);
     distances.insert(std::round(glm::length(l.position_m - s.camera.eye)));
   }
@@ -70,17 +70,17 @@ TEST(ScenePresets, LampsAreIdenticalAtDifferentDistances) {
   EXPECT_NEAR(s.medium.extinction_per_m, 0.04, 1e-12);
   // Each lamp is visible from the eye (the bulb is not hidden by its post or a house).
   const nr::SceneTracer tracer(s);
-  for (const nr::PointLight& l : s.point_lights) EXPECT_FALSE(tracer.occluded(s.camera.eye, l.position_m));
+  for (const nr::Light& l : s.lamps) EXPECT_FALSE(tracer.occluded(s.camera.eye, l.position_m));
 }
 
 TEST(ScenePresets, ColonnadesShareTheirPillars) {
   const nr::Scene point = nr::make_scene("colonnade"), sun = nr::make_scene("colonnade-sun");
   EXPECT_EQ(point.medium.phase.kind, nr::PhaseKind::HenyeyGreenstein);
   EXPECT_NEAR(point.medium.phase.g, 0.3, 1e-12);
-  ASSERT_EQ(point.point_lights.size(), 1u);
+  ASSERT_EQ(point.lamps.size(), 1u);
   EXPECT_FALSE(point.sun);
   EXPECT_TRUE(sun.sun);
-  EXPECT_TRUE(sun.point_lights.empty());
+  EXPECT_TRUE(sun.lamps.empty());
   ASSERT_GE(point.boxes.size(), sun.boxes.size());
   for (std::size_t i = 0; i < sun.boxes.size(); ++i) EXPECT_EQ(point.boxes[i].min_m, sun.boxes[i].min_m);
   // Low sun behind the colonnade (away from the camera, which is at +z).
@@ -92,7 +92,7 @@ TEST(ScenePresets, ColonnadesShareTheirPillars) {
   // Light leaves the hall between the pillars: from the light, the gap centres are lit at the
   // front and the pillar centres are dark behind them.
   const nr::SceneTracer tracer(point);
-  const glm::dvec3 light = point.point_lights[0].position_m;
+  const glm::dvec3 light = point.lamps[0].position_m;
   EXPECT_FALSE(tracer.occluded(light, {1.25, 3.0, 3.0}));
   EXPECT_TRUE(tracer.occluded(light, {0.0, 3.0, 3.0}));
 }
@@ -117,7 +117,7 @@ TEST(ScenePresets, OpenSceneHasNothingToOcclude) {
   EXPECT_FALSE(s.terrain);
   EXPECT_TRUE(s.boxes.empty());
   EXPECT_TRUE(s.spheres.empty());
-  EXPECT_EQ(s.point_lights.size(), 1u);
+  EXPECT_EQ(s.lamps.size(), 1u);
   EXPECT_FALSE(s.sun);
 }
 
@@ -130,17 +130,17 @@ TEST(SceneValidation, ErrorsNameTheField) {
   s.boxes.push_back({{0, 0, 0}, {1, -1, 1}, {}});
   expect_error_naming(s, "boxes[0].max_m");
   s = good;
-  s.point_lights.clear();
+  s.lamps.clear();
   expect_error_naming(s, "no light");
   s = good;
-  s.point_lights[0].intensity_w_sr.y = std::nan("");
-  expect_error_naming(s, "point_lights[0].intensity_w_sr");
+  s.lamps[0].intensity_w_sr.y = std::nan("");
+  expect_error_naming(s, "lamps[0].intensity_w_sr");
   s = good;
-  s.point_lights[0].bulb_radius_m = -0.01;  // 0 is allowed: no visible bulb
-  expect_error_naming(s, "point_lights[0].bulb_radius_m");
+  s.lamps[0].bulb_radius_m = -0.01;  // 0 is allowed: no visible bulb
+  expect_error_naming(s, "lamps[0].bulb_radius_m");
   s = good;
-  s.point_lights[0].position_m = s.spheres[2].centre_m;
-  expect_error_naming(s, "point_lights[0].position_m");
+  s.lamps[0].position_m = s.spheres[2].centre_m;
+  expect_error_naming(s, "lamps[0].position_m");
   s = good;
   s.ground->material.albedo = {0.5, 1.5, 0.5};
   expect_error_naming(s, "ground.material.albedo");
@@ -151,13 +151,13 @@ TEST(SceneValidation, ErrorsNameTheField) {
   s.camera.eye = s.spheres[0].centre_m;
   expect_error_naming(s, "camera.eye");
   s = good;
-  s.camera.eye = s.point_lights[0].position_m + glm::dvec3{0.01, 0.0, 0.0};
+  s.camera.eye = s.lamps[0].position_m + glm::dvec3{0.01, 0.0, 0.0};
   expect_error_naming(s, "camera.eye");
   s = good;
   s.medium.extinction_per_m = -0.1;
   expect_error_naming(s, "medium");
   s = good;
-  s.sun = nr::SunLight{{0, 0, 0}, {1, 1, 1}};
+  s.sun = nr::sun_light({0, 0, 0}, {1, 1, 1});
   expect_error_naming(s, "sun.direction_to_sun");
 
   nr::Scene t = nr::make_scene("terrain");

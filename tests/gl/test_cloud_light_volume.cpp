@@ -64,8 +64,8 @@ CloudSliceSettings settings(bool light_volume) {
   return s;
 }
 
-CloudLight side_sun() {
-  CloudLight l;
+Light side_sun() {
+  Light l;
   l.direction_to_sun = glm::dvec3(0.6, 0.7, 0.3);
   l.irradiance_w_m2 = glm::dvec3(2.0);
   return l;
@@ -94,7 +94,7 @@ TEST(CloudLightVolume, AddsEqMS1AlongEachRayAsTheCpuMarch) {
   const CloudVolume cloud = ball(phase);
   CloudRenderer r({cloud}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 28.0);
-  const CloudLight sun = side_sun();
+  const Light sun = side_sun();
   const Image single = r.render(cam, sun, settings(false));
   const LightVolume v = made_volume(false);
   r.set_light_volume(v);
@@ -151,13 +151,13 @@ TEST(CloudLightVolume, FrameRendererBuildsOnceAndAgainOnlyForANewSunDirection) {
   EXPECT_NE(first.metadata.at("light_volume").find("4096 photons"), std::string::npos);
   frame.render(cam, &st);
   EXPECT_FALSE(st.light_volume_rebuilt);
-  CloudLight brighter = side_sun();
+  Light brighter = side_sun();
   brighter.irradiance_w_m2 = glm::dvec3(4.0);  // per unit irradiance: no rebuild
   frame.set_light(brighter);
   const Image twice = frame.render(cam, &st);
   EXPECT_FALSE(st.light_volume_rebuilt);
   for (std::size_t i = 0; i < first.rgba.size(); i += 4) EXPECT_NEAR(twice.rgba[i], 2.0f * first.rgba[i], 1e-5f + 1e-5f * first.rgba[i]);
-  CloudLight moved = brighter;
+  Light moved = brighter;
   moved.direction_to_sun = glm::dvec3(-0.6, 0.7, 0.3);
   frame.set_light(moved);
   frame.render(cam, &st);

@@ -35,7 +35,7 @@ std::vector<CloudVolume> blended(double w) {
 TEST(CloudMotionGl, BlendOfKeyframesMatchesReference) {
   NIMBUS_REQUIRE_GL();
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = glm::dvec3(0.5, 0.6, 0.8);
   CloudReferenceSettings rs;
   rs.view_step_voxels = 0.25;
@@ -67,7 +67,7 @@ TEST(CloudMotionGl, MotionEqualsTheCloudBuiltAtTheMovedPlace) {
   const CloudVolume there =
       cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o, offset);
   const Camera cam = look_at_origin({0.6, 0.5, 2.8}, 64, 40.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = glm::dvec3(-0.3, 0.6, 0.7);
   CloudSliceSettings s;
   s.slices = 48;

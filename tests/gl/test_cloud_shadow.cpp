@@ -35,7 +35,7 @@ Scene sun_scene(double fog_per_m) {
   s.name = "cloud-shadow-test";
   s.medium.extinction_per_m = fog_per_m;
   s.medium.albedo = 1.0;
-  s.sun = SunLight{{0.0, 1.0, 0.0}, glm::dvec3{2.0}};
+  s.sun = sun_light({0.0, 1.0, 0.0}, glm::dvec3{2.0});
   return s;
 }
 
@@ -63,7 +63,7 @@ TEST(CloudShadow, ACloudDarkensTheGroundBelowItByItsOpticalDepth) {
   const double sigma = 0.5, rho = 0.1;
   std::vector<CloudVolume> clouds{box_cloud(n, static_cast<float>(rho), 10.0, sigma)};
   const VolumeTexture tex = upload_volume(clouds[0].box, *clouds[0].transform, GL_R32F);
-  const CloudLight light{{0.0, 1.0, 0.0}, glm::dvec3{2.0}};
+  const Light light{{0.0, 1.0, 0.0}, glm::dvec3{2.0}};
   const CloudShadowMap map = build_cloud_shadow_map(clouds, {&tex}, light, 128);
   EXPECT_GE(map.top_y_m, 20.0);
 
@@ -97,7 +97,7 @@ TEST(CloudShadow, ACloudShadowsTheFogShaftsUnderIt) {
   const double sigma = 0.5, rho = 0.2, fog = 0.01, E = 2.0;
   std::vector<CloudVolume> clouds{box_cloud(n, static_cast<float>(rho), 10.0, sigma)};
   const VolumeTexture tex = upload_volume(clouds[0].box, *clouds[0].transform, GL_R32F);
-  const CloudShadowMap map = build_cloud_shadow_map(clouds, {&tex}, CloudLight{{0.0, 1.0, 0.0}, glm::dvec3{E}}, 256);
+  const CloudShadowMap map = build_cloud_shadow_map(clouds, {&tex}, Light{{0.0, 1.0, 0.0}, glm::dvec3{E}}, 256);
 
   Scene s = sun_scene(fog);
   s.boxes.push_back(Box{{20.0, 0.0, -5.0}, {21.0, 4.0, 5.0}, Material{{0.0, 0.0, 0.0}}});  // ends the ray at t = 60

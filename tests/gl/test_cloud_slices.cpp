@@ -37,7 +37,7 @@ TEST_P(HomogeneousBox, AlphaIsClosedFormTransmittance) {
   const BoxCase p = GetParam();
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(p.sigma_per_m))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 64, 20.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = p.to_light;
   CloudSliceSettings s;
   s.slices = 64;
@@ -80,7 +80,7 @@ TEST(CloudSlices, TwoBoxesOneBehindTheOtherMultiplyTransmittance) {
   CloudSliceSettings s;
   s.slices = 96;
   s.light_res = 64;
-  const Image img = r.render(cam, CloudLight{}, s);
+  const Image img = r.render(cam, Light{}, s);
   const double plateau = 0.5 * (n - 1) * kVoxel, face = plateau + kVoxel;
   double worst = 0.0;
   int checked = 0;
@@ -108,7 +108,7 @@ TEST(CloudSlices, AmbientAloneGivesAlbedoTimesRadianceTimesAlpha) {
   o.albedo = {0.9, 0.8, 0.7};
   o.ambient_radiance = {0.5, 1.0, 2.0};
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)}, GL_R32F);
-  CloudLight light;
+  Light light;
   light.irradiance_w_m2 = glm::dvec3(0.0);
   CloudSliceSettings s;
   s.slices = 48;
@@ -144,10 +144,10 @@ TEST(CloudSlices, IdenticalOctaveDoublesTheRadiance) {
   CloudSliceSettings s;
   s.slices = 48;
   s.light_res = 64;
-  const Image one = r.render(cam, CloudLight{}, s);
+  const Image one = r.render(cam, Light{}, s);
   s.multiple.octaves = 1;
   s.multiple.occlusion = s.multiple.contribution = s.multiple.eccentricity = 1.0;
-  const Image two = r.render(cam, CloudLight{}, s);
+  const Image two = r.render(cam, Light{}, s);
   double sum = 0.0;
   for (std::size_t i = 0; i < one.rgba.size(); ++i) {
     const double expected = i % 4 == 3 ? one.rgba[i] : 2.0 * one.rgba[i];
@@ -164,7 +164,7 @@ TEST(CloudSlices, BlurConservesAUniformLightField) {
   NIMBUS_REQUIRE_GL();
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(3.0))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 24.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.0, 0.0, 1.0};  // along the box's z axis, from the camera's side
   CloudSliceSettings s;
   s.slices = 64;
@@ -199,7 +199,7 @@ TEST(CloudSlices, ReportsTheSlicingAxisAndOrder) {
   s.slices = 40;
   s.light_res = 32;
   CloudFrameStats st;
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.0, 0.0, 1.0};  // behind the camera: propagation along the view
   Image img = r.render(cam, light, s, nullptr, &st);
   EXPECT_TRUE(st.front_to_back);
@@ -242,7 +242,7 @@ TEST_P(HardCases, NoNanOrInf) {
   o.ambient_radiance = glm::dvec3(0.3);
   const auto density = [&](int i, int j, int k) { return p.empty ? 0.0f : lumpy_ball(i, j, k); };
   CloudRenderer r({cube_cloud(kN, kVoxel, density, o)});
-  CloudLight light;
+  Light light;
   light.direction_to_sun = p.to_light;
   CloudSliceSettings s;
   s.slices = 24;
@@ -330,9 +330,9 @@ TEST(CloudSlices, BadRendererInputsAreRejected) {
   CloudRenderer r({cube_cloud(4, 0.1, [](int, int, int) { return 1.0f; }, grey_optics(1.0))});
   CloudSliceSettings s;
   s.slices = 0;
-  EXPECT_THROW(r.render(look_at_origin({0, 0, 2}, 16), CloudLight{}, s), std::invalid_argument);
+  EXPECT_THROW(r.render(look_at_origin({0, 0, 2}, 16), Light{}, s), std::invalid_argument);
   SceneUnderlay u;  // no textures
-  EXPECT_THROW(r.render(look_at_origin({0, 0, 2}, 16), CloudLight{}, CloudSliceSettings{}, &u), std::invalid_argument);
+  EXPECT_THROW(r.render(look_at_origin({0, 0, 2}, 16), Light{}, CloudSliceSettings{}, &u), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The half-angle slicer lit by lamps (point lights and spots; cloud_light.hpp) against the CPU
+// The half-angle slicer lit by lamps (point lights and spots; light.hpp) against the CPU
 // reference of the same model: near and far, front- and back-lit, isotropic and forward
 // scattering; a spot's cone across the cloud; two lamps in two passes, or the strongest alone;
 // the steam of the steam-lamp scene at 128 slices (issue 14's 1 % criterion).
@@ -57,7 +57,7 @@ TEST_P(LampAgainstReference, RelativeRmseWithinTolerance) {
   const LampCase& p = GetParam();
   const std::vector<CloudVolume> clouds = ball(p.g);
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
-  const CloudLight lamp = point_light(p.distance_m * glm::normalize(p.direction), glm::dvec3(p.distance_m * p.distance_m));
+  const Light lamp = point_light(p.distance_m * glm::normalize(p.direction), glm::dvec3(p.distance_m * p.distance_m));
   const Image ref = render_cloud_reference(clouds, cam, lamp, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
   CloudSliceSettings s;
@@ -91,7 +91,7 @@ TEST(CloudSlicesLamps, SpotConeAcrossTheBallMatchesReference) {
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
   const glm::dvec3 at{0.0, 2.0, 0.0};
   // Aimed 0.25 m to the side of the centre, cone 5-9 degrees: the edge runs through the ball.
-  const CloudLight spot = point_light(at, glm::dvec3(4.0), glm::normalize(glm::dvec3(0.25, 0.0, 0.0) - at),
+  const Light spot = point_light(at, glm::dvec3(4.0), glm::normalize(glm::dvec3(0.25, 0.0, 0.0) - at),
                                       5.0 * M_PI / 180.0, 9.0 * M_PI / 180.0);
   const Image ref = render_cloud_reference(clouds, cam, spot, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
@@ -116,9 +116,9 @@ TEST(CloudSlicesLamps, TwoLampsAddAndTheWeakerIsLeftOutByMaxLights) {
   NIMBUS_REQUIRE_GL();
   const std::vector<CloudVolume> clouds = ball(0.3);
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
-  const CloudLight strong = point_light(2.0 * glm::normalize(glm::dvec3(0.5, 0.6, 0.8)), glm::dvec3(4.0));
-  const CloudLight weak = point_light(2.0 * glm::normalize(glm::dvec3(-0.3, 0.5, -0.8)), glm::dvec3(2.0));
-  const std::vector<CloudLight> both = {weak, strong};
+  const Light strong = point_light(2.0 * glm::normalize(glm::dvec3(0.5, 0.6, 0.8)), glm::dvec3(4.0));
+  const Light weak = point_light(2.0 * glm::normalize(glm::dvec3(-0.3, 0.5, -0.8)), glm::dvec3(2.0));
+  const std::vector<Light> both = {weak, strong};
   const Image ref = render_cloud_reference(clouds, cam, both, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
   CloudSliceSettings s;
@@ -178,7 +178,7 @@ TEST(CloudSlicesLamps, SteamUnderTheLampWithinOnePercentAt128Slices) {
   cam.fov_deg = 22.0;
   cam.width = 96;
   cam.height = 96;
-  const CloudLight lamp = point_light(scene.point_lights[0].position_m, scene.point_lights[0].intensity_w_sr);
+  const Light lamp = point_light(scene.lamps[0].position_m, scene.lamps[0].intensity_w_sr);
   CloudReferenceSettings rs;
   rs.view_step_voxels = 0.5;
   rs.shadow_step_voxels = 1.0;

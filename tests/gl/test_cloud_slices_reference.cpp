@@ -43,7 +43,7 @@ TEST_P(AgainstReference, RelativeRmseWithinTolerance) {
   o.phase.g_forward = p.g;
   const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = p.to_light;
   const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
@@ -86,7 +86,7 @@ TEST(CloudSlices, OrientedGridMatchesReference) {
       for (int i = 0; i < kN; ++i) acc.setValue(openvdb::Coord(i, j, k), lumpy_ball(i, j, k));
   const std::vector<CloudVolume> clouds = {make_cloud_volume(*grid, grey_optics(8.0, 0.9), "oriented")};
   const Camera cam = look_at_origin({0.3, 0.5, 2.5}, 64, 40.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.6, 0.5, -0.3};
   const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
@@ -110,7 +110,7 @@ TEST(CloudSlices, CameraInsideMatchesReference) {
   Camera cam = look_at_origin({0.05, 0.1, 0.2}, 64, 60.0);
   cam.look_at = cam.eye + glm::dvec3(0.2, 0.1, -1.0);
   for (const glm::dvec3& to_light : {glm::dvec3(0.5, 0.6, 0.8), glm::dvec3(-0.3, 0.5, -0.8)}) {
-    CloudLight light;
+    Light light;
     light.direction_to_sun = to_light;
     const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
     CloudSliceSettings s;
@@ -149,7 +149,7 @@ TEST(CloudSlices, UniformSphereDarkSideMatchesReference) {
   };
   const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, sphere, grey_optics(6.0, 0.9))};
   const Camera cam = look_at_origin({0.0, 0.0, 2.5}, 64, 30.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {1.0, 0.2, 0.3};  // from the right, a little from the camera's side
   const Image ref = render_cloud_reference(clouds, cam, light, quick_reference());
   CloudRenderer r(clouds, GL_R32F);
@@ -173,7 +173,7 @@ TEST(CloudSlices, BranchesAgreeAtTheSwitch) {
   const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
   const Camera cam = look_at_origin({0.0, 0.4, 2.5}, 64, 30.0);
   const glm::dvec3 v = camera_frame(cam).forward;
-  CloudLight light;
+  Light light;
   light.direction_to_sun = -rotate_towards(v, {1.0, 0.3, 0.0}, 90.0);
   CloudRenderer r(clouds, GL_R32F);
   CloudSliceSettings s;
@@ -212,7 +212,7 @@ TEST(CloudSlices, NoPoppingAtTheSwitch) {
   for (bool vary_frame : {false, true}) {
     std::vector<Image> frames;
     for (int i = 0; i < 8; ++i) {  // 86.5 .. 93.5 degrees: the switch between frames 3 and 4
-      CloudLight light;
+      Light light;
       light.direction_to_sun = -rotate_towards(v, {1.0, 0.3, 0.0}, 86.5 + i);
       s.frame = vary_frame ? static_cast<unsigned>(i) : 0u;
       frames.push_back(r.render(cam, light, s));

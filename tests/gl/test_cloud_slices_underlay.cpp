@@ -28,7 +28,7 @@ Scene fog_scene(double sigma_t, double albedo, const Phase& phase) {
   s.medium.extinction_per_m = sigma_t;
   s.medium.albedo = albedo;
   s.medium.phase = phase;
-  s.sun = SunLight{};
+  s.sun = Light{};
   s.sun->direction_to_sun = {0.3, 0.8, 0.5};
   s.sun->irradiance_w_m2 = {2.0, 2.5, 3.0};
   return s;
@@ -65,7 +65,7 @@ TEST(CloudSlicesUnderlay, SurfacesHideWhatIsBehindThemAndCloudsCoverTheScene) {
   CloudRenderer both({front, back}, GL_R32F);
   CloudRenderer front_only({front}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.5}, 48, 24.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.2, 0.3, 1.0};
   CloudSliceSettings s;
   s.slices = 96;
@@ -112,7 +112,7 @@ TEST(CloudSlicesUnderlay, SurfaceInsideACloudCutsIt) {
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, o)}, GL_R32F);
   Camera cam = look_at_origin({0.0, 0.0, 0.3}, 48, 60.0);
   cam.look_at = {0.0, 0.0, -1.0};
-  CloudLight light;
+  Light light;
   light.irradiance_w_m2 = glm::dvec3(0.0);
   const Scene scene = fog_scene(0.0, 1.0, Phase{});
   Underlay under(cam, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), [&](int x, int y) {
@@ -143,17 +143,15 @@ TEST(CloudSlicesUnderlay, FogAttenuatesTheCloudAndAddsItsAirlight) {
   NIMBUS_REQUIRE_GL();
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int, int, int) { return 1.0f; }, grey_optics(300.0))}, GL_R32F);
   const Camera cam = look_at_origin({0.0, 0.0, 3.0}, 48, 30.0);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.3, 0.8, 0.5};
   CloudSliceSettings s;
   s.slices = 96;
   s.light_res = 64;
   const Phase fog_phase{PhaseKind::HenyeyGreenstein, 0.3};
   Scene scene = fog_scene(0.4, 0.8, fog_phase);
-  PointLight lamp;
-  lamp.position_m = {1.5, 1.0, 2.0};
-  lamp.intensity_w_sr = {4.0, 3.0, 2.0};
-  scene.point_lights.push_back(lamp);
+  const Light lamp = bulb_light({1.5, 1.0, 2.0}, {4.0, 3.0, 2.0}, 0.05);
+  scene.lamps.push_back(lamp);
   const glm::vec4 sky(5.0f, 6.0f, 7.0f, 1.0f);
   Underlay under(cam, sky, [](int, int) { return 0.0f; }, &scene);  // no surface: sky everywhere
   const Image out = r.render(cam, light, s, &under.u);

@@ -44,8 +44,8 @@ Camera sky_camera() {
   return c;
 }
 
-CloudLight light_of(const Scene& scene) {
-  CloudLight l;
+Light light_of(const Scene& scene) {
+  Light l;
   l.direction_to_sun = scene.sun->direction_to_sun;
   l.irradiance_w_m2 = scene.sun->irradiance_w_m2;
   return l;
@@ -65,7 +65,7 @@ bool same_pixels(const Image& a, const Image& b) { return a.width == b.width && 
 TEST(FrameRenderer, OverASceneItIsTheShadowMapShaftsAndSlicesComposedByHand) {
   NIMBUS_REQUIRE_GL();
   const Scene scene = make_scene("sky");
-  const CloudLight light = light_of(scene);
+  const Light light = light_of(scene);
   const FrameSettings settings = small_settings();
   const Camera cam = sky_camera();
 
@@ -102,7 +102,7 @@ TEST(FrameRenderer, AloneItIsTheSlicerWithoutAnUnderlay) {
   const CloudVolume cloud = cube_cloud(kLumpyN, 1.0 / kLumpyN, [](int i, int j, int k) { return lumpy_ball(i, j, k); },
                                        grey_optics(6.0, 0.9));
   const Camera cam = look_at_origin({0.4, 0.5, 2.5}, 40);
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.5, 0.7, 0.4};
   FrameSettings settings = small_settings();
   FrameRenderer frame(std::nullopt, light, settings);
@@ -119,7 +119,7 @@ TEST(FrameRenderer, TheReferenceMethodIsTheCpuReferenceAndTakesNoScene) {
   const CloudVolume cloud = cube_cloud(kLumpyN, 1.0 / kLumpyN, [](int i, int j, int k) { return lumpy_ball(i, j, k); },
                                        grey_optics(6.0, 0.9));
   const Camera cam = look_at_origin({0.4, 0.5, 2.5}, 16);
-  CloudLight light;
+  Light light;
   FrameSettings settings = small_settings();
   settings.method = CloudMethod::Reference;
   settings.reference.view_step_voxels = 0.5;
@@ -139,7 +139,7 @@ TEST(FrameRenderer, TheSunLightsTheSceneAndMovingItChangesTheFrame) {
   NIMBUS_REQUIRE_GL();
   Scene scene = make_scene("sky");
   scene.sun.reset();  // the frame gives the scene the clouds' sun
-  CloudLight light;
+  Light light;
   light.direction_to_sun = {0.4, 0.6, 0.3};
   light.irradiance_w_m2 = glm::dvec3(2.0);
   FrameRenderer frame(scene, light, small_settings());
@@ -159,7 +159,7 @@ TEST(FrameRenderer, TheSunLightsTheSceneAndMovingItChangesTheFrame) {
 
 TEST(FrameRenderer, BadSettingsAndMissingCloudsAreRefused) {
   NIMBUS_REQUIRE_GL();
-  CloudLight light;
+  Light light;
   FrameSettings bad = small_settings();
   bad.cloud_shadow_res = 8;
   try {
@@ -174,7 +174,7 @@ TEST(FrameRenderer, BadSettingsAndMissingCloudsAreRefused) {
   bad = small_settings();
   bad.slices.slices = 1;
   EXPECT_THROW(FrameRenderer(std::nullopt, light, bad), std::invalid_argument);
-  CloudLight dark;
+  Light dark;
   dark.direction_to_sun = glm::dvec3(0.0);
   EXPECT_THROW(FrameRenderer(std::nullopt, dark, small_settings()), std::invalid_argument);
 

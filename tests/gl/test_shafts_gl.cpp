@@ -47,7 +47,7 @@ class ShaftsGl : public ::testing::Test {
 // and its few pixels would otherwise outweigh the fog in the error.
 Scene scene_without_bulbs(const std::string& name) {
   Scene s = make_scene(name);
-  for (PointLight& l : s.point_lights) l.bulb_radius_m = 0.0;
+  for (Light& l : s.lamps) l.bulb_radius_m = 0.0;
   return s;
 }
 
@@ -155,10 +155,10 @@ TEST_F(ShaftsGl, HardCasesStayFinite) {
     s.medium.extinction_per_m = sigma;
     ShaftRenderer r(s);
     Camera cam = small(s, 32, 18);
-    cam.look_at = s.point_lights[0].position_m;  // the light at the centre of the image
+    cam.look_at = s.lamps[0].position_m;  // the light at the centre of the image
     for (const char* m : {"raymarch:16", "analytic", "analytic:table:16", "shadowvolume:8"})
       EXPECT_TRUE(all_finite(r.render(cam, parse_shaft_method(m)))) << sigma << " " << m;
-    cam.eye = s.point_lights[0].position_m + glm::dvec3(0.0, 0.0, 0.1);  // light right behind
+    cam.eye = s.lamps[0].position_m + glm::dvec3(0.0, 0.0, 0.1);  // light right behind
     cam.look_at = cam.eye + glm::dvec3(0.0, 0.0, 1.0);
     for (const char* m : {"raymarch:16", "analytic", "shadowvolume:8"})
       EXPECT_TRUE(all_finite(r.render(cam, parse_shaft_method(m)))) << sigma << " " << m;

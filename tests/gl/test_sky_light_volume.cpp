@@ -62,7 +62,7 @@ Image own_volume_frame(SkyRenderer& sky, const ViewState& s, int w, int h, std::
   fs.slices.multiple.light_volume.photons = s.ms_photons;
   fs.cloud_shadow_res = s.cloud_shadow_res;
   const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
-  FrameRenderer f(std::nullopt, CloudLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2}, fs);
+  FrameRenderer f(std::nullopt, Light{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2}, fs);
   std::vector<CloudVolume> pair = kf.pair(k);
   f.set_clouds(pair);
   CloudOptics o = pair.front().optics;

@@ -53,11 +53,7 @@ Scene lamp_over_ground() {
   b.max_m = glm::dvec3(3.0, 1.2, 0.5);
   b.material.albedo = glm::dvec3(0.4, 0.6, 0.8);
   s.boxes.push_back(b);
-  PointLight l;
-  l.position_m = glm::dvec3(0.0, 1.2, 0.0);
-  l.intensity_w_sr = glm::dvec3(300.0, 250.0, 200.0);
-  l.bulb_radius_m = 0.0;
-  s.point_lights.push_back(l);
+  s.lamps.push_back(point_light(glm::dvec3(0.0, 1.2, 0.0), glm::dvec3(300.0, 250.0, 200.0)));
   s.camera.eye = glm::dvec3(-1.0, 7.0, 6.0);
   s.camera.look_at = glm::dvec3(1.0, 0.0, 0.0);
   s.camera.fov_deg = 70.0;

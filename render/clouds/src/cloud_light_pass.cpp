@@ -28,7 +28,7 @@ double jitter_margin_m(const Camera& camera, const SliceAxis& axis, const SliceP
 
 // The light buffer's frame: the sun's orthographic one, or the lamp's perspective one (and how
 // many slice planes lie on the lamp's near side, where they see no shadow from the buffer).
-void plan_light_frame(LightPassPlan& p, const std::vector<glm::dvec3>& hull_points, const CloudLight& light,
+void plan_light_frame(LightPassPlan& p, const std::vector<glm::dvec3>& hull_points, const Light& light,
                       const glm::dvec3& centre, int light_res, int pass) {
   if (!p.lamp) {
     p.light_frame = light_frame(hull_points, p.l, light_res);
@@ -48,7 +48,7 @@ void plan_light_frame(LightPassPlan& p, const std::vector<glm::dvec3>& hull_poin
 }
 
 // The pass's light and slicing geometry as both slice programs read them (SliceLightBlock).
-SliceLightBlock slice_light_block(const FrameContext& frame, const CloudLight& light, const LightPassPlan& plan) {
+SliceLightBlock slice_light_block(const FrameContext& frame, const Light& light, const LightPassPlan& plan) {
   SliceLightBlock b;
   b.slice_axis = to_float(plan.axis.axis);
   b.spacing_m = static_cast<float>(plan.planes.spacing_m);
@@ -247,10 +247,10 @@ void accumulate_pass(CloudRenderer::Impl& s, const FrameContext& frame) {
 
 }  // namespace
 
-LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const CloudLight& light,
+LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const Light& light,
                               const glm::dvec3& centre, const CloudSliceSettings& settings, int pass) {
   LightPassPlan p;
-  p.lamp = light.kind == CloudLightKind::Point;
+  p.lamp = light.kind == LightKind::Point;
   // The axis, the planes and every polygon (Kniss et al. 2003). For a lamp, the axis takes the
   // light's direction at the clouds' centre (Kniss et al. for local lights).
   p.l = p.lamp ? (glm::length(centre - light.position_m) > 0.0 ? glm::normalize(centre - light.position_m)
@@ -269,7 +269,7 @@ LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera
   return p;
 }
 
-int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const CloudLight& light,
+int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Light& light,
                     const LightPassPlan& plan, int pass) {
   const CloudSliceSettings& settings = frame.settings;
   s.upload_mesh(plan.mesh);

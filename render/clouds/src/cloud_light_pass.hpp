@@ -12,7 +12,7 @@
 #include "cloud_renderer_impl.hpp"
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/camera.hpp"
-#include "nimbus/render/core/cloud_light.hpp"
+#include "nimbus/render/core/light.hpp"
 
 namespace nimbus::render::cloud_detail {
 
@@ -31,7 +31,7 @@ struct LightPassPlan {
 };
 
 // The pass of light number `pass` (0: the first, which also carries the ambient term).
-LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const CloudLight& light,
+LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const Light& light,
                               const glm::dvec3& centre, const CloudSliceSettings& settings, int pass);
 
 // What every pass of a frame shares.
@@ -46,7 +46,7 @@ struct FrameContext {
 
 // Draws the planned pass (into the eye buffer for pass 0, else into the pass buffer, then added
 // into the eye buffer's radiance). Returns how many slices it drew.
-int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const CloudLight& light,
+int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Light& light,
                     const LightPassPlan& plan, int pass);
 
 }  // namespace nimbus::render::cloud_detail

@@ -181,28 +181,28 @@ std::vector<const VolumeTexture*> CloudRenderer::next_textures() const {
   return out;
 }
 
-Image CloudRenderer::render(const Camera& camera, const CloudLight& light, const CloudSliceSettings& settings,
+Image CloudRenderer::render(const Camera& camera, const Light& light, const CloudSliceSettings& settings,
                             const SceneUnderlay* underlay, CloudFrameStats* stats) {
-  return render(camera, std::vector<CloudLight>{light}, settings, underlay, stats);
+  return render(camera, std::vector<Light>{light}, settings, underlay, stats);
 }
 namespace {
 
 // A frame's inputs, checked before anything is drawn.
-void validate_frame(const Camera& camera, const std::vector<CloudLight>& lights, const CloudSliceSettings& settings,
+void validate_frame(const Camera& camera, const std::vector<Light>& lights, const CloudSliceSettings& settings,
                     const SceneUnderlay* underlay) {
   validate(camera);
   if (lights.empty()) throw std::invalid_argument("cloud renderer lights: the list is empty");
-  for (const CloudLight& l : lights) validate(l);
+  for (const Light& l : lights) validate(l);
   validate(settings);
   if (!underlay) return;
   if (underlay->color_texture == 0) throw std::invalid_argument("scene underlay color_texture: must be a texture");
   if (underlay->distance_texture == 0) throw std::invalid_argument("scene underlay distance_texture: must be a texture");
   if (const Scene* scene = underlay->scene) {
     validate(*scene);
-    if (scene->point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+    if (scene->lamps.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
       throw std::invalid_argument("scene underlay scene: the cloud composite takes at most " +
                                   std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
-                                  std::to_string(scene->point_lights.size()));
+                                  std::to_string(scene->lamps.size()));
   }
 }
 
@@ -218,11 +218,11 @@ glm::dvec3 clouds_centre(const std::vector<glm::dvec3>& hull_points) {
 }
 
 // The lights drawn: the settings.max_lights strongest at the clouds' centre, one pass each.
-std::vector<int> lights_drawn(const std::vector<CloudLight>& lights, const glm::dvec3& centre,
+std::vector<int> lights_drawn(const std::vector<Light>& lights, const glm::dvec3& centre,
                               const CloudSliceSettings& settings, bool light_volume) {
   const std::vector<int> order = strongest_lights(lights, centre, settings.max_lights);
   for (const int i : order)
-    if (lights[i].kind == CloudLightKind::Point && light_volume)
+    if (lights[i].kind == LightKind::Point && light_volume)
       throw std::invalid_argument(
           "cloud renderer lights: the light volume of multiple scattering is built for the sun; a lamp takes the "
           "octaves method (octaves 0: single scattering)");
@@ -231,7 +231,7 @@ std::vector<int> lights_drawn(const std::vector<CloudLight>& lights, const glm::
 
 // The frame's metadata: the camera (and the underlay's scene), the clouds, the lights drawn and
 // left out, the slicing settings and the first pass's axis (with the lamps' notes).
-void describe_slice_frame(Image& img, const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights,
+void describe_slice_frame(Image& img, const std::vector<CloudVolume>& clouds, const std::vector<Light>& lights,
                           const std::vector<int>& order, const CloudSliceSettings& settings, const Camera& camera,
                           const Scene* scene, const SliceAxis& first_axis, const std::string& lamp_notes) {
   if (scene) {
@@ -240,11 +240,11 @@ void describe_slice_frame(Image& img, const std::vector<CloudVolume>& clouds, co
     img.metadata["method"] = "cloud-slices";
     img.metadata["camera"] = describe_camera(camera);
   }
-  std::vector<CloudLight> drawn_lights;
+  std::vector<Light> drawn_lights;
   for (const int i : order) drawn_lights.push_back(lights[i]);
   describe_clouds(img, clouds, drawn_lights);
   if (order.size() < lights.size()) {
-    std::vector<CloudLight> left;
+    std::vector<Light> left;
     for (std::size_t i = 0; i < lights.size(); ++i)
       if (std::find(order.begin(), order.end(), static_cast<int>(i)) == order.end()) left.push_back(lights[i]);
     img.metadata["lights_left_out"] = describe_lights(left);
@@ -306,7 +306,7 @@ Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& ti
   return read_rgba(out_fbo, w, h);
 }
 
-Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>& all_lights,
+Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_lights,
                             const CloudSliceSettings& settings, const SceneUnderlay* underlay, CloudFrameStats* stats) {
   validate_frame(camera, all_lights, settings, underlay);
   Impl& s = *impl_;
@@ -338,7 +338,7 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<CloudLight>&
   SliceAxis first_axis;
   std::string lamp_notes;
   for (std::size_t pass = 0; pass < order.size(); ++pass) {
-    const CloudLight& light = all_lights[order[pass]];
+    const Light& light = all_lights[order[pass]];
     const LightPassPlan plan = plan_light_pass(s, camera, light, centre, settings, static_cast<int>(pass));
     if (pass == 0) first_axis = plan.axis;
     if (!plan.note.empty()) lamp_notes += (lamp_notes.empty() ? "" : "; ") + plan.note;

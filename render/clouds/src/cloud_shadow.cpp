@@ -32,16 +32,16 @@ double voxel_size_m(const CloudVolume& c) {
 CloudShadowBuilder::CloudShadowBuilder() : program_({"cloud_shadow_build.comp.glsl"}) {}
 
 CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
-                                      const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
+                                      const std::vector<const VolumeTexture*>& textures, const Light& light,
                                       int resolution) {
   return CloudShadowBuilder().build(clouds, textures, light, resolution);
 }
 
 CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
-                                         const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
+                                         const std::vector<const VolumeTexture*>& textures, const Light& light,
                                          int resolution, const std::vector<const VolumeTexture*>& next_textures) const {
   validate(light);
-  if (light.kind != CloudLightKind::Sun)
+  if (light.kind != LightKind::Sun)
     throw std::invalid_argument("cloud shadow map light: the clouds cast their shadow on the scene from the sun only");
   if (clouds.empty()) throw std::invalid_argument("cloud shadow map: no clouds");
   if (textures.size() != clouds.size())

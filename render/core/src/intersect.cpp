@@ -351,8 +351,8 @@ bool SceneTracer::occluded_toward(const glm::dvec3& from, const glm::dvec3& dir)
 std::optional<BulbHit> SceneTracer::intersect_bulbs(const glm::dvec3& o, const glm::dvec3& d,
                                                     double tmax) const {
   std::optional<BulbHit> best;
-  for (std::size_t i = 0; i < scene_.point_lights.size(); ++i) {
-    const PointLight& l = scene_.point_lights[i];
+  for (std::size_t i = 0; i < scene_.lamps.size(); ++i) {
+    const Light& l = scene_.lamps[i];
     if (!(l.bulb_radius_m > 0.0)) continue;  // no visible bulb
     if (auto h = intersect_sphere(l.position_m, l.bulb_radius_m, o, d, 0.0, tmax)) {
       best = BulbHit{h->t, i};

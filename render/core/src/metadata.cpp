@@ -17,8 +17,8 @@ std::string describe_camera(const Camera& camera) {
          std::to_string(camera.fov_deg);
 }
 
-std::string describe_light(const CloudLight& light) {
-  if (light.kind == CloudLightKind::Sun)
+std::string describe_light(const Light& light) {
+  if (light.kind == LightKind::Sun)
     return "sun towards " + fmt3(light.direction_to_sun) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
   std::ostringstream s;
   s.precision(9);
@@ -29,9 +29,9 @@ std::string describe_light(const CloudLight& light) {
   return s.str();
 }
 
-std::string describe_lights(const std::vector<CloudLight>& lights) {
+std::string describe_lights(const std::vector<Light>& lights) {
   std::string out;
-  for (const CloudLight& l : lights) out += (out.empty() ? "" : "; ") + describe_light(l);
+  for (const Light& l : lights) out += (out.empty() ? "" : "; ") + describe_light(l);
   return out;
 }
 
@@ -45,13 +45,8 @@ void describe_frame(Image& image, const Scene& scene, const Camera& camera, cons
     << to_string(scene.medium.phase);
   image.metadata["medium"] = s.str();
   std::string lights;
-  for (const PointLight& l : scene.point_lights) {
-    lights += (lights.empty() ? "" : "; ") + std::string("point ") + fmt3(l.position_m) + " I_w_sr " + fmt3(l.intensity_w_sr);
-  }
-  if (scene.sun) {
-    lights += (lights.empty() ? "" : "; ") + std::string("sun towards ") + fmt3(scene.sun->direction_to_sun) +
-              " E_w_m2 " + fmt3(scene.sun->irradiance_w_m2);
-  }
+  for (const Light& l : scene.lamps) lights += (lights.empty() ? "" : "; ") + describe_light(l);
+  if (scene.sun) lights += (lights.empty() ? "" : "; ") + describe_light(*scene.sun);
   image.metadata["lights"] = lights;
   if (scene.sky) {
     image.metadata["sky"] = "zenith " + fmt3(scene.sky->zenith_radiance_w_sr_m2) + " horizon " +
@@ -60,11 +55,11 @@ void describe_frame(Image& image, const Scene& scene, const Camera& camera, cons
   }
 }
 
-void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const CloudLight& light) {
-  describe_clouds(image, clouds, std::vector<CloudLight>{light});
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const Light& light) {
+  describe_clouds(image, clouds, std::vector<Light>{light});
 }
 
-void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights) {
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const std::vector<Light>& lights) {
   std::string names, optics;
   for (const CloudVolume& c : clouds) {
     std::ostringstream o;

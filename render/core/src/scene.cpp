@@ -98,10 +98,14 @@ void validate(const Scene& s) {
     if (!std::isfinite(sp.radius_m) || !(sp.radius_m > 0.0)) fail(f + ".radius_m", "must be > 0");
     check_material(sp.material, f);
   }
-  if (s.point_lights.empty() && !s.sun) fail("point_lights", "the scene has no light (no point light, no sun)");
-  for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
-    const PointLight& l = s.point_lights[i];
-    const std::string f = at("point_lights", i);
+  if (s.lamps.empty() && !s.sun) fail("lamps", "the scene has no light (no lamp, no sun)");
+  for (std::size_t i = 0; i < s.lamps.size(); ++i) {
+    const Light& l = s.lamps[i];
+    const std::string f = at("lamps", i);
+    if (l.kind != LightKind::Point) fail(f, "must be a lamp (the sun is the scene's sun)");
+    if (glm::length(l.spot_axis) != 0.0)
+      fail(f + ".spot_axis", "a spot lights clouds alone (no scene): a scene's lamps shine every way");
+    if (!std::isfinite(l.min_distance_m) || !(l.min_distance_m > 0.0)) fail(f + ".min_distance_m", "must be finite and > 0");
     if (!finite3(l.position_m)) fail(f + ".position_m", "must be finite");
     check_non_negative3(l.intensity_w_sr, f + ".intensity_w_sr");
     if (!std::isfinite(l.bulb_radius_m) || !(l.bulb_radius_m >= 0.0)) {
@@ -115,6 +119,7 @@ void validate(const Scene& s) {
     if (!std::isfinite(s.sky->distance_m) || !(s.sky->distance_m > 0.0)) fail("sky.distance_m", "must be finite and > 0");
   }
   if (s.sun) {
+    if (s.sun->kind != LightKind::Sun) fail("sun", "must be the sun, not a lamp");
     if (!finite3(s.sun->direction_to_sun) || !(glm::length(s.sun->direction_to_sun) > 0.0)) {
       fail("sun.direction_to_sun", "must be finite and non-zero");
     }
@@ -126,15 +131,15 @@ void validate(const Scene& s) {
     fail("camera", e.what());
   }
   check_not_buried(s, s.camera.eye, "camera.eye");
-  for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
-    if (glm::length(s.camera.eye - s.point_lights[i].position_m) <= s.point_lights[i].bulb_radius_m) {
-      fail("camera.eye", "lies inside the bulb of " + at("point_lights", i));
+  for (std::size_t i = 0; i < s.lamps.size(); ++i) {
+    if (glm::length(s.camera.eye - s.lamps[i].position_m) <= s.lamps[i].bulb_radius_m) {
+      fail("camera.eye", "lies inside the bulb of " + at("lamps", i));
     }
   }
   if (s.ground) {
-    for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
-      if ((s.point_lights[i].position_m.y > s.ground->height_m) != (s.camera.eye.y > s.ground->height_m)) {
-        fail(at("point_lights", i) + ".position_m", "is on the other side of the ground plane from the camera");
+    for (std::size_t i = 0; i < s.lamps.size(); ++i) {
+      if ((s.lamps[i].position_m.y > s.ground->height_m) != (s.camera.eye.y > s.ground->height_m)) {
+        fail(at("lamps", i) + ".position_m", "is on the other side of the ground plane from the camera");
       }
     }
   }

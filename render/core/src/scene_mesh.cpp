@@ -117,7 +117,7 @@ SceneMesh build_scene_mesh(const Scene& scene, double ground_extent_m) {
   return m;
 }
 
-SceneMesh build_bulb_mesh(const PointLight& light) {
+SceneMesh build_bulb_mesh(const Light& light) {
   SceneMesh m;
   const double r = light.bulb_radius_m;
   if (!(r > 0.0)) return m;  // no visible bulb
@@ -127,7 +127,7 @@ SceneMesh build_bulb_mesh(const PointLight& light) {
 
 SceneMesh build_bulb_mesh(const Scene& scene) {
   SceneMesh m;
-  for (const PointLight& l : scene.point_lights) {
+  for (const Light& l : scene.lamps) {
     const double r = l.bulb_radius_m;
     if (!(r > 0.0)) continue;  // no visible bulb
     add_sphere(m, l.position_m, r, l.intensity_w_sr / (M_PI * r * r), kBulbSlices, kBulbStacks);

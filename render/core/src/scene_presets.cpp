@@ -47,7 +47,7 @@ Scene lamps() {
     const glm::dvec3 dark{0.2, 0.2, 0.2};
     s.boxes.push_back(box({3.72, 0.0, z - 0.08}, {3.88, 5.3, z + 0.08}, dark));
     s.boxes.push_back(box({2.95, 5.2, z - 0.05}, {3.72, 5.3, z + 0.05}, dark));
-    s.point_lights.push_back(PointLight{{3.0, 5.0, z}, glm::dvec3{1.0, 0.85, 0.6} * 150.0, 0.12});
+    s.lamps.push_back(bulb_light({3.0, 5.0, z}, glm::dvec3{1.0, 0.85, 0.6} * 150.0, 0.12));
   }
   s.boxes.push_back(box({-14.0, 0.0, -45.0}, {-7.0, 12.0, -20.0}, {0.55, 0.5, 0.45}));  // houses
   s.boxes.push_back(box({-14.0, 0.0, -17.0}, {-7.0, 9.0, 2.0}, {0.5, 0.45, 0.4}));
@@ -80,7 +80,7 @@ Scene colonnade() {
   s.boxes.push_back(box({-11.0, 0.0, -6.5}, {11.0, 6.0, -6.0}, wall));   // back
   s.boxes.push_back(box({-11.0, 0.0, -6.0}, {-10.4, 6.0, 0.4}, wall));   // left
   s.boxes.push_back(box({10.4, 0.0, -6.0}, {11.0, 6.0, 0.4}, wall));     // right
-  s.point_lights.push_back(PointLight{{0.0, 3.0, -3.2}, glm::dvec3{1.0, 0.9, 0.75} * 400.0, 0.1});
+  s.lamps.push_back(bulb_light({0.0, 3.0, -3.2}, glm::dvec3{1.0, 0.9, 0.75} * 400.0, 0.1));
   s.camera = camera({3.0, 1.7, 16.0}, {0.0, 3.0, 0.0}, 60.0);
   return s;
 }
@@ -92,7 +92,7 @@ Scene colonnade_sun() {
   s.medium = medium(0.05, 1.0, Phase{PhaseKind::HenyeyGreenstein, 0.3});
   s.ground = GroundPlane{0.0, Material{{0.5, 0.5, 0.5}}};
   add_colonnade(s);
-  s.sun = SunLight{glm::normalize(glm::dvec3{-0.35, 0.3, -1.0}), glm::dvec3{1.0, 0.95, 0.85} * 8.0};
+  s.sun = sun_light(glm::normalize(glm::dvec3{-0.35, 0.3, -1.0}), glm::dvec3{1.0, 0.95, 0.85} * 8.0);
   s.camera = camera({3.0, 1.7, 16.0}, {0.0, 3.0, 0.0}, 60.0);
   return s;
 }
@@ -110,7 +110,7 @@ Scene spheres() {
       Sphere{{0.6, 1.3, 1.6}, 0.5, Material{{0.3, 0.65, 0.3}}},
       Sphere{{-0.8, 2.0, -2.2}, 0.6, Material{{0.7, 0.65, 0.3}}},
   };
-  s.point_lights.push_back(PointLight{{0.0, 3.0, 0.0}, glm::dvec3{1.0, 0.95, 0.9} * 300.0, 0.08});
+  s.lamps.push_back(bulb_light({0.0, 3.0, 0.0}, glm::dvec3{1.0, 0.95, 0.9} * 300.0, 0.08));
   s.camera = camera({0.0, 2.2, 11.0}, {0.0, 2.6, 0.0}, 55.0);
   return s;
 }
@@ -151,7 +151,7 @@ Scene terrain() {
   h.material = Material{{0.35, 0.4, 0.3}};
   s.terrain = h;
   s.ground = GroundPlane{0.0, Material{{0.35, 0.4, 0.3}}};
-  s.sun = SunLight{glm::normalize(glm::dvec3{0.1, 0.18, -1.0}), glm::dvec3{1.0, 0.92, 0.8} * 6.0};
+  s.sun = sun_light(glm::normalize(glm::dvec3{0.1, 0.18, -1.0}), glm::dvec3{1.0, 0.92, 0.8} * 6.0);
   // Eye 5 m above the ground 60 m south of the origin, looking north at the ridge.
   s.camera = camera({0.0, terrain_height(0.0, 60.0) + 5.0, 60.0}, {0.0, 30.0, -150.0}, 60.0);
   return s;
@@ -163,7 +163,7 @@ Scene open_scene() {
   Scene s;
   s.name = "open";
   s.medium = medium(0.05, 1.0, Phase{PhaseKind::Isotropic, 0.0});
-  s.point_lights.push_back(PointLight{{0.0, 3.0, 0.0}, glm::dvec3{100.0}, 0.05});
+  s.lamps.push_back(bulb_light({0.0, 3.0, 0.0}, glm::dvec3{100.0}, 0.05));
   s.camera = camera({0.0, 1.7, 10.0}, {1.0, 2.5, 0.0}, 60.0);
   return s;
 }
@@ -182,7 +182,7 @@ Scene sky() {
   s.ground = GroundPlane{0.0, Material{{0.28, 0.3, 0.22}}};
   s.camera = camera({0.0, 2.0, 7000.0}, {0.0, 1500.0, 0.0}, 60.0);
   const Daylight d = daylight(glm::normalize(glm::dvec3{0.8, 0.55, -0.25}), s.camera.eye.y);
-  s.sun = SunLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2};
+  s.sun = sun_light(d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2);
   s.sky = d.sky;
   s.camera.near_m = 1.0;
   s.camera.far_m = 40000.0;
@@ -208,7 +208,7 @@ Scene steam_lamp() {
   s.boxes.push_back(box({-0.04, -0.088, -0.04}, {0.04, -0.004, 0.04}, china));  // cup, the tea 4 mm down
   s.boxes.push_back(box({-2.04, -0.84, -3.04}, {-1.97, 3.4, -2.97}, iron));     // lamp post, out of view
   s.boxes.push_back(box({-1.97, 3.4, -3.03}, {0.7, 3.45, -2.98}, iron));        // its arm
-  s.point_lights.push_back(PointLight{{0.6, 3.25, -3.0}, glm::dvec3{1.0, 0.78, 0.5} * 150.0, 0.08});
+  s.lamps.push_back(bulb_light({0.6, 3.25, -3.0}, glm::dvec3{1.0, 0.78, 0.5} * 150.0, 0.08));
   s.camera = camera({-0.12, 0.1, 1.0}, {0.0, 0.17, 0.0}, 40.0);
   s.camera.near_m = 0.02;
   s.camera.far_m = 200.0;

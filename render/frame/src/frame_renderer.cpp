@@ -37,28 +37,31 @@ void validate(const FrameSettings& s) {
     throw std::invalid_argument("frame settings volume_format: must be GL_R16F or GL_R32F");
 }
 
-FrameRenderer::FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings)
-    : FrameRenderer(std::move(scene), std::vector<CloudLight>{light}, settings) {}
+FrameRenderer::FrameRenderer(const FrameDescription& frame)
+    : FrameRenderer(frame.scene, frame.lights, frame.settings) {
+  validate(frame.optics);
+  optics_ = frame.optics;
+}
 
-FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight> lights, const FrameSettings& settings)
+FrameRenderer::FrameRenderer(std::optional<Scene> scene, const Light& light, const FrameSettings& settings)
+    : FrameRenderer(std::move(scene), std::vector<Light>{light}, settings) {}
+
+FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<Light> lights, const FrameSettings& settings)
     : scene_(std::move(scene)), settings_(settings) {
   validate(settings_);
   if (is_cpu_method(settings_.method) && scene_)
     throw std::invalid_argument("the cloud " + to_string(settings_.method) + " renders clouds alone, without a scene");
   int suns = 0;
-  for (const CloudLight& l : lights) {
+  for (const Light& l : lights) {
     validate(l);
-    if (l.kind == CloudLightKind::Sun) {
+    if (l.kind == LightKind::Sun) {
       if (++suns > 1) throw std::invalid_argument("frame lights: at most one sun");
       set_light(l);
     } else if (scene_) {
-      // A lamp in a scene is one of its point lights: the fog, the surfaces and the clouds see it.
+      // A lamp in a scene is one of its lamps: the fog, the surfaces and the clouds see it.
       if (glm::length(l.spot_axis) > 0.0)
         throw std::invalid_argument("frame lights: a spot lights clouds alone (no scene); a scene's lamps shine every way");
-      PointLight p;
-      p.position_m = l.position_m;
-      p.intensity_w_sr = l.intensity_w_sr;
-      scene_->point_lights.push_back(p);
+      scene_->lamps.push_back(l);
     } else {
       lamps_.push_back(l);
     }
@@ -71,34 +74,29 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight>
 
 FrameRenderer::~FrameRenderer() = default;
 
-CloudLight FrameRenderer::light() const {
-  CloudLight l;
-  if (const std::optional<SunLight>& s = sun()) {
-    l.direction_to_sun = s->direction_to_sun;
-    l.irradiance_w_m2 = s->irradiance_w_m2;
-  }
-  return l;
-}
+Light FrameRenderer::light() const { return sun().value_or(Light{}); }
 
-std::vector<CloudLight> FrameRenderer::cloud_lights() const {
-  std::vector<CloudLight> out;
-  if (has_sun()) out.push_back(light());
-  if (scene_) {
-    for (const PointLight& p : scene_->point_lights) out.push_back(point_light(p.position_m, p.intensity_w_sr));
-  } else {
-    out.insert(out.end(), lamps_.begin(), lamps_.end());
-  }
+std::vector<Light> FrameRenderer::cloud_lights() const {
+  std::vector<Light> out;
+  if (has_sun()) out.push_back(*sun());
+  const std::vector<Light>& lamps = scene_ ? scene_->lamps : lamps_;
+  out.insert(out.end(), lamps.begin(), lamps.end());
   return out;
 }
 
-void FrameRenderer::set_light(const CloudLight& light) {
+void FrameRenderer::set_light(const Light& light) {
   validate(light);
-  if (light.kind != CloudLightKind::Sun) throw std::invalid_argument("frame light: set_light moves the sun; this is a lamp");
-  const std::optional<SunLight>& old = sun();
+  if (light.kind != LightKind::Sun) throw std::invalid_argument("frame light: set_light moves the sun; this is a lamp");
+  const std::optional<Light>& old = sun();
   if (!old || glm::normalize(light.direction_to_sun) != glm::normalize(old->direction_to_sun)) light_volume_stale_ = true;
   const bool moved = !old || old->direction_to_sun != light.direction_to_sun || old->irradiance_w_m2 != light.irradiance_w_m2;
-  (scene_ ? scene_->sun : sun_) = SunLight{light.direction_to_sun, light.irradiance_w_m2};
+  (scene_ ? scene_->sun : sun_) = light;
   if (scene_ && moved) shaft_renderer_.reset();  // its sun shadow map follows the sun
+}
+
+void FrameRenderer::set_sun(const SunSetup& setup) {
+  set_light(setup.sun);
+  if (scene_ && setup.sky) set_sky(*setup.sky);
 }
 
 void FrameRenderer::set_sky(const Sky& sky) {
@@ -115,6 +113,8 @@ void FrameRenderer::set_sky(const Sky& sky) {
 
 void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
   light_volume_stale_ = true;
+  if (optics_)
+    for (CloudVolume& c : clouds) c.optics = *optics_;
   if (is_cpu_method(settings_.method)) {
     if (clouds.empty()) throw std::invalid_argument("frame clouds: the list is empty");
     reference_clouds_ = std::move(clouds);
@@ -147,6 +147,7 @@ void FrameRenderer::set_motion(const std::vector<CloudMotion>& motion) {
 
 void FrameRenderer::set_optics(const CloudOptics& optics) {
   validate(optics);
+  if (optics_) optics_ = optics;
   if (cloud_renderer_) cloud_renderer_->set_optics(optics);
   light_volume_stale_ = true;
   for (CloudVolume& c : reference_clouds_) c.optics = optics;

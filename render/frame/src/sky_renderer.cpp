@@ -8,6 +8,7 @@
 
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/sun_setup.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 
@@ -31,16 +32,20 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   return fs;
 }
 
-// The state's scene: the sky scene lit by the daylight; another preset keeps its own lights
-// (its sun, if any, follows the daylight's); none: the clouds alone.
-std::optional<Scene> state_scene(const std::string& name, const Daylight& d) {
-  if (name == "none") return std::nullopt;
-  Scene scene = make_scene(name);
-  if (name == "sky") {
-    scene.sun = SunLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2};
-    scene.sky = d.sky;
-  }
-  return scene;
+// The state's sun (sun_setup.hpp): the viewer's clock lights every scene, and the clouds alone,
+// by the daylight; the sky scene's physical sky follows it.
+SunSetup state_sun(const ViewState& s, const Scene* scene) {
+  return set_up_sun(scene, sun_direction(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg), SunColour::Daylight);
+}
+
+// The state's optics, with the daylight's ambient whatever the scene.
+CloudOptics state_optics(const ViewState& s) {
+  CloudOptics o;
+  o.extinction_per_m = s.extinction_per_m;
+  o.albedo = s.albedo;
+  o.phase = s.phase;
+  o.ambient_radiance = *state_sun(s, nullptr).ambient_w_sr_m2;  // the daylight's, whatever the scene
+  return o;
 }
 
 // What the keyframes hold: the sky without its wind and sun.
@@ -50,8 +55,6 @@ nlohmann::json clouds_of(const volume::Sky& sky) {
   j.erase("sun");
   return j;
 }
-
-CloudLight light_of(const Daylight& d) { return CloudLight{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2}; }
 
 }  // namespace
 
@@ -67,13 +70,20 @@ Camera state_camera(const ViewState& state, int width, int height, const std::ve
   return fit_far_plane(c, clouds);
 }
 
-CloudOptics SkyRenderer::optics(const ViewState& s) const {
-  CloudOptics o;
-  o.extinction_per_m = s.extinction_per_m;
-  o.albedo = s.albedo;
-  o.phase = s.phase;
-  o.ambient_radiance = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg).ambient_w_sr_m2;
-  return o;
+FrameDescription frame_description(const ViewState& s, const FrameQuality& q) {
+  FrameDescription f;
+  if (s.scene != "none") {
+    // A preset keeps its lamps; the viewer's clock gives it the daylight's sun (and the sky scene
+    // its physical sky).
+    f.scene = make_scene(s.scene);
+    place_sun(*f.scene, state_sun(s, &*f.scene));
+  } else {
+    f.lights = {state_sun(s, nullptr).sun};
+  }
+  f.optics = state_optics(s);
+  f.camera = state_camera(s, f.camera.width, f.camera.height, {});
+  f.settings = frame_settings(s, q);
+  return f;
 }
 
 SkyRenderer::SkyRenderer(const ViewState& state) : SkyRenderer(state, nullptr) {}
@@ -83,10 +93,9 @@ SkyRenderer::SkyRenderer(const ViewState& state, std::shared_ptr<SkyKeyframes> k
   if (keyframes && clouds_of(keyframes->sky()) == clouds_of(state.sky)) {
     keyframes_ = std::move(keyframes);
   } else {
-    keyframes_ = std::make_shared<SkyKeyframes>(state.sky, optics(state));
+    keyframes_ = std::make_shared<SkyKeyframes>(state.sky, state_optics(state));
   }
-  const Daylight d = daylight(state.sky.sun_elevation_deg, state.sky.sun_azimuth_deg);
-  frame_ = std::make_unique<FrameRenderer>(state_scene(state.scene, d), light_of(d), frame_settings(state, FrameQuality{}));
+  frame_ = std::make_unique<FrameRenderer>(frame_description(state, FrameQuality{}));
   applied_ = state;
 }
 
@@ -103,21 +112,18 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
   if (q.slices != 0 && (q.slices < 2 || q.slices > 4096)) throw std::invalid_argument("frame quality slices: must be 0 or in [2, 4096]");
   const ViewState& a = *applied_;
   // The keyframes hold the clouds only: a new wind or sun needs none.
-  if (clouds_of(a.sky) != clouds_of(s.sky)) keyframes_ = std::make_shared<SkyKeyframes>(s.sky, optics(s));
+  if (clouds_of(a.sky) != clouds_of(s.sky)) keyframes_ = std::make_shared<SkyKeyframes>(s.sky, state_optics(s));
   if (a.scene != s.scene) {
     // A new scene: a new pipeline (its programs compile again); the clouds are uploaded anew.
-    const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
-    frame_ = std::make_unique<FrameRenderer>(state_scene(s.scene, d), light_of(d), frame_settings(s, q));
+    frame_ = std::make_unique<FrameRenderer>(frame_description(s, q));
     pair_.reset();
     drawn_.reset();
     shown_a_.reset();
     shown_b_.reset();
   } else if (a.sky.sun_elevation_deg != s.sky.sun_elevation_deg || a.sky.sun_azimuth_deg != s.sky.sun_azimuth_deg) {
-    const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
-    frame_->set_light(light_of(d));
-    if (s.scene == "sky") frame_->set_sky(d.sky);
+    frame_->set_sun(state_sun(s, frame_->scene() ? &*frame_->scene() : nullptr));
   }
-  frame_->set_optics(optics(s));
+  frame_->set_optics(state_optics(s));
   frame_->set_settings(frame_settings(s, q));
   applied_ = s;
 }
@@ -129,9 +135,8 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
   shown_current_ = false;
   if (drawn_ != keyframes_) return shown_a_ != nullptr;
   if (const std::string e = volumes_->error(); !e.empty()) throw std::runtime_error(e);
-  const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
   KeyframeLight light;
-  light.direction_to_sun = glm::normalize(d.sun.direction_to_sun);
+  light.direction_to_sun = glm::normalize(state_sun(s, nullptr).sun.direction_to_sun);
   light.extinction_per_m = s.extinction_per_m;
   light.albedo = s.albedo;
   light.phase = s.phase;
@@ -190,7 +195,7 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
     if (drawn_ != keyframes_ || !pair_ || *pair_ != k) {
       const auto start = std::chrono::steady_clock::now();
       frame_->set_clouds(kf.pair(k));
-      frame_->set_optics(optics(state));
+      frame_->set_optics(state_optics(state));
       drawn_ = keyframes_;
       pair_ = k;
       fi.uploaded = true;

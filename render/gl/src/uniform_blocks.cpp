@@ -77,15 +77,15 @@ CameraBlock camera_block(const Camera& camera) {
 LightsBlock no_lights_block() { return LightsBlock{}; }
 
 LightsBlock lights_block(const Scene& scene) {
-  if (scene.point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+  if (scene.lamps.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
     throw std::invalid_argument("scene '" + scene.name + "': the GPU takes at most " +
                                 std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
-                                std::to_string(scene.point_lights.size()));
+                                std::to_string(scene.lamps.size()));
   LightsBlock b;
-  b.point_count = static_cast<int>(scene.point_lights.size());
-  for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
-    b.point_position[i] = glm::vec4(to_float(scene.point_lights[i].position_m), 1.0f);
-    b.point_intensity[i] = glm::vec4(to_float(scene.point_lights[i].intensity_w_sr), 0.0f);
+  b.point_count = static_cast<int>(scene.lamps.size());
+  for (std::size_t i = 0; i < scene.lamps.size(); ++i) {
+    b.point_position[i] = glm::vec4(to_float(scene.lamps[i].position_m), 1.0f);
+    b.point_intensity[i] = glm::vec4(to_float(scene.lamps[i].intensity_w_sr), 0.0f);
   }
   if (scene.sun) {
     b.has_sun = 1;

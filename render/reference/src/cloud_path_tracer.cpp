@@ -26,7 +26,7 @@ void validate(const PathTracerSettings& s) {
   if (s.sky) {
     Scene probe;
     probe.sky = s.sky;
-    probe.sun = SunLight{};
+    probe.sun = Light{};
     validate(probe);
   }
 }
@@ -75,10 +75,10 @@ PhotonExit PhotonTracer::trace(const glm::dvec3& origin, const glm::dvec3& dir, 
 }
 
 PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds, const Camera& camera,
-                                         const CloudLight& light, const PathTracerSettings& settings) {
+                                         const Light& light, const PathTracerSettings& settings) {
   validate(camera);
   validate(light);
-  if (light.kind != CloudLightKind::Sun)
+  if (light.kind != LightKind::Sun)
     throw std::invalid_argument("cloud path tracer light: it traces the sun only; a lamp lights clouds through the slicer and the cloud reference");
   validate(settings);
   if (clouds.empty()) throw std::invalid_argument("path tracer clouds: the list is empty");

@@ -86,11 +86,11 @@ struct IndexRay {
 // What every ray needs: the clouds, their union box, the finest voxel and the lights.
 struct Prepared {
   const std::vector<CloudVolume>& clouds;
-  const std::vector<CloudLight>& lights;
+  const std::vector<Light>& lights;
   glm::dvec3 box_min, box_max;   // union of the supports
   double voxel_m = 1e300;        // finest voxel edge
 
-  Prepared(const std::vector<CloudVolume>& c, const std::vector<CloudLight>& l) : clouds(c), lights(l) {
+  Prepared(const std::vector<CloudVolume>& c, const std::vector<Light>& l) : clouds(c), lights(l) {
     cloud_bounds(clouds, box_min, box_max);
     for (const CloudVolume& cloud : clouds) voxel_m = std::min(voxel_m, voxel_size_m(cloud));
   }
@@ -158,7 +158,7 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
       if (!(sigma_t > 0.0)) continue;
       const glm::dvec3 x = eye + t * dir;
       glm::dvec3 source = ambient;  // W sr^-1 m^-3
-      for (const CloudLight& light : P.lights) {
+      for (const Light& light : P.lights) {
         const LightAtPoint a = light_at(light, x);
         if (!(glm::length(a.irradiance_w_m2) > 0.0)) continue;
         // Phase angle between the light's propagation (-to_light) and the way to the eye (-dir).
@@ -180,7 +180,7 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
   return {radiance, 1.0 - transmittance};
 }
 
-void describe(Image& image, const std::vector<CloudVolume>& clouds, const Camera& c, const std::vector<CloudLight>& lights,
+void describe(Image& image, const std::vector<CloudVolume>& clouds, const Camera& c, const std::vector<Light>& lights,
               const CloudReferenceSettings& s) {
   std::ostringstream v, sh, mt;
   v << s.view_step_voxels;
@@ -212,12 +212,12 @@ void validate(const CloudReferenceSettings& s) {
   if (s.threads < 0) throw std::invalid_argument("cloud reference threads: must be >= 0 (0 = all cores)");
 }
 
-static void validate_lights(const std::vector<CloudLight>& lights) {
+static void validate_lights(const std::vector<Light>& lights) {
   if (lights.empty()) throw std::invalid_argument("cloud reference lights: the list is empty");
-  for (const CloudLight& l : lights) validate(l);
+  for (const Light& l : lights) validate(l);
 }
 
-CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights,
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const std::vector<Light>& lights,
                                 const glm::dvec3& eye, const glm::dvec3& dir, const CloudReferenceSettings& settings) {
   validate_clouds(clouds);
   validate_lights(lights);
@@ -229,12 +229,12 @@ CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const st
   return trace(prepared, eye, glm::normalize(dir), settings);
 }
 
-CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const CloudLight& light, const glm::dvec3& eye,
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const Light& light, const glm::dvec3& eye,
                                 const glm::dvec3& dir, const CloudReferenceSettings& settings) {
-  return cloud_reference_ray(clouds, std::vector<CloudLight>{light}, eye, dir, settings);
+  return cloud_reference_ray(clouds, std::vector<Light>{light}, eye, dir, settings);
 }
 
-double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const Light& light,
                                  const glm::dvec3& point_m, double shadow_step_voxels) {
   if (clouds.empty()) return 1.0;  // nothing casts a shadow
   validate_clouds(clouds);
@@ -243,14 +243,14 @@ double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const C
     throw std::invalid_argument("cloud reference shadow_step_voxels: must be in (0, 8], got " +
                                 std::to_string(shadow_step_voxels));
   if (!finite3(point_m)) throw std::invalid_argument("cloud reference point_m: must be finite");
-  const std::vector<CloudLight> lights{light};
+  const std::vector<Light> lights{light};
   const Prepared prepared(clouds, lights);
   const LightAtPoint a = light_at(light, point_m);
   return prepared.light_transmittance(point_m, a.to_light, a.distance_m, shadow_step_voxels * prepared.voxel_m);
 }
 
 Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera,
-                             const std::vector<CloudLight>& lights, const CloudReferenceSettings& settings) {
+                             const std::vector<Light>& lights, const CloudReferenceSettings& settings) {
   validate_clouds(clouds);
   validate(camera);
   validate_lights(lights);
@@ -265,9 +265,9 @@ Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camer
   return image;
 }
 
-Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const CloudLight& light,
+Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const Light& light,
                              const CloudReferenceSettings& settings) {
-  return render_cloud_reference(clouds, camera, std::vector<CloudLight>{light}, settings);
+  return render_cloud_reference(clouds, camera, std::vector<Light>{light}, settings);
 }
 
 }  // namespace nimbus::render

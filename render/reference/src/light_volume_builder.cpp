@@ -281,10 +281,10 @@ Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<
 
 }  // namespace
 
-LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
                                const LightVolumeSettings& settings) {
   validate(light);
-  if (light.kind != CloudLightKind::Sun)
+  if (light.kind != LightKind::Sun)
     throw std::invalid_argument("light volume light: photons come from the sun only; a lamp takes the octaves method of multiple scattering");
   LightVolume v = light_volume_grid(clouds, settings);
   if (light_volume_bytes(v) > kMaxBytes)

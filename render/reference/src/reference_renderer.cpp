@@ -41,8 +41,8 @@ constexpr double kTailOpticalDepth = 35.0;
 // each occluder (reference_visibility.hpp).
 struct Prepared {
   Prepared(const Scene& scene, bool with_surface_airlight) : tracer(scene) {
-    if (with_surface_airlight && !scene.point_lights.empty()) surface_airlight.emplace(scene.medium.phase);
-    for (const PointLight& l : scene.point_lights) {
+    if (with_surface_airlight && !scene.lamps.empty()) surface_airlight.emplace(scene.medium.phase);
+    for (const Light& l : scene.lamps) {
       std::vector<ShadowRegion>& r = regions.emplace_back();
       for (std::size_t k = 0; k < tracer.occluder_count(); ++k) {
         glm::dvec3 lo, hi;
@@ -66,7 +66,7 @@ struct RayContext {
 
 // Airlight of one point light per unit intensity (multiply by I0).
 double point_airlight(const RayContext& ray, std::size_t index) {
-  const PointLight& light = ray.tracer.scene().point_lights[index];
+  const Light& light = ray.tracer.scene().lamps[index];
   const Medium& m = ray.tracer.scene().medium;
   const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
   const glm::dvec3 v = light.position_m - ray.o;
@@ -109,7 +109,7 @@ double point_airlight(const RayContext& ray, std::size_t index) {
 }
 
 // Airlight of the sun per unit irradiance (multiply by E): closed form per lit interval.
-double sun_airlight(const RayContext& ray, const SunLight& sun) {
+double sun_airlight(const RayContext& ray, const Light& sun) {
   const Medium& m = ray.tracer.scene().medium;
   const double sigma_t = m.extinction_per_m, sigma_s = m.scattering_per_m();
   const glm::dvec3 u = glm::normalize(sun.direction_to_sun);
@@ -139,7 +139,7 @@ glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::
   const glm::dvec3 start = P + (1e-8 * scale) * n;  // off the surface for shadow rays
   glm::dvec3 irradiance{0.0};
   glm::dvec3 airlight{0.0};
-  for (const PointLight& l : s.point_lights) {
+  for (const Light& l : s.lamps) {
     const glm::dvec3 to_light = l.position_m - P;
     const double dist = glm::length(to_light);
     const double cos_i = glm::dot(n, to_light) / dist;
@@ -174,7 +174,7 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
   ReferenceSample out;
   double t_end = kInf;
   if (bulb) {
-    const PointLight& l = s.point_lights[bulb->light];
+    const Light& l = s.lamps[bulb->light];
     t_end = bulb->t;
     out.radiance = l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m) * std::exp(-sigma_t * t_end);
     out.alpha = 1.0;
@@ -192,8 +192,8 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
   }
   if (s.medium.scattering_per_m() > 0.0) {
     const RayContext ray{prepared, tracer, settings, eye, dir, t_end};
-    for (std::size_t i = 0; i < s.point_lights.size(); ++i) {
-      out.radiance += s.point_lights[i].intensity_w_sr * point_airlight(ray, i);
+    for (std::size_t i = 0; i < s.lamps.size(); ++i) {
+      out.radiance += s.lamps[i].intensity_w_sr * point_airlight(ray, i);
     }
     if (s.sun) out.radiance += s.sun->irradiance_w_m2 * sun_airlight(ray, *s.sun);
   }

@@ -51,7 +51,7 @@ void ShaftRenderer::Impl::build_meshes() {
                                     : settings.ground_extent_m;
     ground = upload(build_scene_mesh(g, extent));
   }
-  for (const PointLight& l : scene.point_lights) {
+  for (const Light& l : scene.lamps) {
     bulbs.push_back(upload(build_bulb_mesh(l)));
   }
   empty_vao = make_vertex_array();

@@ -77,10 +77,10 @@ const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
 ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
     : impl_(std::make_unique<Impl>(scene, settings)) {
   validate(scene);
-  if (scene.point_lights.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
+  if (scene.lamps.size() > static_cast<std::size_t>(contract::MAX_POINT_LIGHTS))
     throw std::invalid_argument("scene '" + scene.name + "': the GPU renderer takes at most " +
                                 std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
-                                std::to_string(scene.point_lights.size()));
+                                std::to_string(scene.lamps.size()));
   if (settings.point_shadow_res < 16 || settings.point_shadow_res > 8192)
     throw std::invalid_argument("point_shadow_res must be in [16, 8192]");
   if (settings.sun_shadow_res < 16 || settings.sun_shadow_res > 16384)
@@ -88,7 +88,7 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
   const double sigma_t = scene.medium.extinction_per_m;
   impl_->max_skirt_distance_m = sigma_t > 0 ? std::min(1.0e4, 500.0 + 2.0 * settings.march_cutoff_optical / sigma_t) : 1.0e4;
   impl_->build_meshes();
-  if (settings.surface_airlight && !scene.point_lights.empty()) {  // for the medium's phase, built once per process (about 2 s), uploaded here
+  if (settings.surface_airlight && !scene.lamps.empty()) {  // for the medium's phase, built once per process (about 2 s), uploaded here
     const SurfaceAirlightTable table(scene.medium.phase);
     impl_->surface_airlight_table = make_texture_2d(GL_R32F, table.nx(), table.ny(),
                                                     TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
@@ -168,7 +168,7 @@ void ShaftRenderer::Impl::draw_surfaces(const CameraBlock& camera, int w, int h)
   draw(occluders);
   p.set("u_emissive", 1);
   for (std::size_t i = 0; i < bulbs.size(); ++i) {
-    const PointLight& l = scene.point_lights[i];
+    const Light& l = scene.lamps[i];
     p.set("u_emissive_radiance", to_float(l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m)));
     draw(bulbs[i]);
   }

@@ -107,7 +107,7 @@ struct ShaftRenderer::Impl {
   void draw_surfaces(const CameraBlock& camera, int w, int h);
   // Its program by (clouds' shadow, surface airlight); the airlight off without point lights (the sun adds none).
   const ShaderProgram& surface_program();
-  bool surface_airlight_on() const { return settings.surface_airlight && !scene.point_lights.empty(); }
+  bool surface_airlight_on() const { return settings.surface_airlight && !scene.lamps.empty(); }
   // The shaft pass: the airlight added along each pixel's ray by the method's program p, over the surfaces.
   void ensure_jitter();
   void draw_shafts(const Camera& camera, const ShaderProgram& p, const shaft_detail::ShaftMethodPass& method_pass);

@@ -28,7 +28,7 @@ const std::array<glm::dvec3, 6> kFaceUp = {glm::dvec3(0, -1, 0), glm::dvec3(0, -
 }  // namespace
 
 void ShaftRenderer::Impl::build_shadow_maps() {
-  n_point = static_cast<int>(scene.point_lights.size());
+  n_point = static_cast<int>(scene.lamps.size());
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
@@ -58,7 +58,7 @@ void ShaftRenderer::Impl::build_point_maps() {
   const glm::dmat4 proj = glm::perspective(M_PI / 2.0, 1.0, 0.01, static_cast<double>(kFarDistanceM));
   shadow_program.set("u_mode", contract::SHADOW_POINT_LIGHT);
   for (int i = 0; i < n_point; ++i) {
-    const glm::dvec3 pos = scene.point_lights[static_cast<std::size_t>(i)].position_m;
+    const glm::dvec3 pos = scene.lamps[static_cast<std::size_t>(i)].position_m;
     shadow_program.set("u_origin", to_float(pos));
     for (int f = 0; f < 6; ++f) {
       const GlFramebuffer fbo = make_framebuffer(
@@ -161,7 +161,7 @@ void ShaftRenderer::Impl::build_skirts() {
       b.set("u_to_sun", to_float(-sun_propagation));
     } else {
       res = settings.point_shadow_res;
-      b.set("u_origin", to_float(scene.point_lights[static_cast<std::size_t>(layer)].position_m));
+      b.set("u_origin", to_float(scene.lamps[static_cast<std::size_t>(layer)].position_m));
     }
     b.set("u_res", res);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_SKIRT_QUADS, scratch.id());

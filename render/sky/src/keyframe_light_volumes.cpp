@@ -20,7 +20,7 @@ LightVolume build_keyframe_volume(const SkyKeyframes& keyframes, int64_t j, cons
     c.optics.albedo = light.albedo;
     c.optics.phase = light.phase;
   }
-  return build_light_volume(clouds, CloudLight{light.direction_to_sun, glm::dvec3(1.0)}, light.settings);
+  return build_light_volume(clouds, Light{light.direction_to_sun, glm::dvec3(1.0)}, light.settings);
 }
 
 }  // namespace

@@ -71,8 +71,8 @@ render::Camera bench_camera(int width, int height) {
   return c;
 }
 
-render::CloudLight bench_light(bool back_lit) {
-  render::CloudLight l;
+render::Light bench_light(bool back_lit) {
+  render::Light l;
   l.direction_to_sun = back_lit ? glm::dvec3(0.3, 0.5, -0.8) : glm::dvec3(0.6, 0.8, 0.3);
   l.irradiance_w_m2 = glm::dvec3(1.0);
   return l;

@@ -31,7 +31,7 @@ render::Camera bench_camera(int width, int height);
 // Front-lit: the light behind the camera (0.6, 0.8, 0.3), dot(view, to_light) = -0.3.
 // Back-lit: the light behind the cloud (0.3, 0.5, -0.8), dot(view, to_light) = +0.8.
 // Irradiance 1 (vdb_render's light colour 1,1,1).
-render::CloudLight bench_light(bool back_lit);
+render::Light bench_light(bool back_lit);
 
 // vdb_render_optics with the bench's coefficients.
 render::CloudOptics bench_optics(double voxel_m);

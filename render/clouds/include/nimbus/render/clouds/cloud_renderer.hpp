@@ -80,14 +80,14 @@ class CloudRenderer {
   // alpha = 1 - transmittance (comparable with render_cloud_reference). With one: slices behind
   // the scene's surfaces are hidden, fog in front of the clouds attenuates them and adds its
   // airlight, and the result is the finished frame. Metadata: describe_clouds' and describe_slices'.
-  Image render(const Camera& camera, const CloudLight& light, const CloudSliceSettings& settings,
+  Image render(const Camera& camera, const Light& light, const CloudSliceSettings& settings,
                const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
-  // Several lights (the sun, lamps, spots; cloud_light.hpp): the settings.max_lights strongest at
+  // Several lights (the sun, lamps, spots; light.hpp): the settings.max_lights strongest at
   // the clouds' centre get one slicing pass each, with its own axis and light buffer (a lamp's is
   // its perspective view); their radiance adds up, the coverage is the first pass's, the ambient
   // term enters once. Lights left out are named in the metadata key "lights_left_out". A lamp
   // takes the octaves method of multiple scattering (std::invalid_argument with light-volume).
-  Image render(const Camera& camera, const std::vector<CloudLight>& lights, const CloudSliceSettings& settings,
+  Image render(const Camera& camera, const std::vector<Light>& lights, const CloudSliceSettings& settings,
                const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
 
   struct Impl;

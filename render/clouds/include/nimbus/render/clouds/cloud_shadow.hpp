@@ -24,7 +24,7 @@ class CloudShadowBuilder {
   // `next_textures`: each cloud's next keyframe (nullptr: none; empty: none for all), blended
   // by the cloud's `blend` as the slicer does.
   CloudShadowMap build(const std::vector<CloudVolume>& clouds, const std::vector<const VolumeTexture*>& textures,
-                       const CloudLight& light, int resolution = 512,
+                       const Light& light, int resolution = 512,
                        const std::vector<const VolumeTexture*>& next_textures = {}) const;
 
  private:
@@ -32,7 +32,7 @@ class CloudShadowBuilder {
 };
 
 CloudShadowMap build_cloud_shadow_map(const std::vector<CloudVolume>& clouds,
-                                      const std::vector<const VolumeTexture*>& textures, const CloudLight& light,
+                                      const std::vector<const VolumeTexture*>& textures, const Light& light,
                                       int resolution = 512);
 
 }  // namespace nimbus::render

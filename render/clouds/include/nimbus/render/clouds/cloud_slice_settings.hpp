@@ -21,7 +21,7 @@ struct CloudSliceSettings {
   // (the half-angle rule); the others force one, for tests at the switch.
   enum class Branch { Auto, FrontToBack, BackToFront } branch = Branch::Auto;
   // Lights drawn, one slicing pass (and light buffer) each: the strongest at the clouds' centre
-  // (strongest_lights, cloud_light.hpp); the rest are left out and named in the metadata. [1, 8]
+  // (strongest_lights, light.hpp); the rest are left out and named in the metadata. [1, 8]
   int max_lights = 4;
 };
 

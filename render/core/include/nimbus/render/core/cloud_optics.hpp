@@ -1,13 +1,13 @@
 // How cloud density meets light: extinction and scattering per unit density (world units), a
 // dual-lobe Henyey-Greenstein phase, an ambient sky term and the multiple-scattering
-// approximations; the lights are in cloud_light.hpp.
+// approximations; the lights are in light.hpp.
 #pragma once
 #include <cstdint>
 #include <string>
 
 #include <glm/glm.hpp>
 
-#include "nimbus/render/core/cloud_light.hpp"
+#include "nimbus/render/core/light.hpp"
 
 namespace nimbus::render {
 

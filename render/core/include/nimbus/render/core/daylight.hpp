@@ -24,7 +24,7 @@ inline constexpr double kDaylightViewerAltitudeM = 2.0;
 inline constexpr double kDaylightCloudAltitudeM = 1500.0;
 
 struct Daylight {
-  SunLight sun;                           // at the ground: direction and irradiance
+  Light sun;                           // at the ground: direction and irradiance
   glm::dvec3 cloud_sun_irradiance_w_m2;   // the sun at the cloud layer (brighter and whiter near sunset);
                                           // the sky scene lights its ground with it too (a few % brighter)
   Sky sky;                                // the physical sky, ending 20 km away for the fog

@@ -33,10 +33,10 @@ bool occluded(const Scene& scene, const glm::dvec3& from, const glm::dvec3& to);
 // sun's shadow ray.
 bool occluded_toward(const Scene& scene, const glm::dvec3& from, const glm::dvec3& dir);
 
-// Nearest light bulb (PointLight::bulb_radius_m sphere) hit with 0 < t < tmax.
+// Nearest light bulb (Light::bulb_radius_m sphere) hit with 0 < t < tmax.
 struct BulbHit {
   double t = 0.0;
-  std::size_t light = 0;  // index into Scene::point_lights
+  std::size_t light = 0;  // index into Scene::lamps
 };
 std::optional<BulbHit> intersect_bulbs(const Scene& scene, const glm::dvec3& origin,
                                        const glm::dvec3& dir,

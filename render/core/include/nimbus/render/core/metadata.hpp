@@ -21,15 +21,15 @@ std::string fmt3(const glm::dvec3& v);
 std::string describe_camera(const Camera& camera);
 // "sun towards X,Y,Z E_w_m2 R,G,B" or "point X,Y,Z I_w_sr R,G,B [spot axis X,Y,Z inner_rad A
 // outer_rad B]": a light as the "light" key of a cloud frame names it.
-std::string describe_light(const CloudLight& light);
+std::string describe_light(const Light& light);
 // Several lights, "; " between them.
-std::string describe_lights(const std::vector<CloudLight>& lights);
+std::string describe_lights(const std::vector<Light>& lights);
 
 // Keys "scene", "method", "camera", "medium", "lights" and, under a sky, "sky".
 void describe_frame(Image& image, const Scene& scene, const Camera& camera, const std::string& method);
 
 // Keys "clouds" (their names), "cloud_optics" (size and optics of each) and "light".
-void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const CloudLight& light);
-void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights);
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const Light& light);
+void describe_clouds(Image& image, const std::vector<CloudVolume>& clouds, const std::vector<Light>& lights);
 
 }  // namespace nimbus::render

@@ -1,5 +1,6 @@
 // The light-shaft scene: ground (plane or heightfield terrain), simple occluders (boxes,
-// spheres) and point lights or the sun, inside a homogeneous medium. Units are metres, y up.
+// spheres) and its lights (light.hpp: the sun and lamps), inside a homogeneous medium. Units are
+// metres, y up.
 #pragma once
 #include <memory>
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "nimbus/render/core/atmosphere_tables.hpp"
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/light.hpp"
 #include "nimbus/render/core/medium.hpp"
 
 namespace nimbus::render {
@@ -46,22 +48,6 @@ struct Sphere {
   Material material;
 };
 
-// Isotropic point light (a street lamp). Seen directly it is a small emissive sphere of
-// radius bulb_radius_m and radiance intensity / (pi r^2); the bulb casts no shadow. A radius of
-// 0 hides the bulb (the benchmarks do, so that the error measures the shafts, not the source).
-struct PointLight {
-  glm::dvec3 position_m{0.0, 4.0, 0.0};
-  glm::dvec3 intensity_w_sr{100.0};  // radiant intensity I0 per channel, W/sr
-  double bulb_radius_m = 0.05;
-};
-
-// Directional light. Its irradiance is given where it enters the scene; the medium
-// attenuates view rays and scattered light, not the sunlight itself (no finite fog top).
-struct SunLight {
-  glm::dvec3 direction_to_sun{0.3, 0.8, -0.5};  // normalised on use
-  glm::dvec3 irradiance_w_m2{3.0};
-};
-
 // The sky behind everything: rays that meet no surface end at distance_m, where the sky's
 // radiance shines through the fog. Its radiance is a gradient from the horizon to the zenith,
 // or, with an atmosphere, the physical sky's table (atmosphere_tables.hpp, Hillaire 2020).
@@ -95,8 +81,10 @@ struct Scene {
   std::optional<Heightfield> terrain;
   std::vector<Box> boxes;
   std::vector<Sphere> spheres;
-  std::vector<PointLight> point_lights;
-  std::optional<SunLight> sun;
+  // The scene's lights (light.hpp), the one set every renderer reads: lamps (LightKind::Point,
+  // with their bulbs; spots light clouds alone for now, see validate) and at most one sun.
+  std::vector<Light> lamps;
+  std::optional<Light> sun;
   std::optional<Sky> sky;  // none: rays that meet nothing see black (through the fog's airlight)
   Camera camera;  // the scene's default view
   // The clouds' extinction per unit density the scene is made for (per metre; `nimbus render`'s
@@ -106,7 +94,9 @@ struct Scene {
 };
 
 // Throws std::invalid_argument naming the bad field (negative radius, inverted box, bad
-// heightfield size, non-finite values, no light at all, bad medium).
+// heightfield size, non-finite values, no light at all, a sun that is a lamp or a lamp that is a
+// sun, a spot among the lamps (the shafts' analytic airlight is for lamps that shine every way),
+// bad medium).
 void validate(const Scene& scene);
 
 // Named scenes for `nimbus render --scene NAME`.

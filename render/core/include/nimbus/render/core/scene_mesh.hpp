@@ -44,6 +44,6 @@ SceneMesh build_scene_mesh(const Scene& scene, double ground_extent_m);
 inline constexpr int kBulbSlices = 32;
 inline constexpr int kBulbStacks = 16;
 SceneMesh build_bulb_mesh(const Scene& scene);
-SceneMesh build_bulb_mesh(const PointLight& light);
+SceneMesh build_bulb_mesh(const Light& light);
 
 }  // namespace nimbus::render

@@ -20,6 +20,9 @@
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/frame/frame_description.hpp"
+#include "nimbus/render/frame/frame_settings.hpp"
+#include "nimbus/render/core/sun_setup.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
@@ -27,22 +30,6 @@
 namespace nimbus::render {
 
 class CloudShadowBuilder;
-
-struct FrameSettings {
-  CloudMethod method = CloudMethod::Slices;
-  CloudSliceSettings slices;         // Slices
-  CloudReferenceSettings reference;  // Reference (its progress callback too)
-  PathTracerSettings path_tracer;    // PathTrace (its progress callback too)
-  // The scene under the clouds: a GPU method (not Reference), and its shadow maps.
-  ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
-  ShaftSettings shaft_settings;
-  int cloud_shadow_res = 512;        // texels per side of the clouds' shadow on the scene, [16, 8192]
-  GLenum volume_format = GL_R16F;    // cloud textures: GL_R16F or GL_R32F
-};
-
-// Throws std::invalid_argument naming the field (slices, reference, shafts, cloud_shadow_res,
-// volume_format).
-void validate(const FrameSettings& settings);
 
 // What a frame cost, pass by pass.
 struct FrameStats {
@@ -58,23 +45,27 @@ struct FrameStats {
 
 class FrameRenderer {
  public:
+  // The frame described once (frame_description.hpp): its scene and lights as below, its settings,
+  // and its optics on every cloud set (set_clouds, set_optics). The camera is render()'s to take.
+  explicit FrameRenderer(const FrameDescription& frame);
   // `scene`: what lies behind and around the clouds (its sun is set to `light`, and gets one if
   // it had none), or nullopt: the clouds alone over transparent black. The Reference method takes
   // no scene. The Slices method draws into the GL 4.5 context current on the calling thread.
   // Throws std::invalid_argument naming a bad scene, light or setting.
-  FrameRenderer(std::optional<Scene> scene, const CloudLight& light, const FrameSettings& settings);
-  // Any lights (cloud_light.hpp): at most one sun (the scene's sun, as above; else the scene's own
-  // sun, if it has one, lights the clouds) and lamps. With a scene, a lamp joins its point lights
+  FrameRenderer(std::optional<Scene> scene, const Light& light, const FrameSettings& settings);
+  // Any lights (light.hpp): at most one sun (the scene's sun, as above; else the scene's own
+  // sun, if it has one, lights the clouds) and lamps. With a scene, a lamp joins its lamps
   // (a spot is refused: the scene's lamps shine every way), and every point light of the scene
   // lights the clouds too; without one, the lamps light the clouds alone. Throws
   // std::invalid_argument when nothing lights the clouds, for two suns, or for lamps with the path
   // tracer (sun only).
-  FrameRenderer(std::optional<Scene> scene, std::vector<CloudLight> lights, const FrameSettings& settings);
+  FrameRenderer(std::optional<Scene> scene, std::vector<Light> lights, const FrameSettings& settings);
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
 
-  // The clouds of the next frames (uploaded for Slices; the programs stay compiled). Throws
+  // The clouds of the next frames (uploaded for Slices; the programs stay compiled), each drawn
+  // with the frame's optics when it was made from a FrameDescription. Throws
   // std::invalid_argument for an empty list or a bad cloud, keeping the old clouds.
   void set_clouds(std::vector<CloudVolume> clouds);
   // The clouds as drawn (moved).
@@ -102,17 +93,21 @@ class FrameRenderer {
 
   // Moves the sun (the scene's too; adds one if there was none): its shadow maps (and a light
   // volume, if the direction changed) are rebuilt at the next frame. std::invalid_argument for a lamp.
-  void set_light(const CloudLight& light);
+  void set_light(const Light& light);
   // A new sky behind the scene (its gradient follows the sun in the viewer).
   void set_sky(const Sky& sky);
-  // The sun, held once: in the scene when there is one, else here. light() is it as a cloud light
-  // (meaningful when has_sun()).
-  const std::optional<SunLight>& sun() const { return scene_ ? scene_->sun : sun_; }
+  // The sun as set up by set_up_sun (sun_setup.hpp): set_light(setup.sun), and set_sky with its
+  // physical sky when it brings one and there is a scene. Its ambient light is the caller's to put
+  // in the optics (set_optics).
+  void set_sun(const SunSetup& setup);
+  // The sun, held once: in the scene when there is one, else here. light() is it (the default
+  // sun when there is none).
+  const std::optional<Light>& sun() const { return scene_ ? scene_->sun : sun_; }
   bool has_sun() const { return sun().has_value(); }
-  CloudLight light() const;
-  // Every light on the clouds: the sun, then the lamps (the scene's point lights, or those given
-  // without a scene).
-  std::vector<CloudLight> cloud_lights() const;
+  Light light() const;
+  // Every light on the clouds: the sun, then the lamps (the scene's, or those given without a
+  // scene), as they are: one light model from the scene to the clouds.
+  std::vector<Light> cloud_lights() const;
   const std::optional<Scene>& scene() const { return scene_; }
   const FrameSettings& settings() const { return settings_; }
 
@@ -125,8 +120,9 @@ class FrameRenderer {
 
  private:
   std::optional<Scene> scene_;
-  std::optional<SunLight> sun_;    // the sun without a scene (with one, scene_->sun)
-  std::vector<CloudLight> lamps_;  // lamps on clouds without a scene
+  std::optional<Light> sun_;    // the sun without a scene (with one, scene_->sun)
+  std::vector<Light> lamps_;  // lamps on clouds without a scene
+  std::optional<CloudOptics> optics_;  // the frame's optics on every cloud (FrameDescription), else each cloud's own
   FrameSettings settings_;
   std::vector<CloudVolume> reference_clouds_;  // Reference: the clouds as set (Slices keeps them in cloud_renderer_)
   std::vector<CloudVolume> reference_moved_;   // Reference: the same, moved by set_motion

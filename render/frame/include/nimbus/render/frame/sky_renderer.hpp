@@ -54,6 +54,12 @@ struct SkyFrameInfo {
 // The camera a state describes, at a size (near and far planes fitted to the clouds).
 Camera state_camera(const ViewState& state, int width, int height, const std::vector<CloudVolume>& clouds);
 
+// The frame a state describes (frame_description.hpp), at a quality: its scene under the
+// daylight's sun (set_up_sun with SunColour::Daylight: the viewer's clock lights every scene, and
+// clouds alone, by the daylight), the optics with the daylight's ambient, the camera at its default
+// size (render() sizes it) and the renderer's settings.
+FrameDescription frame_description(const ViewState& state, const FrameQuality& quality);
+
 class SkyRenderer {
  public:
   // Needs a current GL 4.5 context. Starts making the state's keyframes. Throws
@@ -81,7 +87,6 @@ class SkyRenderer {
 
  private:
   void apply(const ViewState& state, const FrameQuality& quality);
-  CloudOptics optics(const ViewState& state) const;
   // Chooses, mixes and uploads this frame's light volume; false when there is none to draw yet.
   bool update_light_volume(const ViewState& state, int64_t k, double blend, bool wait);
 

@@ -46,7 +46,7 @@ struct PathTracedImage {
 // Throws std::invalid_argument naming the bad field; std::runtime_error when a pixel came out NaN
 // or infinite. Metadata: method "cloud-path-tracer", samples, bounces, seed, noise, camera, light.
 PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds, const Camera& camera,
-                                         const CloudLight& light, const PathTracerSettings& settings = {});
+                                         const Light& light, const PathTracerSettings& settings = {});
 
 // Where a photon ends: the building block of the image above, exposed for the transport tests.
 // A walk starts at `origin` travelling along unit `dir` with weight 1 (per channel); each real

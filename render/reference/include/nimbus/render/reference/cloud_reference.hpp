@@ -1,5 +1,5 @@
 // The exact image of the cloud model on the CPU: single scattering of the sun or lamps
-// (cloud_light.hpp; and the ambient sky term) by every cloud, one ray per pixel centre, fine
+// (light.hpp; and the ambient sky term) by every cloud, one ray per pixel centre, fine
 // midpoint steps in double precision with the energy-conserving step integral (Hillaire 2015),
 // a shadow ray to every light at every step (to a lamp, it ends at the lamp). The half-angle
 // slicer's error is measured against it; it is itself checked against OpenVDB's vdb_render.
@@ -29,25 +29,25 @@ void validate(const CloudReferenceSettings& settings);
 // clouds add their extinction and scattering. Metadata: method "cloud-reference", the steps,
 // camera and light. Throws std::invalid_argument naming the bad field, std::runtime_error if a
 // pixel came out NaN or infinite.
-Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const CloudLight& light,
+Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera, const Light& light,
                              const CloudReferenceSettings& settings = {});
 // Several lights (at least one): their single scattering adds up.
 Image render_cloud_reference(const std::vector<CloudVolume>& clouds, const Camera& camera,
-                             const std::vector<CloudLight>& lights, const CloudReferenceSettings& settings = {});
+                             const std::vector<Light>& lights, const CloudReferenceSettings& settings = {});
 
 // One ray from `eye` along unit `dir`: what render_cloud_reference computes for a pixel centre.
 struct CloudSample {
   glm::dvec3 radiance{0.0};
   double alpha = 0.0;
 };
-CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const CloudLight& light, const glm::dvec3& eye,
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const Light& light, const glm::dvec3& eye,
                                 const glm::dvec3& dir, const CloudReferenceSettings& settings = {});
-CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const std::vector<CloudLight>& lights,
+CloudSample cloud_reference_ray(const std::vector<CloudVolume>& clouds, const std::vector<Light>& lights,
                                 const glm::dvec3& eye, const glm::dvec3& dir, const CloudReferenceSettings& settings = {});
 
 // Transmittance from `point` towards the light through every cloud (the shadow ray alone; to a
 // lamp it ends at the lamp).
-double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+double cloud_light_transmittance(const std::vector<CloudVolume>& clouds, const Light& light,
                                  const glm::dvec3& point_m, double shadow_step_voxels = 0.5);
 
 }  // namespace nimbus::render

@@ -27,7 +27,7 @@ std::size_t light_volume_bytes(const LightVolume& grid);
 // The volume for `light`'s direction (its irradiance does not enter: the volume is per unit
 // irradiance). Throws std::invalid_argument naming a bad cloud, light or setting, and
 // std::length_error when the tallies would need more than 4 GiB.
-LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const CloudLight& light,
+LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
                                const LightVolumeSettings& settings);
 
 }  // namespace nimbus::render

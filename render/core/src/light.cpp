@@ -1,5 +1,5 @@
-// The sun and the lamps on clouds (cloud_light.hpp).
-#include "nimbus/render/core/cloud_light.hpp"
+// The sun and the lamps (light.hpp).
+#include "nimbus/render/core/light.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,10 +29,10 @@ double smoothstep(double e0, double e1, double x) {
 
 }  // namespace
 
-CloudLight point_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr, const glm::dvec3& spot_axis,
+Light point_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr, const glm::dvec3& spot_axis,
                        double spot_inner_rad, double spot_outer_rad) {
-  CloudLight l;
-  l.kind = CloudLightKind::Point;
+  Light l;
+  l.kind = LightKind::Point;
   l.position_m = position_m;
   l.intensity_w_sr = intensity_w_sr;
   l.spot_axis = spot_axis;
@@ -41,17 +41,32 @@ CloudLight point_light(const glm::dvec3& position_m, const glm::dvec3& intensity
   return l;
 }
 
-void validate(const CloudLight& l) {
-  if (l.kind == CloudLightKind::Sun) {
+Light sun_light(const glm::dvec3& direction_to_sun, const glm::dvec3& irradiance_w_m2) {
+  Light l;
+  l.kind = LightKind::Sun;
+  l.direction_to_sun = direction_to_sun;
+  l.irradiance_w_m2 = irradiance_w_m2;
+  return l;
+}
+
+Light bulb_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr, double bulb_radius_m) {
+  Light l = point_light(position_m, intensity_w_sr);
+  l.bulb_radius_m = bulb_radius_m;
+  return l;
+}
+
+void validate(const Light& l) {
+  if (l.kind == LightKind::Sun) {
     require(finite3(l.direction_to_sun) && glm::length(l.direction_to_sun) > 1e-12,
             "light direction_to_sun must be finite and non-zero");
     require_colour(l.irradiance_w_m2, "irradiance_w_m2");
     return;
   }
-  require(l.kind == CloudLightKind::Point, "light kind must be sun or point");
+  require(l.kind == LightKind::Point, "light kind must be sun or point");
   require(finite3(l.position_m), "light position_m must be finite");
   require_colour(l.intensity_w_sr, "intensity_w_sr");
   require(std::isfinite(l.min_distance_m) && l.min_distance_m > 0.0, "light min_distance_m must be finite and > 0");
+  require(std::isfinite(l.bulb_radius_m) && l.bulb_radius_m >= 0.0, "light bulb_radius_m must be finite and >= 0");
   require(finite3(l.spot_axis), "light spot_axis must be finite");
   if (glm::length(l.spot_axis) > 0.0) {
     require(std::isfinite(l.spot_inner_rad) && std::isfinite(l.spot_outer_rad) && l.spot_inner_rad > 0.0 &&
@@ -60,15 +75,15 @@ void validate(const CloudLight& l) {
   }
 }
 
-double spot_weight(const CloudLight& l, const glm::dvec3& dir) {
-  if (l.kind != CloudLightKind::Point || !(glm::length(l.spot_axis) > 0.0)) return 1.0;
+double spot_weight(const Light& l, const glm::dvec3& dir) {
+  if (l.kind != LightKind::Point || !(glm::length(l.spot_axis) > 0.0)) return 1.0;
   const double c = glm::dot(dir, glm::normalize(l.spot_axis));
   return smoothstep(std::cos(l.spot_outer_rad), std::cos(l.spot_inner_rad), c);
 }
 
-LightAtPoint light_at(const CloudLight& l, const glm::dvec3& x) {
+LightAtPoint light_at(const Light& l, const glm::dvec3& x) {
   LightAtPoint a;
-  if (l.kind == CloudLightKind::Sun) {
+  if (l.kind == LightKind::Sun) {
     a.to_light = glm::normalize(l.direction_to_sun);
     a.distance_m = std::numeric_limits<double>::infinity();
     a.irradiance_w_m2 = l.irradiance_w_m2;
@@ -83,12 +98,12 @@ LightAtPoint light_at(const CloudLight& l, const glm::dvec3& x) {
   return a;
 }
 
-double light_strength_at(const CloudLight& l, const glm::dvec3& x) {
+double light_strength_at(const Light& l, const glm::dvec3& x) {
   const glm::dvec3 e = light_at(l, x).irradiance_w_m2;
   return std::max({e.x, e.y, e.z});
 }
 
-std::vector<int> strongest_lights(const std::vector<CloudLight>& lights, const glm::dvec3& x, int max_lights) {
+std::vector<int> strongest_lights(const std::vector<Light>& lights, const glm::dvec3& x, int max_lights) {
   std::vector<int> order(lights.size());
   std::iota(order.begin(), order.end(), 0);
   std::vector<double> strength(lights.size());

@@ -1,0 +1,31 @@
+// How the frame pipeline renders: the method (the half-angle slicer, or a CPU reference), each
+// method's settings, the scene's light-shaft method and its shadow maps, the clouds' texture format.
+#pragma once
+#include <epoxy/gl.h>
+
+#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/cloud_method.hpp"
+#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/reference/cloud_path_tracer.hpp"
+#include "nimbus/render/reference/cloud_reference.hpp"
+#include "nimbus/render/shafts/shaft_renderer.hpp"
+
+namespace nimbus::render {
+
+struct FrameSettings {
+  CloudMethod method = CloudMethod::Slices;
+  CloudSliceSettings slices;         // Slices
+  CloudReferenceSettings reference;  // Reference (its progress callback too)
+  PathTracerSettings path_tracer;    // PathTrace (its progress callback too)
+  // The scene under the clouds: a GPU method (not Reference), and its shadow maps.
+  ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
+  ShaftSettings shaft_settings;
+  int cloud_shadow_res = 512;        // texels per side of the clouds' shadow on the scene, [16, 8192]
+  GLenum volume_format = GL_R16F;    // cloud textures: GL_R16F or GL_R32F
+};
+
+// Throws std::invalid_argument naming the field (slices, reference, shafts, cloud_shadow_res,
+// volume_format).
+void validate(const FrameSettings& settings);
+
+}  // namespace nimbus::render

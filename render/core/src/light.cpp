@@ -30,7 +30,7 @@ double smoothstep(double e0, double e1, double x) {
 }  // namespace
 
 Light point_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr, const glm::dvec3& spot_axis,
-                       double spot_inner_rad, double spot_outer_rad) {
+                  double spot_inner_rad, double spot_outer_rad) {
   Light l;
   l.kind = LightKind::Point;
   l.position_m = position_m;

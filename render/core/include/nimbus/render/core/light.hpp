@@ -1,8 +1,8 @@
 // nimbus's one light model: the sun (parallel light of a given irradiance) or a lamp (a point
 // light of radiant intensity I, falling off as I / r^2, optionally narrowed to a spot's cone).
 // A scene owns its lights (scene.hpp: one sun at most, and lamps); the shafts, the surfaces, the
-// clouds, the light volume and the path tracer all read them as this type, and evaluate one
-// through light_at() (shaders/lib/cloud_lamp.glsl and lights.glsl are the same formulas in float).
+// clouds, the light volume and the path tracer all read them as this type. The clouds' renderers
+// evaluate one through light_at() (shaders/lib/cloud_lamp.glsl is the same formulas in float).
 #pragma once
 #include <string>
 #include <vector>
@@ -45,8 +45,8 @@ Light bulb_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr,
 
 // A lamp at `position_m` of intensity `intensity_w_sr`; a spot when `spot_axis` is non-zero.
 Light point_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr,
-                       const glm::dvec3& spot_axis = glm::dvec3(0.0), double spot_inner_rad = 0.0,
-                       double spot_outer_rad = 0.0);
+                  const glm::dvec3& spot_axis = glm::dvec3(0.0), double spot_inner_rad = 0.0,
+                  double spot_outer_rad = 0.0);
 
 // Throws std::invalid_argument naming the field: non-finite values, a zero sun direction,
 // negative irradiance or intensity, min_distance_m <= 0, a negative bulb radius, a spot's cones

@@ -178,6 +178,14 @@ TEST(FrameRenderer, BadSettingsAndMissingCloudsAreRefused) {
   dark.direction_to_sun = glm::dvec3(0.0);
   EXPECT_THROW(FrameRenderer(std::nullopt, dark, small_settings()), std::invalid_argument);
 
+  // A spot lights clouds alone: joining a scene's lamps it is refused, naming the field.
+  try {
+    FrameRenderer f(make_scene("lamps"), point_light({0, 2, 0}, glm::dvec3(10.0), {0, -1, 0}, 0.3, 0.5), small_settings());
+    FAIL() << "a spot joined a scene";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("spot_axis"), std::string::npos) << e.what();
+  }
+
   FrameRenderer frame(std::nullopt, light, small_settings());
   EXPECT_THROW(frame.render(look_at_origin({0, 0, 3}, 8)), std::logic_error);
   EXPECT_THROW(frame.set_clouds({}), std::invalid_argument);

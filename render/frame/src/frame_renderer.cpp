@@ -58,9 +58,8 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<Light> ligh
       if (++suns > 1) throw std::invalid_argument("frame lights: at most one sun");
       set_light(l);
     } else if (scene_) {
-      // A lamp in a scene is one of its lamps: the fog, the surfaces and the clouds see it.
-      if (glm::length(l.spot_axis) > 0.0)
-        throw std::invalid_argument("frame lights: a spot lights clouds alone (no scene); a scene's lamps shine every way");
+      // A lamp in a scene is one of its lamps: the fog, the surfaces and the clouds see it (a spot
+      // is refused by validate(Scene) below, which names it).
       scene_->lamps.push_back(l);
     } else {
       lamps_.push_back(l);

@@ -4,13 +4,14 @@
 // Each slice sees the fog's unshadowed airlight in front of it; summed under the clouds'
 // blending, the fog in front is counted once. For the sun A_fog(0, t) = sigma_s p E
 // (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; point
-// lights take A * A_fog(0, D) at the alpha-weighted mean distance D. With a physical sky the
+// lights (spots among them, lib/lamp_airlight.glsl) take A * A_fog(0, D) at the alpha-weighted
+// mean distance D. With a physical sky the
 // air's aerial perspective (lib/aerial_perspective.glsl) hazes the clouds at D and the surfaces
 // at their distance: x -> x T_air + S_air (weighted by alpha for the clouds). Output alpha 1.
 in vec2 uv;
 #include "lib/camera_ray.glsl"
 #include "lib/light_list.glsl"
-#include "lib/airlight.glsl"
+#include "lib/lamp_airlight.glsl"
 #include "lib/aerial_perspective.glsl"
 layout(binding = UNIT_SCENE_COLOR) uniform sampler2D u_scene_color;  // RGBA32F premultiplied scene radiance
 layout(binding = UNIT_CLOUD_COLOR) uniform sampler2D u_cloud_color;  // premultiplied cloud radiance, alpha
@@ -31,14 +32,9 @@ void main() {
   float D = weighted.a > 1.0e-12 ? max(weighted.r / weighted.a, 0.0) : 0.0;
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
   vec3 air = vec3(0.0);
-  for (int i = 0; i < lights.point_count; ++i) {
-    vec3 to_light = lights.point_position[i].xyz - camera.eye;
-    float Dsv = length(to_light);
-    float cg = clamp(dot(dir, to_light) / max(Dsv, 1.0e-20), -1.0, 1.0);
-    float sg = min(length(cross(dir, to_light)) / max(Dsv, 1.0e-20), 1.0);
+  for (int i = 0; i < lights.point_count; ++i)
     air += (A * lights.point_intensity[i].rgb) *
-           point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, 0.0, D, u_phase_kind, u_phase_g);
-  }
+           lamp_segment_airlight(i, camera.eye, dir, 0.0, D, u_sigma_t, u_sigma_s, u_phase_kind, u_phase_g);
   float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir));
   air += lights.sun_irradiance * (sun * max(weighted.g, 0.0));
   vec3 clouds = cloud.rgb;

@@ -36,6 +36,7 @@ uniform int u_jitter_mode;       // JITTER_* code
 #include "lib/phase.glsl"
 #include "lib/sky.glsl"
 #include "lib/airlight.glsl"
+#include "lib/lamp_airlight.glsl"
 #if METHOD == SHAFT_METHOD_ANALYTIC && AIRLIGHT_TABLE
 #include "lib/airlight_table.glsl"
 layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
@@ -64,8 +65,8 @@ float pixel_jitter(ivec2 px) {
   return 0.5;
 }
 
-// Ray-marched single scattering from point light i over [a, b] (thesis eq. 26): n samples at
-// a + (k + jitter) (b - a) / n, each weighted by the shadow-map visibility.
+// Ray-marched single scattering from lamp i over [a, b] (thesis eq. 26): n samples at
+// a + (k + jitter) (b - a) / n, each weighted by the shadow-map visibility and a spot's cone.
 float march_point(int i, vec3 dir, float a, float b, int n, float jitter) {
   float h = (b - a) / float(n);
   float sum = 0.0;
@@ -76,7 +77,8 @@ float march_point(int i, vec3 dir, float a, float b, int n, float jitter) {
     float d = length(lv);
     float vis = point_visibility(i, p);
     if (vis > 0.0)
-      sum += phase_value(u_phase_kind, u_phase_g, dot(lv / d, -dir)) * exp(-u_sigma_t * (d + x)) / (d * d);
+      sum += phase_value(u_phase_kind, u_phase_g, dot(lv / d, -dir)) * lamp_spot_weight(i, lv / d) *
+             exp(-u_sigma_t * (d + x)) / (d * d);
   }
   return u_sigma_s * sum * h;
 }
@@ -91,13 +93,27 @@ float march_sun(vec3 dir, float a, float b, int n, float jitter) {
   return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir)) * sum * h;
 }
 
+// Unshadowed airlight of lamp i over [x0, x1]: closed form, or a spot's quadrature.
 float closed_point(int i, vec3 dir, float x0, float x1) {
+  return lamp_segment_airlight(i, camera.eye, dir, x0, x1, u_sigma_t, u_sigma_s, u_phase_kind, u_phase_g);
+}
+
+#if METHOD == SHAFT_METHOD_ANALYTIC && AIRLIGHT_TABLE
+// Sun's table form of lamp i's airlight up to the surface at Dvp (INF_M: none), for albedo 1
+// (beta = sigma_s = sigma_t) scaled by the albedo. The table is for lamps that shine every way,
+// and Sun's formula as printed is undefined where A1 = Tsv sin(gamma) = 0 (no fog, or the light
+// on the ray's line): a spot, and those places, take closed_point, so no NaN reaches the image.
+float table_point(int i, vec3 dir, float t_end, float Dvp) {
+  if (lights.point_spot[i].w > 0.5) return closed_point(i, dir, 0.0, t_end);
   vec3 to_light = lights.point_position[i].xyz - camera.eye;
   float Dsv = length(to_light);
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
   float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
-  return point_segment_airlight(u_sigma_t, u_sigma_s, 1.0, Dsv, cg, sg, x0, x1, u_phase_kind, u_phase_g);
+  float a = (u_sigma_t > 0.0 ? u_sigma_s / u_sigma_t : 0.0) *
+            airlight_table(u_F_table, u_F_size, u_sigma_t, 1.0, Dsv, Dvp, cg, sg);
+  return (isnan(a) || isinf(a)) ? closed_point(i, dir, 0.0, t_end) : a;
 }
+#endif
 
 float closed_sun(vec3 dir, float x0, float x1) {
   return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.to_sun, -dir), x0, x1, u_phase_kind, u_phase_g);
@@ -132,16 +148,7 @@ void main() {
     float a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
 #elif METHOD == SHAFT_METHOD_ANALYTIC
 #if AIRLIGHT_TABLE
-    vec3 to_light = lights.point_position[i].xyz - camera.eye;
-    float Dsv = length(to_light);
-    float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
-    float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
-    // Sun's table form is for albedo 1 (beta = sigma_s = sigma_t), scaled by the albedo.
-    float a = (u_sigma_t > 0.0 ? u_sigma_s / u_sigma_t : 0.0) *
-              airlight_table(u_F_table, u_F_size, u_sigma_t, 1.0, Dsv, hit ? t : INF_M, cg, sg);
-    // Sun's formula as printed is undefined where A1 = Tsv sin(gamma) = 0 (no fog, or the
-    // light on the ray's line); there the stable form stands in, so no NaN reaches the image.
-    if (isnan(a) || isinf(a)) a = closed_point(i, dir, 0.0, t_end);
+    float a = table_point(i, dir, t_end, hit ? t : INF_M);
 #else
     float a = closed_point(i, dir, 0.0, t_end);
 #endif

@@ -4,6 +4,9 @@
 // SURFACE_AIRLIGHT (default 1) each point light also adds the airlight the surface reflects
 // (Sun eq. 13's L_p,a, lib/surface_airlight_texture.glsl): from the whole hemisphere, whichever
 // way the surface faces and whether or not the light is shadowed (Sun's model has no occlusion).
+// A spot lights the surface by its cone's weight towards it and reflects no airlight: the fog
+// that would is spread around the lamp, mostly outside the cone, so no weight of the lamp's
+// L_p,a fits; left out it costs under 3 % of a floor's radiance (docs/shafts.md, "Spots").
 #ifndef SURFACE_AIRLIGHT
 #define SURFACE_AIRLIGHT 1
 #endif
@@ -34,14 +37,16 @@ void main() {
     for (int i = 0; i < lights.point_count; ++i) {
       vec3 l = lights.point_position[i].xyz - v_world;
       float d = length(l);
+      vec3 I = lights.point_intensity[i].rgb * lamp_spot_weight(i, -l / d);
 #if SURFACE_AIRLIGHT
-      L += v_albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
+      if (lights.point_spot[i].w < 0.5)
+        L += v_albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
 #endif
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.
       float v = point_visibility(i, v_world + n * (u_normal_offset_texels * d * u_point_texel_angle));
-      L += v_albedo / 3.14159265358979 * lights.point_intensity[i].rgb * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
+      L += v_albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
       float cos_s = max(dot(n, lights.to_sun), 0.0);

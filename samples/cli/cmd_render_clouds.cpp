@@ -115,7 +115,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
                   "the clouds too)");
   cmd->add_option("--lamp-intensity", a.lamp_intensity, "Radiant intensity of every --lamp, W/sr, V or R,G,B")
       ->capture_default_str();
-  cmd->add_option("--spot", a.spot, "Every --lamp is a spot shining along DX,DY,DZ (--scene none only)");
+  cmd->add_option("--spot", a.spot, "Every --lamp is a spot shining along DX,DY,DZ");
   cmd->add_option("--spot-cone", a.spot_cone, "The spot's inner,outer cone half-angles, degrees")->capture_default_str();
   cmd->add_option("--max-lights", a.max_lights, "Lights the slicer draws, one pass each: the strongest at the clouds, 1-8")
       ->capture_default_str();

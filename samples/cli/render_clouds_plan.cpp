@@ -166,8 +166,8 @@ void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
     refuse_if_given_without(a, flag, p.cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
   if (!a.spot.empty()) {
     if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
-    if (p.frame.scene) throw UsageError("--spot: a scene's lamps shine every way; spots light clouds alone (--scene none)");
     const glm::dvec3 axis = parse_vec3("--spot", a.spot);
+    if (!(glm::length(axis) > 0.0)) throw UsageError("--spot: '" + a.spot + "' must be a non-zero direction");
     const std::size_t comma = a.spot_cone.find(',');
     const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
     const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));

@@ -5,6 +5,7 @@
 #define NIMBUS_CLOUD_LAMP_GLSL
 
 #include "lib/cloud_light_block.glsl"  // the lamp: slice_light.lamp_*
+#include "lib/spot_cone.glsl"
 
 // The light's propagation direction at x (unit, from the lamp to x).
 vec3 lamp_propagation(vec3 x) {
@@ -16,10 +17,9 @@ vec3 lamp_propagation(vec3 x) {
 vec3 lamp_irradiance(vec3 x, vec3 l) {
   vec3 d = x - slice_light.lamp_position;
   float r2 = max(dot(d, d), slice_light.lamp_min_distance * slice_light.lamp_min_distance);
-  float c = dot(l, slice_light.lamp_spot.xyz);
-  float span = slice_light.lamp_cos.y - slice_light.lamp_cos.x;
-  float t = span > 0.0 ? clamp((c - slice_light.lamp_cos.x) / span, 0.0, 1.0) : (c >= slice_light.lamp_cos.y ? 1.0 : 0.0);
-  float w = slice_light.lamp_spot.w > 0.5 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  float w = slice_light.lamp_spot.w > 0.5
+                ? spot_cone_weight(dot(l, slice_light.lamp_spot.xyz), slice_light.lamp_cos.x, slice_light.lamp_cos.y)
+                : 1.0;
   return slice_light.lamp_intensity * (w / r2);
 }
 

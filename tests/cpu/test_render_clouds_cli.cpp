@@ -102,7 +102,7 @@ TEST(RenderCloudsCli, PathTracerRendersCloudsAloneWithItsNoise) {
 
 // Lamps on clouds: the steam-lamp scene (no sun; its street lamp lights the steam, with the
 // scene's denser extinction), clouds alone under a --lamp or a --spot, by the slicer and the
-// reference, which agree; the lights are named in the metadata.
+// reference, which agree; a spot joining the scene; the lights are named in the metadata.
 TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
   const fs::path d = temp_dir("lamps");
   const auto r = run_nimbus("render" + kSteam + "--scene steam-lamp -o " + (d / "a.exr").string());
@@ -133,6 +133,14 @@ TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
   for (std::size_t i = 0; i < spot.rgba.size(); i += 4) sum_p += spot.rgba[i];
   EXPECT_LT(sum_p, 0.9 * sum_s);  // a narrow cone lights less of the steam
   EXPECT_NE(spot.metadata.at("light").find("spot axis"), std::string::npos);
+  // A spot joins a scene's lamps: the street lamp and the spot both light the frame.
+  const auto q = run_nimbus("render" + kSteam + "--scene steam-lamp --lamp 0.1,0.6,-0.1 --spot 0,-1,0 --spot-cone 10,20 -o " +
+                            (d / "q.exr").string());
+  ASSERT_EQ(q.code, 0) << q.output;
+  const render::Image both = render::read_exr(d / "q.exr");
+  EXPECT_TRUE(finite_non_negative(both));
+  EXPECT_NE(both.metadata.at("light").find("point 0.6,3.25,-3"), std::string::npos) << both.metadata.at("light");
+  EXPECT_NE(both.metadata.at("light").find("spot axis"), std::string::npos) << both.metadata.at("light");
   fs::remove_all(d);
 }
 
@@ -160,7 +168,7 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
       {kSteam + "--method reference", "--scene none"},
       {kSteam + "--method raymarch:8", "--method"},
       {kSteam + "--spot 0,-1,0", "--spot"},
-      {kSteam + "--lamp 0,1,0 --spot 0,-1,0", "--spot"},
+      {kSteam + "--lamp 0,1,0 --spot 0,0,0", "--spot"},
       {kSteam + "--scene none --lamp 0,1,0 --spot 0,-1,0 --spot-cone 30,20", "--spot-cone"},
       {kSteam + "--scene none --lamp 0,1", "--lamp"},
       {kSteam + "--scene none --lamp 0,1,0 --lamp-intensity -5", "--lamp"},

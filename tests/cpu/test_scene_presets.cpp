@@ -28,7 +28,7 @@ void expect_error_naming(const nr::Scene& s, const std::string& field) {
 TEST(ScenePresets, EveryNamedSceneIsValidWithA720pCamera) {
   const auto names = nr::scene_names();
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()),
-            (std::set<std::string>{"lamps", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky", "steam-lamp"}));
+            (std::set<std::string>{"lamps", "spots", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky", "steam-lamp"}));
   for (const std::string& name : names) {
     const nr::Scene s = nr::make_scene(name);
     EXPECT_EQ(s.name, name);
@@ -138,6 +138,13 @@ TEST(SceneValidation, ErrorsNameTheField) {
   s = good;
   s.lamps[0].bulb_radius_m = -0.01;  // 0 is allowed: no visible bulb
   expect_error_naming(s, "lamps[0].bulb_radius_m");
+  s = good;
+  s.lamps[0].spot_axis = glm::dvec3(0.0, -1.0, 0.0);  // a spot among the lamps is welcome ...
+  s.lamps[0].spot_inner_rad = 0.3;
+  s.lamps[0].spot_outer_rad = 0.5;
+  EXPECT_NO_THROW(nr::validate(s));
+  s.lamps[0].spot_inner_rad = 0.7;  // ... its cone inside out is not
+  expect_error_naming(s, "lamps[0].spot_inner_rad");
   s = good;
   s.lamps[0].position_m = s.spheres[2].centre_m;
   expect_error_naming(s, "lamps[0].position_m");

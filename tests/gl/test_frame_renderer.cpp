@@ -97,6 +97,27 @@ TEST(FrameRenderer, OverASceneItIsTheShadowMapShaftsAndSlicesComposedByHand) {
   EXPECT_GT(stats.clouds.slices_drawn, 0);
 }
 
+// A spot given as a frame light joins the scene's lamps: the frame is, pixel for pixel, that of
+// the scene with the spot among its own lamps, and the spot adds light.
+TEST(FrameRenderer, ASpotJoinsTheScenesLamps) {
+  NIMBUS_REQUIRE_GL();
+  const Scene scene = make_scene("sky");
+  const Light sun = light_of(scene);
+  // A searchlight below the cloud, shining up at it.
+  const Light spot = point_light({0.0, 150.0, -100.0}, glm::dvec3(1e8), {0.0, 150.0, -300.0}, 0.1, 0.2);
+  Scene with_spot = scene;
+  with_spot.lamps.push_back(spot);
+  const Camera cam = sky_camera();
+  FrameRenderer joined(scene, std::vector<Light>{sun, spot}, small_settings());
+  FrameRenderer own(with_spot, std::vector<Light>{sun}, small_settings());
+  FrameRenderer without(scene, std::vector<Light>{sun}, small_settings());
+  for (FrameRenderer* f : {&joined, &own, &without}) f->set_clouds({sky_cloud()});
+  const Image a = joined.render(cam), b = own.render(cam), c = without.render(cam);
+  ASSERT_TRUE(all_finite(a) && all_finite(b));
+  EXPECT_TRUE(same_pixels(a, b)) << "rms difference " << rms_difference(a, b);
+  EXPECT_GT(rms_difference(a, c), 1e-4);
+}
+
 TEST(FrameRenderer, AloneItIsTheSlicerWithoutAnUnderlay) {
   NIMBUS_REQUIRE_GL();
   const CloudVolume cloud = cube_cloud(kLumpyN, 1.0 / kLumpyN, [](int i, int j, int k) { return lumpy_ball(i, j, k); },
@@ -178,12 +199,12 @@ TEST(FrameRenderer, BadSettingsAndMissingCloudsAreRefused) {
   dark.direction_to_sun = glm::dvec3(0.0);
   EXPECT_THROW(FrameRenderer(std::nullopt, dark, small_settings()), std::invalid_argument);
 
-  // A spot lights clouds alone: joining a scene's lamps it is refused, naming the field.
+  // A spot whose cone is inside out is refused as it joins a scene, naming the cone.
   try {
-    FrameRenderer f(make_scene("lamps"), point_light({0, 2, 0}, glm::dvec3(10.0), {0, -1, 0}, 0.3, 0.5), small_settings());
-    FAIL() << "a spot joined a scene";
+    FrameRenderer f(make_scene("lamps"), point_light({0, 2, 0}, glm::dvec3(10.0), {0, -1, 0}, 0.5, 0.3), small_settings());
+    FAIL() << "an inside-out spot joined a scene";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("spot_axis"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("spot"), std::string::npos) << e.what();
   }
 
   FrameRenderer frame(std::nullopt, light, small_settings());

@@ -56,7 +56,7 @@ SliceLightBlock slice_light_block(const FrameContext& frame, const Light& light,
     b.world_to_lamp_clip = to_float(plan.lamp_frame.world_to_clip);
     b.lamp_position = to_float(light.position_m);
     b.lamp_intensity = to_float(light.intensity_w_sr);
-    const bool spot = glm::length(light.spot_axis) > 0.0;
+    const bool spot = is_spot(light);
     b.lamp_spot = glm::vec4(spot ? to_float(glm::normalize(light.spot_axis)) : glm::vec3(0.0f), spot ? 1.0f : 0.0f);
     b.lamp_cos = glm::vec2(static_cast<float>(std::cos(light.spot_outer_rad)), static_cast<float>(std::cos(light.spot_inner_rad)));
     b.lamp_min_distance = static_cast<float>(light.min_distance_m);

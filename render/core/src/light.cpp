@@ -75,8 +75,10 @@ void validate(const Light& l) {
   }
 }
 
+bool is_spot(const Light& l) { return l.kind == LightKind::Point && glm::length(l.spot_axis) > 0.0; }
+
 double spot_weight(const Light& l, const glm::dvec3& dir) {
-  if (l.kind != LightKind::Point || !(glm::length(l.spot_axis) > 0.0)) return 1.0;
+  if (!is_spot(l)) return 1.0;
   const double c = glm::dot(dir, glm::normalize(l.spot_axis));
   return smoothstep(std::cos(l.spot_outer_rad), std::cos(l.spot_inner_rad), c);
 }

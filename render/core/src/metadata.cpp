@@ -23,7 +23,7 @@ std::string describe_light(const Light& light) {
   std::ostringstream s;
   s.precision(9);
   s << "point " << fmt3(light.position_m) << " I_w_sr " << fmt3(light.intensity_w_sr);
-  if (glm::length(light.spot_axis) > 0.0)
+  if (is_spot(light))
     s << " spot axis " << fmt3(light.spot_axis) << " inner_rad " << light.spot_inner_rad << " outer_rad "
       << light.spot_outer_rad;
   return s.str();

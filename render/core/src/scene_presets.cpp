@@ -216,14 +216,29 @@ Scene steam_lamp() {
   return s;
 }
 
+// The street of lamps() lit by spots (light.hpp), as street lights are: each shines down and a
+// little out over the street, full within 35 degrees and gone by 55, so that the fog glows in
+// cones and the ground in pools of light.
+Scene spots() {
+  Scene s = lamps();
+  s.name = "spots";
+  for (Light& l : s.lamps) {
+    l.spot_axis = glm::dvec3(-0.25, -1.0, 0.0);
+    l.spot_inner_rad = 35.0 * M_PI / 180.0;
+    l.spot_outer_rad = 55.0 * M_PI / 180.0;
+  }
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> scene_names() {
-  return {"lamps", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky", "steam-lamp"};
+  return {"lamps", "spots", "colonnade", "colonnade-sun", "spheres", "terrain", "open", "sky", "steam-lamp"};
 }
 
 Scene make_scene(const std::string& name) {
   if (name == "lamps") return lamps();
+  if (name == "spots") return spots();
   if (name == "colonnade") return colonnade();
   if (name == "colonnade-sun") return colonnade_sun();
   if (name == "spheres") return spheres();

@@ -58,8 +58,8 @@ FrameRenderer::FrameRenderer(std::optional<Scene> scene, std::vector<Light> ligh
       if (++suns > 1) throw std::invalid_argument("frame lights: at most one sun");
       set_light(l);
     } else if (scene_) {
-      // A lamp in a scene is one of its lamps: the fog, the surfaces and the clouds see it (a spot
-      // is refused by validate(Scene) below, which names it).
+      // A lamp in a scene is one of its lamps, a spot among them: the fog, the surfaces and the
+      // clouds see it.
       scene_->lamps.push_back(l);
     } else {
       lamps_.push_back(l);

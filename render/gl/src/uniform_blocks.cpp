@@ -26,6 +26,8 @@ std::vector<BlockLayout> uniform_block_layouts() {
        sizeof(LightsBlock),
        {{"LightsBlock.point_position[0]", offsetof(LightsBlock, point_position)},
         {"LightsBlock.point_intensity[0]", offsetof(LightsBlock, point_intensity)},
+        {"LightsBlock.point_spot[0]", offsetof(LightsBlock, point_spot)},
+        {"LightsBlock.point_cone[0]", offsetof(LightsBlock, point_cone)},
         {"LightsBlock.to_sun", offsetof(LightsBlock, to_sun)},
         {"LightsBlock.point_count", offsetof(LightsBlock, point_count)},
         {"LightsBlock.sun_irradiance", offsetof(LightsBlock, sun_irradiance)},
@@ -85,7 +87,13 @@ LightsBlock lights_block(const Scene& scene) {
   b.point_count = static_cast<int>(scene.lamps.size());
   for (std::size_t i = 0; i < scene.lamps.size(); ++i) {
     b.point_position[i] = glm::vec4(to_float(scene.lamps[i].position_m), 1.0f);
-    b.point_intensity[i] = glm::vec4(to_float(scene.lamps[i].intensity_w_sr), 0.0f);
+    const Light& l = scene.lamps[i];
+    b.point_intensity[i] = glm::vec4(to_float(l.intensity_w_sr), 0.0f);
+    if (is_spot(l)) {
+      b.point_spot[i] = glm::vec4(to_float(glm::normalize(l.spot_axis)), 1.0f);
+      b.point_cone[i] = glm::vec4(static_cast<float>(std::cos(l.spot_outer_rad)),
+                                  static_cast<float>(std::cos(l.spot_inner_rad)), 0.0f, 0.0f);
+    }
   }
   if (scene.sun) {
     b.has_sun = 1;

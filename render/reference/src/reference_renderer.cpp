@@ -2,7 +2,8 @@
 //   L = L_surface(P) e^(-sigma_t t_P) + sum over lights of the airlight over [0, t_P]
 // (thesis eq. 23 without emission; t_P = inf for rays that escape), with the surface lit by
 // Lambert's law (thesis eq. 24) and the airlight of a point light
-//   int sigma_s p(theta) I0 e^(-sigma_t d(x)) / d(x)^2 e^(-sigma_t x) V(x) dx
+//   int sigma_s p(theta) I0 w e^(-sigma_t d(x)) / d(x)^2 e^(-sigma_t x) V(x) dx
+// (w a spot's cone weight, 1 for a lamp that shines every way)
 // (thesis eq. 25 / Sun et al. eq. 5 with visibility V), of the sun
 //   int sigma_s p(theta) E e^(-sigma_t x) V(x) dx  (closed form on each lit interval),
 // and, with settings.surface_airlight, the airlight each surface reflects from each point
@@ -24,6 +25,7 @@
 
 #include "nimbus/render/core/intersect.hpp"
 #include "nimbus/render/core/quadrature.hpp"
+#include "nimbus/render/core/spot_airlight.hpp"
 #include "nimbus/render/core/surface_airlight.hpp"
 #include "nimbus/render/reference/reference_visibility.hpp"
 #include "nimbus/render/core/metadata.hpp"
@@ -87,6 +89,7 @@ double point_airlight(const RayContext& ray, std::size_t index) {
       cuts.push_back(xc + w);
     }
   }
+  for (double x : spot_cone_crossings(light, ray.o, ray.d)) cuts.push_back(x);  // a spot's cone edges
   std::sort(cuts.begin(), cuts.end());
   Intervals pieces;
   for (const auto& [a, b] : lit) {
@@ -103,7 +106,8 @@ double point_airlight(const RayContext& ray, std::size_t index) {
   const auto integrand = [&](double x) {
     const double dist = std::hypot(h, x - xc);
     const double cos_theta = (xc - x) / dist;  // light's travel direction vs. toward the eye
-    return sigma_s * phase_value(phase, cos_theta) * std::exp(-sigma_t * (x + dist)) / (dist * dist);
+    const double w = spot_weight(light, (ray.o + x * ray.d - light.position_m) / dist);
+    return sigma_s * phase_value(phase, cos_theta) * w * std::exp(-sigma_t * (x + dist)) / (dist * dist);
   };
   return integrate_adaptive(integrand, pieces, ray.settings.rel_tol).value;
 }
@@ -129,7 +133,8 @@ double sun_airlight(const RayContext& ray, const Light& sun) {
 
 // Lambert surface radiance at P (thesis eq. 24): albedo / pi * sum of the irradiances, plus the
 // airlight reflected from each point light (Sun eq. 13), for every light whichever way the
-// surface faces and unshadowed (Sun's model: no occlusion).
+// surface faces and unshadowed (Sun's model: no occlusion). A spot lights P by its cone's
+// weight towards it and reflects no airlight (left out, as the shaders do: docs/shafts.md).
 glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::dvec3 n,
                             const glm::dvec3& view_dir, const glm::dvec3& albedo) {
   const SceneTracer& tracer = prepared.tracer;
@@ -143,7 +148,8 @@ glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::
     const glm::dvec3 to_light = l.position_m - P;
     const double dist = glm::length(to_light);
     const double cos_i = glm::dot(n, to_light) / dist;
-    if (prepared.surface_airlight && dist > 0.0) {
+    const glm::dvec3 I = l.intensity_w_sr * (dist > 0.0 ? spot_weight(l, -to_light / dist) : 1.0);  // a spot's cone
+    if (prepared.surface_airlight && dist > 0.0 && !is_spot(l)) {
       SurfaceAirlightQuery q;
       q.sigma_t = s.medium.extinction_per_m;
       q.sigma_s = s.medium.scattering_per_m();
@@ -152,7 +158,7 @@ glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::
       airlight += l.intensity_w_sr * surface_airlight_table(q, *prepared.surface_airlight);
     }
     if (cos_i <= 0.0 || tracer.occluded(start, l.position_m)) continue;
-    irradiance += l.intensity_w_sr * (cos_i * std::exp(-s.medium.extinction_per_m * dist) / (dist * dist));
+    irradiance += I * (cos_i * std::exp(-s.medium.extinction_per_m * dist) / (dist * dist));
   }
   if (s.sun) {
     const glm::dvec3 u = glm::normalize(s.sun->direction_to_sun);

@@ -63,6 +63,9 @@ struct LightAtPoint {
 };
 LightAtPoint light_at(const Light& light, const glm::dvec3& x);
 
+// A lamp narrowed to a cone (a non-zero spot_axis).
+bool is_spot(const Light& light);
+
 // A spot's weight for the unit propagation direction `dir` (1 for a lamp that is not a spot):
 // smoothstep(cos outer, cos inner, dot(dir, axis)).
 double spot_weight(const Light& light, const glm::dvec3& dir);

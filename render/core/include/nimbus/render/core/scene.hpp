@@ -82,7 +82,7 @@ struct Scene {
   std::vector<Box> boxes;
   std::vector<Sphere> spheres;
   // The scene's lights (light.hpp), the one set every renderer reads: lamps (LightKind::Point,
-  // with their bulbs; spots light clouds alone for now, see validate) and at most one sun.
+  // with their bulbs, spots among them) and at most one sun.
   std::vector<Light> lamps;
   std::optional<Light> sun;
   std::optional<Sky> sky;  // none: rays that meet nothing see black (through the fog's airlight)
@@ -95,8 +95,7 @@ struct Scene {
 
 // Throws std::invalid_argument naming the bad field (negative radius, inverted box, bad
 // heightfield size, non-finite values, no light at all, a sun that is a lamp or a lamp that is a
-// sun, a spot among the lamps (the shafts' analytic airlight is for lamps that shine every way),
-// bad medium).
+// sun, a spot's cone outside 0 < inner <= outer <= pi, bad medium).
 void validate(const Scene& scene);
 
 // Named scenes for `nimbus render --scene NAME`.

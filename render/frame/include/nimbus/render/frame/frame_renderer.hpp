@@ -54,9 +54,8 @@ class FrameRenderer {
   // Throws std::invalid_argument naming a bad scene, light or setting.
   FrameRenderer(std::optional<Scene> scene, const Light& light, const FrameSettings& settings);
   // Any lights (light.hpp): at most one sun (the scene's sun, as above; else the scene's own
-  // sun, if it has one, lights the clouds) and lamps. With a scene, a lamp joins its lamps
-  // (a spot is refused: the scene's lamps shine every way), and every point light of the scene
-  // lights the clouds too; without one, the lamps light the clouds alone. Throws
+  // sun, if it has one, lights the clouds) and lamps. With a scene, a lamp (or spot) joins its
+  // lamps, and every lamp of the scene lights the clouds too; without one, the lamps light the clouds alone. Throws
   // std::invalid_argument when nothing lights the clouds, for two suns, or for lamps with the path
   // tracer (sun only).
   FrameRenderer(std::optional<Scene> scene, std::vector<Light> lights, const FrameSettings& settings);

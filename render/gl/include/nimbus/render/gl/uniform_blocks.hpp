@@ -43,6 +43,8 @@ static_assert(offsetof(CameraBlock, view_proj) == 0 && offsetof(CameraBlock, eye
 struct LightsBlock {
   glm::vec4 point_position[contract::MAX_POINT_LIGHTS] = {};   // xyz metres
   glm::vec4 point_intensity[contract::MAX_POINT_LIGHTS] = {};  // rgb W/sr
+  glm::vec4 point_spot[contract::MAX_POINT_LIGHTS] = {};       // xyz unit axis (propagation), w = 1 for a spot
+  glm::vec4 point_cone[contract::MAX_POINT_LIGHTS] = {};       // a spot: x = cos(outer), y = cos(inner)
   glm::vec3 to_sun{0.0f, 1.0f, 0.0f};                          // unit, towards the sun
   int point_count = 0;
   glm::vec3 sun_irradiance{0.0f};                              // W/m^2 per channel
@@ -50,11 +52,13 @@ struct LightsBlock {
 };
 static_assert(offsetof(LightsBlock, point_position) == 0 &&
               offsetof(LightsBlock, point_intensity) == 16 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, to_sun) == 32 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, point_count) == 32 * contract::MAX_POINT_LIGHTS + 12 &&
-              offsetof(LightsBlock, sun_irradiance) == 32 * contract::MAX_POINT_LIGHTS + 16 &&
-              offsetof(LightsBlock, has_sun) == 32 * contract::MAX_POINT_LIGHTS + 28 &&
-              sizeof(LightsBlock) == 32 * contract::MAX_POINT_LIGHTS + 32,
+              offsetof(LightsBlock, point_spot) == 32 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, point_cone) == 48 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, to_sun) == 64 * contract::MAX_POINT_LIGHTS &&
+              offsetof(LightsBlock, point_count) == 64 * contract::MAX_POINT_LIGHTS + 12 &&
+              offsetof(LightsBlock, sun_irradiance) == 64 * contract::MAX_POINT_LIGHTS + 16 &&
+              offsetof(LightsBlock, has_sun) == 64 * contract::MAX_POINT_LIGHTS + 28 &&
+              sizeof(LightsBlock) == 64 * contract::MAX_POINT_LIGHTS + 32,
               "LightsBlock must follow std140 as lib/light_list.glsl declares it");
 
 // lib/cloud_block.glsl: CloudBlock, one per cloud.

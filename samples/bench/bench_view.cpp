@@ -103,7 +103,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     r.levels[rep.quality_level]++;
     r.held += rep.info.waited;
     r.stale += rep.info.multiple == "light volume (stale)";
-    r.stand_in += v.state().multiple_method == render::MultipleScatteringMethod::LightVolume && rep.info.multiple == "octaves";
+    r.stand_in += v.state().slices.multiple.method == render::MultipleScatteringMethod::LightVolume && rep.info.multiple == "octaves";
     if (busy || v.keyframes().stats().made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
     if (adaptive && error_every > 0 && f % error_every == 0) {
       // Outside the clock: the viewer does not see the time this takes.
@@ -148,13 +148,13 @@ int run_bench_view(const BenchViewArgs& a) {
   std::printf("# nimbus bench view: the default sky (%zu clouds, %.0f m voxels, keyframes every %.0f s of sky time), %s\n",
               start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, gl->renderer().c_str());
   char ms[128];
-  if (start.multiple_method == render::MultipleScatteringMethod::LightVolume)
-    std::snprintf(ms, sizeof ms, "light volume (%d cells, %lld photons; %d octaves before the first)", start.ms_grid,
-                  static_cast<long long>(start.ms_photons), start.multiple_octaves);
+  if (start.slices.multiple.method == render::MultipleScatteringMethod::LightVolume)
+    std::snprintf(ms, sizeof ms, "light volume (%d cells, %lld photons; %d octaves before the first)", start.slices.multiple.light_volume.resolution,
+                  static_cast<long long>(start.slices.multiple.light_volume.photons), start.slices.multiple.octaves);
   else
-    std::snprintf(ms, sizeof ms, "%d octaves", start.multiple_octaves);
+    std::snprintf(ms, sizeof ms, "%d octaves", start.slices.multiple.octaves);
   std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %s; adaptive budget %.0f ms\n",
-              start.slices, start.light_res, render::to_string(start.shafts).c_str(), start.cloud_shadow_res, ms, a.budget_ms);
+              start.slices.slices, start.slices.light_res, render::to_string(start.shafts).c_str(), start.cloud_shadow_res, ms, a.budget_ms);
   std::printf("# orbit: 1.8 deg of tumble per frame, sky time x10; time-lapse: still camera, sky time x30; real time steps\n");
   std::printf("# frame = the viewer's whole frame on the CPU (render, readback); error = rel. RMSE of the adaptive frame,\n");
   std::printf("#   upscaled as the display does, against the full-quality frame of the same state (one frame in %d)\n\n",
@@ -172,9 +172,9 @@ int run_bench_view(const BenchViewArgs& a) {
     };
     for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
                            Row{Path::Orbit, true, "orbit"}, Row{Path::TimeLapse, true, "time-lapse"}}) {
-      if (row.octaves && start.multiple_method == render::MultipleScatteringMethod::Octaves) continue;
+      if (row.octaves && start.slices.multiple.method == render::MultipleScatteringMethod::Octaves) continue;
       render::ViewState state = start;
-      if (row.octaves) state.multiple_method = render::MultipleScatteringMethod::Octaves;
+      if (row.octaves) state.slices.multiple.method = render::MultipleScatteringMethod::Octaves;
       viewer::Viewer v(state, options);
       v.adaptive().budget_ms = a.budget_ms;
       v.draw(w, h, 0.0);  // the first pair and every program, before timing
@@ -208,7 +208,7 @@ int run_bench_view(const BenchViewArgs& a) {
     double full_ms = 0.0;
     for (int l = 0; l < viewer::kQualityLevelCount; ++l) {
       const render::FrameQuality q{viewer::kQualityLevels[l].render_scale,
-                                   std::max(8, static_cast<int>(std::lround(start.slices * viewer::kQualityLevels[l].slice_share)))};
+                                   std::max(8, static_cast<int>(std::lround(start.slices.slices * viewer::kQualityLevels[l].slice_share)))};
       double best = 1e300;
       render::Image img;
       for (int rep = 0; rep < 3; ++rep) {

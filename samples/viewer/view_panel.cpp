@@ -110,28 +110,28 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     }
   }
   if (ImGui::CollapsingHeader("Cloud optics")) {
-    slider("extinction (/m per density)", s.extinction_per_m, 0.001, 0.5, "%.4f", true);
-    double albedo = s.albedo.x;
-    if (slider("albedo", albedo, 0.5, 1.0, "%.3f")) s.albedo = glm::dvec3(albedo);
-    slider("phase g forward", s.phase.g_forward, 0.0, 0.95);
-    slider("phase g back", s.phase.g_back, -0.95, 0.0);
-    slider("phase forward weight", s.phase.forward_weight, 0.0, 1.0);
-    bool volume = s.multiple_method == render::MultipleScatteringMethod::LightVolume;
+    slider("extinction (/m per density)", s.optics.extinction_per_m, 0.001, 0.5, "%.4f", true);
+    double albedo = s.optics.albedo.x;
+    if (slider("albedo", albedo, 0.5, 1.0, "%.3f")) s.optics.albedo = glm::dvec3(albedo);
+    slider("phase g forward", s.optics.phase.g_forward, 0.0, 0.95);
+    slider("phase g back", s.optics.phase.g_back, -0.95, 0.0);
+    slider("phase forward weight", s.optics.phase.forward_weight, 0.0, 1.0);
+    bool volume = s.slices.multiple.method == render::MultipleScatteringMethod::LightVolume;
     if (ImGui::Checkbox("light volume (photon-traced multiple scattering)", &volume))
-      s.multiple_method = volume ? render::MultipleScatteringMethod::LightVolume : render::MultipleScatteringMethod::Octaves;
+      s.slices.multiple.method = volume ? render::MultipleScatteringMethod::LightVolume : render::MultipleScatteringMethod::Octaves;
     if (volume) {
-      ImGui::SliderInt("light volume cells", &s.ms_grid, 16, 96);
-      int photons_log2 = static_cast<int>(std::lround(std::log2(static_cast<double>(s.ms_photons))));
-      if (ImGui::SliderInt("light volume photons (log2)", &photons_log2, 14, 24)) s.ms_photons = std::int64_t{1} << photons_log2;
+      ImGui::SliderInt("light volume cells", &s.slices.multiple.light_volume.resolution, 16, 96);
+      int photons_log2 = static_cast<int>(std::lround(std::log2(static_cast<double>(s.slices.multiple.light_volume.photons))));
+      if (ImGui::SliderInt("light volume photons (log2)", &photons_log2, 14, 24)) s.slices.multiple.light_volume.photons = std::int64_t{1} << photons_log2;
     }
-    ImGui::SliderInt(volume ? "octaves (until the volume is made)" : "multiple-scattering octaves", &s.multiple_octaves, 0, 3);
+    ImGui::SliderInt(volume ? "octaves (until the volume is made)" : "multiple-scattering octaves", &s.slices.multiple.octaves, 0, 3);
   }
   if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderInt("slices", &s.slices, 8, 512);
+    ImGui::SliderInt("slices", &s.slices.slices, 8, 512);
     static const int light_sizes[] = {64, 128, 256, 512, 1024};
-    if (ImGui::BeginCombo("light buffer", std::to_string(s.light_res).c_str())) {
+    if (ImGui::BeginCombo("light buffer", std::to_string(s.slices.light_res).c_str())) {
       for (int n : light_sizes)
-        if (ImGui::Selectable(std::to_string(n).c_str(), n == s.light_res)) s.light_res = n;
+        if (ImGui::Selectable(std::to_string(n).c_str(), n == s.slices.light_res)) s.slices.light_res = n;
       ImGui::EndCombo();
     }
     static const char* shafts[] = {"analytic", "raymarch:8", "raymarch:24", "raymarch:48", "shadowvolume"};
@@ -158,7 +158,7 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     ImGui::Text("GPU composite  %7.1f ms", st.clouds.composite_ms);
     ImGui::Text("keyframe upload%7.1f ms", r.info.upload_ms);
     ImGui::Text("multiple scattering: %s", r.info.multiple.c_str());
-    if (s.multiple_method == render::MultipleScatteringMethod::LightVolume) ImGui::Text("light volume mix %6.1f ms", r.info.light_volume_ms);
+    if (s.slices.multiple.method == render::MultipleScatteringMethod::LightVolume) ImGui::Text("light volume mix %6.1f ms", r.info.light_volume_ms);
     ImGui::Text("keyframes %lld+1, blend %.2f", static_cast<long long>(r.info.keyframe), r.info.blend);
     ImGui::TextWrapped("%s", st.clouds.timing.c_str());
   }

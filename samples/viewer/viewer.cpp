@@ -25,9 +25,9 @@ Viewer::Viewer(render::ViewState state, ViewerOptions options)
 }
 
 void Viewer::set_pose(const CameraPose& p) {
-  if (p.eye == state_.eye && p.look_at == state_.look_at) return;
-  state_.eye = p.eye;
-  state_.look_at = p.look_at;
+  if (p.eye == state_.camera.eye && p.look_at == state_.camera.look_at) return;
+  state_.camera.eye = p.eye;
+  state_.camera.look_at = p.look_at;
   moved_ = true;
 }
 
@@ -56,7 +56,7 @@ void Viewer::key(Key k) {
       break;
     }
     case Key::H:
-      set_pose({home_.eye, home_.look_at});
+      set_pose({home_.camera.eye, home_.camera.look_at});
       break;
     case Key::Tab:
       fly_ = !fly_;
@@ -89,7 +89,7 @@ void Viewer::drag(int button, double dx, double dy) {
   if (button == 0) {
     set_pose(fly_ ? fly_look(pose(), dx, dy) : tumble(pose(), dx, dy));
   } else if (button == 1) {
-    set_pose(pan(pose(), dx, dy, state_.fov_deg, std::max(last_width_, 1)));
+    set_pose(pan(pose(), dx, dy, state_.camera.fov_deg, std::max(last_width_, 1)));
   }
 }
 
@@ -124,7 +124,7 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   FrameReport r;
   r.quality_level = adaptive_.level();
   r.moving = moved_;
-  frame_ = renderer_->render(state_, width, height, adaptive_.quality(state_.slices), options_.wait_for_keyframes,
+  frame_ = renderer_->render(state_, width, height, adaptive_.quality(state_.slices.slices), options_.wait_for_keyframes,
                              &r.stats, &r.info);
   // The evolution waits while its keyframes are made: carry on from what was drawn.
   if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
@@ -136,8 +136,8 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
     // Clouds nobody placed a camera for (files, presets): look at them from here on.
     framed_ = true;
     key(Key::G);
-    home_.eye = state_.eye;
-    home_.look_at = state_.look_at;
+    home_.camera.eye = state_.camera.eye;
+    home_.camera.look_at = state_.camera.look_at;
   }
   return frame_;
 }

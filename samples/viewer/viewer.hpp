@@ -96,7 +96,7 @@ class Viewer {
   void save_sky(const std::string& path);
 
  private:
-  CameraPose pose() const { return {state_.eye, state_.look_at}; }
+  CameraPose pose() const { return {state_.camera.eye, state_.camera.look_at}; }
   void set_pose(const CameraPose& p);
   std::string write_shot(render::Image shot);
 

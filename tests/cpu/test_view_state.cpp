@@ -25,35 +25,35 @@ std::string error_of(const json& doc) {
 TEST(ViewState, DefaultIsValidAndRoundTrips) {
   ViewState s = default_view_state();
   EXPECT_NO_THROW(validate(s));
-  s.eye = glm::dvec3(1, 2, 3);
+  s.camera.eye = glm::dvec3(1, 2, 3);
   s.sky_time_s = 12.5;
   s.evolution_time_s = 11.0;
   s.paused = true;
-  s.phase = DualLobePhase{0.6, -0.3, 0.7};
-  s.multiple_octaves = 3;
-  s.multiple_method = MultipleScatteringMethod::Octaves;
-  s.ms_grid = 64;
-  s.ms_photons = 123456;
+  s.optics.phase = DualLobePhase{0.6, -0.3, 0.7};
+  s.slices.multiple.octaves = 3;
+  s.slices.multiple.method = MultipleScatteringMethod::Octaves;
+  s.slices.multiple.light_volume.resolution = 64;
+  s.slices.multiple.light_volume.photons = 123456;
   s.shafts = parse_shaft_method("analytic");
   s.render_scale = 0.5;
   s.exposure_stops = -1.5;
-  s.jitter = false;
+  s.slices.jitter = false;
   const json j = view_state_to_json(s);
   const ViewState t = view_state_from_json(j, "state");
   EXPECT_EQ(view_state_to_json(t), j);
-  EXPECT_EQ(t.eye, s.eye);
+  EXPECT_EQ(t.camera.eye, s.camera.eye);
   EXPECT_EQ(t.paused, true);
-  EXPECT_EQ(t.jitter, false);
-  EXPECT_EQ(t.phase.g_back, -0.3);
-  EXPECT_EQ(t.multiple_method, MultipleScatteringMethod::Octaves);
-  EXPECT_EQ(t.ms_grid, 64);
-  EXPECT_EQ(t.ms_photons, 123456);
+  EXPECT_EQ(t.slices.jitter, false);
+  EXPECT_EQ(t.optics.phase.g_back, -0.3);
+  EXPECT_EQ(t.slices.multiple.method, MultipleScatteringMethod::Octaves);
+  EXPECT_EQ(t.slices.multiple.light_volume.resolution, 64);
+  EXPECT_EQ(t.slices.multiple.light_volume.photons, 123456);
   // A state saved before the light volume reached the viewer gets its defaults.
   json old = j;
   for (const char* k : {"ms_method", "ms_grid", "ms_photons"}) old["optics"].erase(k);
   const ViewState u = view_state_from_json(old, "old state");
-  EXPECT_EQ(u.multiple_method, MultipleScatteringMethod::LightVolume);
-  EXPECT_EQ(u.ms_photons, ViewState{}.ms_photons);
+  EXPECT_EQ(u.slices.multiple.method, MultipleScatteringMethod::LightVolume);
+  EXPECT_EQ(u.slices.multiple.light_volume.photons, ViewState{}.slices.multiple.light_volume.photons);
 }
 
 TEST(ViewState, FileRoundTripAndErrors) {

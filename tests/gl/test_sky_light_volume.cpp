@@ -33,13 +33,13 @@ ViewState small_sky() {
                         {"keyframe_interval", 10}};
   ViewState s = view_state_from_json({{"sky", sky}}, "test state");
   s.scene = "none";
-  s.eye = glm::dvec3(-300, 300, 4200);
-  s.look_at = glm::dvec3(300, 1400, 0);
-  s.slices = 64;
-  s.light_res = 128;
-  s.jitter = false;
-  s.ms_grid = 32;
-  s.ms_photons = 1 << 18;
+  s.camera.eye = glm::dvec3(-300, 300, 4200);
+  s.camera.look_at = glm::dvec3(300, 1400, 0);
+  s.slices.slices = 64;
+  s.slices.light_res = 128;
+  s.slices.jitter = false;
+  s.slices.multiple.light_volume.resolution = 32;
+  s.slices.multiple.light_volume.photons = 1 << 18;
   return s;
 }
 
@@ -53,13 +53,13 @@ Image own_volume_frame(SkyRenderer& sky, const ViewState& s, int w, int h, std::
   const double blend = kf.blend_at(s.evolution_time_s);
   FrameSettings fs;
   fs.method = CloudMethod::Slices;
-  fs.slices.slices = s.slices;
-  fs.slices.light_res = s.light_res;
+  fs.slices.slices = s.slices.slices;
+  fs.slices.light_res = s.slices.light_res;
   fs.slices.jitter = false;
   fs.slices.ambient = true;
   fs.slices.multiple.method = MultipleScatteringMethod::LightVolume;
-  fs.slices.multiple.light_volume.resolution = s.ms_grid;
-  fs.slices.multiple.light_volume.photons = s.ms_photons;
+  fs.slices.multiple.light_volume.resolution = s.slices.multiple.light_volume.resolution;
+  fs.slices.multiple.light_volume.photons = s.slices.multiple.light_volume.photons;
   fs.cloud_shadow_res = s.cloud_shadow_res;
   const Daylight d = daylight(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg);
   FrameRenderer f(std::nullopt, Light{d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2}, fs);

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 
 namespace nimbus::render::cloud_detail {

@@ -18,15 +18,10 @@ namespace {
 FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   FrameSettings fs;
   fs.method = CloudMethod::Slices;
-  fs.slices.slices = q.slices > 0 ? q.slices : s.slices;
-  fs.slices.light_res = s.light_res;
-  fs.slices.jitter = s.jitter;  // a fixed blue-noise pattern (frame 0): no banding, and no flicker while paused
-  fs.slices.frame = 0;
+  fs.slices = s.slices;
+  if (q.slices > 0) fs.slices.slices = q.slices;
+  fs.slices.frame = 0;  // a fixed blue-noise pattern: no banding, and no flicker while paused
   fs.slices.ambient = true;
-  fs.slices.multiple.octaves = s.multiple_octaves;
-  fs.slices.multiple.method = s.multiple_method;
-  fs.slices.multiple.light_volume.resolution = s.ms_grid;
-  fs.slices.multiple.light_volume.photons = s.ms_photons;
   fs.shafts = s.shafts;
   fs.cloud_shadow_res = s.cloud_shadow_res;
   return fs;
@@ -40,10 +35,7 @@ SunSetup state_sun(const ViewState& s, const Scene* scene) {
 
 // The state's optics, with the daylight's ambient whatever the scene.
 CloudOptics state_optics(const ViewState& s) {
-  CloudOptics o;
-  o.extinction_per_m = s.extinction_per_m;
-  o.albedo = s.albedo;
-  o.phase = s.phase;
+  CloudOptics o = s.optics;
   o.ambient_radiance = *state_sun(s, nullptr).ambient_w_sr_m2;  // the daylight's, whatever the scene
   return o;
 }
@@ -59,10 +51,7 @@ nlohmann::json clouds_of(const volume::Sky& sky) {
 }  // namespace
 
 Camera state_camera(const ViewState& state, int width, int height, const std::vector<CloudVolume>& clouds) {
-  Camera c;
-  c.eye = state.eye;
-  c.look_at = state.look_at;
-  c.fov_deg = state.fov_deg;
+  Camera c = state.camera;
   c.width = width;
   c.height = height;
   c.near_m = 1.0;
@@ -137,11 +126,10 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
   if (const std::string e = volumes_->error(); !e.empty()) throw std::runtime_error(e);
   KeyframeLight light;
   light.direction_to_sun = glm::normalize(state_sun(s, nullptr).sun.direction_to_sun);
-  light.extinction_per_m = s.extinction_per_m;
-  light.albedo = s.albedo;
-  light.phase = s.phase;
-  light.settings.resolution = s.ms_grid;
-  light.settings.photons = s.ms_photons;
+  light.extinction_per_m = s.optics.extinction_per_m;
+  light.albedo = s.optics.albedo;
+  light.phase = s.optics.phase;
+  light.settings = s.slices.multiple.light_volume;
   volumes_->request(light, k, s.speed >= 0.0 ? 1 : -1);
   std::shared_ptr<const LightVolume> a, b;
   if (wait) {
@@ -212,7 +200,7 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
   drawn_blend_ = blend;
   const std::vector<CloudMotion> motion = drawn_->motion(state.sky_time_s, state.sky.wind_m_s, blend);
   frame_->set_motion(motion);
-  if (state.multiple_method == MultipleScatteringMethod::LightVolume) {
+  if (state.slices.multiple.method == MultipleScatteringMethod::LightVolume) {
     const auto start = std::chrono::steady_clock::now();
     if (update_light_volume(state, k, blend, wait)) {
       frame_->move_light_volume(shown_min_ + (motion.empty() ? glm::dvec3(0.0) : motion.front().offset_m));

@@ -58,14 +58,11 @@ void validate(const ViewState& s) {
       bad("view state scene: unknown name '" + echo(s.scene) + "' (known: " + known + "none)");
     }
   }
-  Camera c;
-  c.eye = s.eye;
-  c.look_at = s.look_at;
-  c.fov_deg = s.fov_deg;
   // Below 1 degree the view holds a speck of sky (the CLI's --fov has the same range).
-  if (!(s.fov_deg >= 1.0 && s.fov_deg <= 179.0)) bad("view state camera.fov: must be in [1, 179] degrees, got " + number_text(s.fov_deg));
+  if (!(s.camera.fov_deg >= 1.0 && s.camera.fov_deg <= 179.0))
+    bad("view state camera.fov: must be in [1, 179] degrees, got " + number_text(s.camera.fov_deg));
   try {
-    validate(c);
+    validate(s.camera);
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state camera: ") + e.what());
   }
@@ -73,20 +70,23 @@ void validate(const ViewState& s) {
   if (!std::isfinite(s.evolution_time_s) || std::abs(s.evolution_time_s) > 1e9)
     bad("view state time.evolution: must be finite, |t| <= 1e9 s");
   if (!(s.speed >= 0.0 && s.speed <= 1000.0)) bad("view state time.speed: must be in [0, 1000]");
-  CloudOptics o;
-  o.extinction_per_m = s.extinction_per_m;
-  o.albedo = s.albedo;
-  o.phase = s.phase;
   try {
-    validate(o);
+    validate(s.optics);
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state optics: ") + e.what());
   }
-  if (s.multiple_octaves < 0 || s.multiple_octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
-  if (s.ms_grid < 4 || s.ms_grid > 192) bad("view state optics.ms_grid: must be in [4, 192] cells");
-  if (s.ms_photons < 1024 || s.ms_photons > (std::int64_t{1} << 26)) bad("view state optics.ms_photons: must be in [1024, 67108864]");
-  if (s.slices < 8 || s.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
-  if (s.light_res < 32 || s.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
+  const MultipleScattering& ms = s.slices.multiple;
+  if (ms.octaves < 0 || ms.octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
+  if (ms.light_volume.resolution < 4 || ms.light_volume.resolution > 192) bad("view state optics.ms_grid: must be in [4, 192] cells");
+  if (ms.light_volume.photons < 1024 || ms.light_volume.photons > (std::int64_t{1} << 26))
+    bad("view state optics.ms_photons: must be in [1024, 67108864]");
+  if (s.slices.slices < 8 || s.slices.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
+  if (s.slices.light_res < 32 || s.slices.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
+  try {
+    validate(s.slices);  // what the JSON does not hold: the defaults, or a program's own
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("view state renderer: ") + e.what());
+  }
   if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192) bad("view state renderer.cloud_shadow_res: must be in [16, 8192]");
   // The renderer draws no less than 1 % of the window's size (sky_renderer.cpp); below it the
   // scale would be silently raised.
@@ -108,9 +108,9 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
       s.scene = v.get<std::string>();
     } else if (k == "camera") {
       members(v, key, [&](const std::string& ck, const json& cv, const std::string& ckey) {
-        if (ck == "eye") s.eye = vec3(cv, ckey);
-        else if (ck == "look_at") s.look_at = vec3(cv, ckey);
-        else if (ck == "fov") s.fov_deg = number(cv, ckey);
+        if (ck == "eye") s.camera.eye = vec3(cv, ckey);
+        else if (ck == "look_at") s.camera.look_at = vec3(cv, ckey);
+        else if (ck == "fov") s.camera.fov_deg = number(cv, ckey);
         else bad(ckey + ": unknown key (known: eye, look_at, fov)");
       });
     } else if (k == "time") {
@@ -123,26 +123,26 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
       });
     } else if (k == "optics") {
       members(v, key, [&](const std::string& ok, const json& ov, const std::string& okey) {
-        if (ok == "extinction") s.extinction_per_m = number(ov, okey);
-        else if (ok == "albedo") s.albedo = vec3(ov, okey);
-        else if (ok == "phase") s.phase = parsed(ov, okey, "isotropic, hg:G or dual:GF,GB,W", parse_cloud_phase);
-        else if (ok == "multiple") s.multiple_octaves = integer(ov, okey);
+        if (ok == "extinction") s.optics.extinction_per_m = number(ov, okey);
+        else if (ok == "albedo") s.optics.albedo = vec3(ov, okey);
+        else if (ok == "phase") s.optics.phase = parsed(ov, okey, "isotropic, hg:G or dual:GF,GB,W", parse_cloud_phase);
+        else if (ok == "multiple") s.slices.multiple.octaves = integer(ov, okey);
         else if (ok == "ms_method")
-          s.multiple_method = parsed(ov, okey, "light-volume or octaves", parse_multiple_scattering_method);
-        else if (ok == "ms_grid") s.ms_grid = integer(ov, okey);
+          s.slices.multiple.method = parsed(ov, okey, "light-volume or octaves", parse_multiple_scattering_method);
+        else if (ok == "ms_grid") s.slices.multiple.light_volume.resolution = integer(ov, okey);
         else if (ok == "ms_photons") {
           if (!ov.is_number_integer()) bad(okey + " must be an integer");
-          s.ms_photons = ov.get<std::int64_t>();
+          s.slices.multiple.light_volume.photons = ov.get<std::int64_t>();
         } else bad(okey + ": unknown key (known: extinction, albedo, phase, multiple, ms_method, ms_grid, ms_photons)");
       });
     } else if (k == "renderer") {
       members(v, key, [&](const std::string& rk, const json& rv, const std::string& rkey) {
-        if (rk == "slices") s.slices = integer(rv, rkey);
-        else if (rk == "light_res") s.light_res = integer(rv, rkey);
+        if (rk == "slices") s.slices.slices = integer(rv, rkey);
+        else if (rk == "light_res") s.slices.light_res = integer(rv, rkey);
         else if (rk == "cloud_shadow_res") s.cloud_shadow_res = integer(rv, rkey);
         else if (rk == "render_scale") s.render_scale = number(rv, rkey);
         else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
-        else if (rk == "jitter") s.jitter = volume::json_bool(rv, rkey);
+        else if (rk == "jitter") s.slices.jitter = volume::json_bool(rv, rkey);
         else if (rk == "shafts") s.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
         else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
       });
@@ -163,23 +163,23 @@ json view_state_to_json(const ViewState& s) {
   return {{"nimbus", "view state"},
           {"sky", volume::sky_to_json(s.sky)},
           {"scene", s.scene},
-          {"camera", {{"eye", to_json(s.eye)}, {"look_at", to_json(s.look_at)}, {"fov", s.fov_deg}}},
+          {"camera", {{"eye", to_json(s.camera.eye)}, {"look_at", to_json(s.camera.look_at)}, {"fov", s.camera.fov_deg}}},
           {"time", {{"sky", s.sky_time_s}, {"evolution", s.evolution_time_s}, {"speed", s.speed}, {"paused", s.paused}}},
           {"optics",
-           {{"extinction", s.extinction_per_m},
-            {"albedo", to_json(s.albedo)},
-            {"phase", to_string(s.phase)},
-            {"multiple", s.multiple_octaves},
-            {"ms_method", to_string(s.multiple_method)},
-            {"ms_grid", s.ms_grid},
-            {"ms_photons", s.ms_photons}}},
+           {{"extinction", s.optics.extinction_per_m},
+            {"albedo", to_json(s.optics.albedo)},
+            {"phase", to_string(s.optics.phase)},
+            {"multiple", s.slices.multiple.octaves},
+            {"ms_method", to_string(s.slices.multiple.method)},
+            {"ms_grid", s.slices.multiple.light_volume.resolution},
+            {"ms_photons", s.slices.multiple.light_volume.photons}}},
           {"renderer",
-           {{"slices", s.slices},
-            {"light_res", s.light_res},
+           {{"slices", s.slices.slices},
+            {"light_res", s.slices.light_res},
             {"cloud_shadow_res", s.cloud_shadow_res},
             {"render_scale", s.render_scale},
             {"exposure", s.exposure_stops},
-            {"jitter", s.jitter},
+            {"jitter", s.slices.jitter},
             {"shafts", to_string(s.shafts)}}}};
 }
 

@@ -12,7 +12,7 @@
 #include <epoxy/gl.h>
 
 #include "nimbus/render/clouds/cloud_renderer.hpp"
-#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"

@@ -3,7 +3,7 @@
 #pragma once
 #include <epoxy/gl.h>
 
-#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"

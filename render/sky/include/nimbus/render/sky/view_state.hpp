@@ -1,8 +1,11 @@
 // Everything that decides one frame of the animated sky: the sky (clouds, wind, sun), the
-// camera, the two clocks, the cloud optics and the renderer's settings. The viewer saves and
-// loads it (Ctrl+S, Ctrl+O), writes it into every screenshot's metadata, and
-// `nimbus render --view-state FILE` renders it offline through the same pipeline. JSON; every
-// key is documented in docs/viewer.md.
+// scene, the camera, the two clocks, the cloud optics and the renderer's settings. The viewer
+// holds it as its state, saves and loads it (Ctrl+S, Ctrl+O), writes it into every screenshot's
+// metadata, and `nimbus render --view-state FILE` renders it offline through the same pipeline.
+// The camera, the optics and the slicer's settings are the frame description's own types
+// (FrameDescription, render/frame): frame_description(state, quality) copies them in and adds what
+// the sky decides (the scene's sun and sky, the ambient light). JSON, its names parsed once as
+// it is read; every key is documented in docs/viewer.md.
 #pragma once
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -10,7 +13,9 @@
 
 #include <glm/glm.hpp>
 
+#include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/volume/sky.hpp"
 
@@ -21,33 +26,42 @@ struct ViewState {
   // What lies under and behind the clouds: "sky" (ground, haze and sky lit by the sky's sun),
   // another scene preset (its own lights; its sun, if it has one, follows the sky's), or "none".
   std::string scene = "sky";
-  // Camera (y-up metres, as render::Camera).
-  glm::dvec3 eye{-600.0, 250.0, 5200.0};
-  glm::dvec3 look_at{400.0, 1500.0, -1500.0};
-  double fov_deg = 60.0;
+  // The view (y-up metres): eye, look_at and fov_deg are the state's; the window sets the size
+  // and the clouds the near and far planes (state_camera, sky_renderer.hpp).
+  Camera camera = [] {
+    Camera c;
+    c.eye = {-600.0, 250.0, 5200.0};
+    c.look_at = {400.0, 1500.0, -1500.0};
+    c.fov_deg = 60.0;
+    return c;
+  }();
   // Clocks: sky time drives the wind's drift; evolution time the keyframes. They run together,
   // except that evolution waits while its keyframes are still being made.
   double sky_time_s = 0.0;
   double evolution_time_s = 0.0;
   double speed = 10.0;      // sky seconds per real second, [0, 1000]
   bool paused = false;
-  // Cloud optics (the ambient comes from the sky: daylight.hpp).
-  double extinction_per_m = 0.04;
-  glm::dvec3 albedo{0.99};
-  DualLobePhase phase{0.7, -0.25, 0.8};
-  // Multiple scattering: LightVolume (the photon-traced light volume, built per keyframe in the
-  // background: keyframe_light_volumes.hpp) or Octaves (multiple_octaves of them, 0: single
-  // scattering; also drawn while the first light volume is being built). Parsed once, where the
-  // JSON is read ("light-volume", "octaves").
-  MultipleScatteringMethod multiple_method = MultipleScatteringMethod::LightVolume;
-  int multiple_octaves = 2;   // [0, 3]
-  int ms_grid = 48;                  // light volume cells along the clouds' longest axis, [4, 192]
-  // Light volume photons, [1024, 1 << 26]: 2^19, a quarter of `nimbus render`'s, so a keyframe's
-  // volume is made in about half a second on 2 cores (docs/viewer.md; 0.4-0.5 points more error).
-  std::int64_t ms_photons = 1 << 19;
-  // Renderer at full quality (the viewer's adaptive quality lowers slices and scale in motion).
-  int slices = 128;           // [8, 1024]
-  int light_res = 256;        // [32, 4096]
+  // Cloud optics: extinction, albedo, phase. Their ambient_radiance is not the state's: the
+  // sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither saved nor read.
+  CloudOptics optics{0.04, glm::dvec3(0.99), DualLobePhase{0.7, -0.25, 0.8}, glm::dvec3(0.0)};
+  // The slicer at full quality (the viewer's adaptive quality lowers slices and scale in
+  // motion): slices [8, 1024], light_res [32, 4096], jitter (one fixed blue-noise pattern: no
+  // flicker), and multiple scattering: the photon-traced light volume (built per keyframe in the
+  // background: keyframe_light_volumes.hpp), or octaves (0-3; also drawn while the first light
+  // volume is being built). Light volume photons [1024, 1 << 26]: 2^19, a quarter of `nimbus
+  // render`'s, so that a keyframe's volume is made in about half a second on 2 cores
+  // (docs/viewer.md; 0.4-0.5 points more error); cells along the longest axis [4, 192]. The
+  // JSON holds these fields only; the others keep CloudSliceSettings' defaults.
+  CloudSliceSettings slices = [] {
+    CloudSliceSettings s;
+    s.slices = 128;
+    s.light_res = 256;
+    s.multiple.method = MultipleScatteringMethod::LightVolume;
+    s.multiple.octaves = 2;
+    s.multiple.light_volume.resolution = 48;
+    s.multiple.light_volume.photons = 1 << 19;
+    return s;
+  }();
   ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)
     ShaftMethod m;
     m.kind = ShaftMethod::Kind::RayMarch;
@@ -56,7 +70,6 @@ struct ViewState {
   }();
   int cloud_shadow_res = 256; // [16, 8192]
   double render_scale = 1.0;  // (0, 1]: the frame is rendered at this share of the window's size
-  bool jitter = true;         // blue-noise sample offsets within the slabs (one fixed pattern: no flicker)
   double exposure_stops = 0.0;  // display and PNG screenshots: radiance times 2^stops, [-20, 20]
 };
 

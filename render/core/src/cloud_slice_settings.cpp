@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "nimbus/render/clouds/cloud_slice_settings.hpp"
+#include "nimbus/render/core/cloud_slice_settings.hpp"
 
 namespace nimbus::render {
 namespace {

@@ -3,11 +3,11 @@
 // sum_i w_i A_fog(0, t_i), C the fog-attenuated clouds, A their alpha, w_i the slices' weights.
 // Each slice sees the fog's unshadowed airlight in front of it; summed under the clouds'
 // blending, the fog in front is counted once. For the sun A_fog(0, t) = sigma_s p E
-// (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; point
-// lights (spots among them, lib/lamp_airlight.glsl) take A * A_fog(0, D) at the alpha-weighted
-// mean distance D. With a physical sky the
-// air's aerial perspective (lib/aerial_perspective.glsl) hazes the clouds at D and the surfaces
-// at their distance: x -> x T_air + S_air (weighted by alpha for the clouds). Output alpha 1.
+// (1 - e^{-sigma t}) / sigma, so the sum is exact from the accumulated weighted spans; lamps
+// (spots among them, lib/lamp_airlight.glsl) take A * A_fog(0, D) at the alpha-weighted mean
+// distance D. With a physical sky the air's aerial perspective (lib/aerial_perspective.glsl)
+// hazes the clouds at D and the surfaces at their distance: x -> x T_air + S_air (weighted by
+// alpha for the clouds). Output alpha 1.
 in vec2 uv;
 #include "lib/camera_ray.glsl"
 #include "lib/light_list.glsl"

@@ -104,7 +104,7 @@ float closed_point(int i, vec3 dir, float x0, float x1) {
 // and Sun's formula as printed is undefined where A1 = Tsv sin(gamma) = 0 (no fog, or the light
 // on the ray's line): a spot, and those places, take closed_point, so no NaN reaches the image.
 float table_point(int i, vec3 dir, float t_end, float Dvp) {
-  if (lights.point_spot[i].w > 0.5) return closed_point(i, dir, 0.0, t_end);
+  if (lamp_is_spot(i)) return closed_point(i, dir, 0.0, t_end);
   vec3 to_light = lights.point_position[i].xyz - camera.eye;
   float Dsv = length(to_light);
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);

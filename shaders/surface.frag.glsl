@@ -39,7 +39,7 @@ void main() {
       float d = length(l);
       vec3 I = lights.point_intensity[i].rgb * lamp_spot_weight(i, -l / d);
 #if SURFACE_AIRLIGHT
-      if (lights.point_spot[i].w < 0.5)
+      if (!lamp_is_spot(i))
         L += v_albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
 #endif
       float cos_s = max(dot(n, l / d), 0.0);

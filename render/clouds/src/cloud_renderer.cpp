@@ -275,9 +275,17 @@ CloudFrameStats frame_stats(GpuTimer& timer, int slices_drawn, const SliceAxis& 
 
 }  // namespace
 
+const ShaderProgram& CloudRenderer::Impl::composite_program_for(bool spots) {
+  std::optional<ShaderProgram>& p = composite_programs[spots ? 1 : 0];
+  if (!p)  // a scene without spots compiles their cones out (SPOTS, lib/light_list.glsl)
+    p.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"},
+              std::string("#define SPOTS ") + (spots ? "1" : "0") + "\n");
+  return *p;
+}
+
 Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h) {
   const Scene* scene = underlay.scene;
-  const ShaderProgram& cp = *composite_program;
+  const ShaderProgram& cp = composite_program_for(scene != nullptr && any_spot(scene->lamps));
   const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
   cp.set("u_sigma_t", static_cast<float>(fog.extinction_per_m));
   cp.set("u_sigma_s", static_cast<float>(fog.scattering_per_m()));

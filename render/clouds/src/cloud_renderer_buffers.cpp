@@ -87,8 +87,6 @@ void CloudRenderer::Impl::prepare_frame(int w, int h, const CloudSliceSettings& 
     if (!accumulate_program)
       accumulate_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_accumulate.frag.glsl"});
   }
-  if (underlay && !composite_program)
-    composite_program.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"});
 }
 
 }  // namespace nimbus::render

@@ -49,7 +49,8 @@ struct CloudRenderer::Impl {
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
   std::optional<ShaderProgram> accumulate_program;  // the second light's pass on
   std::map<std::tuple<bool, int, bool, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, light volume, lamp)
-  std::optional<ShaderProgram> composite_program;
+  std::optional<ShaderProgram> composite_programs[2];  // [spots]: without and with spots in the scene
+  const ShaderProgram& composite_program_for(bool spots);
   std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
   UniformBuffer<CameraBlock> camera_ubo;
   UniformBuffer<LightsBlock> lights_ubo;

@@ -77,6 +77,8 @@ void validate(const Light& l) {
 
 bool is_spot(const Light& l) { return l.kind == LightKind::Point && glm::length(l.spot_axis) > 0.0; }
 
+bool any_spot(const std::vector<Light>& lights) { return std::any_of(lights.begin(), lights.end(), is_spot); }
+
 double spot_weight(const Light& l, const glm::dvec3& dir) {
   if (!is_spot(l)) return 1.0;
   const double c = glm::dot(dir, glm::normalize(l.spot_axis));

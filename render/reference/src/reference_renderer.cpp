@@ -103,10 +103,11 @@ double point_airlight(const RayContext& ray, std::size_t index) {
     pieces.emplace_back(start, b);
   }
   const Phase phase = m.phase;
+  const bool spot = is_spot(light);
   const auto integrand = [&](double x) {
     const double dist = std::hypot(h, x - xc);
     const double cos_theta = (xc - x) / dist;  // light's travel direction vs. toward the eye
-    const double w = spot_weight(light, (ray.o + x * ray.d - light.position_m) / dist);
+    const double w = spot ? spot_weight(light, (ray.o + x * ray.d - light.position_m) / dist) : 1.0;
     return sigma_s * phase_value(phase, cos_theta) * w * std::exp(-sigma_t * (x + dist)) / (dist * dist);
   };
   return integrate_adaptive(integrand, pieces, ray.settings.rel_tol).value;

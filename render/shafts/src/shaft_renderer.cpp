@@ -67,7 +67,8 @@ const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
   const bool table = m.kind == ShaftMethod::Kind::Analytic && m.airlight.kind == AirlightMethod::Table;
   const std::string defines = "#define METHOD " + std::to_string(method) + "\n#define STEPS " +
                               std::to_string(std::max(m.steps, 1)) + "\n#define AIRLIGHT_TABLE " +
-                              (table ? "1" : "0") + "\n#define CLOUD_SHADOW " + (cloud_shadow ? "1" : "0") + "\n";
+                              (table ? "1" : "0") + "\n#define CLOUD_SHADOW " + (cloud_shadow ? "1" : "0") +
+                              "\n#define SPOTS " + (any_spot(scene.lamps) ? "1" : "0") + "\n";
   auto it = shaft_programs.find(defines);
   if (it == shaft_programs.end())
     it = shaft_programs.emplace(defines, ShaderProgram({"fullscreen.vert.glsl", "shafts.frag.glsl"}, defines)).first;
@@ -134,7 +135,8 @@ const ShaderProgram& ShaftRenderer::Impl::surface_program() {
              .emplace(std::make_pair(clouds, airlight),
                       ShaderProgram({"surface.vert.glsl", "surface.frag.glsl"},
                                     std::string("#define CLOUD_SHADOW ") + (clouds ? "1" : "0") +
-                                        "\n#define SURFACE_AIRLIGHT " + (airlight ? "1" : "0") + "\n"))
+                                        "\n#define SURFACE_AIRLIGHT " + (airlight ? "1" : "0") +
+                                        "\n#define SPOTS " + (any_spot(scene.lamps) ? "1" : "0") + "\n"))
              .first;
   return it->second;
 }

@@ -63,8 +63,10 @@ struct LightAtPoint {
 };
 LightAtPoint light_at(const Light& light, const glm::dvec3& x);
 
-// A lamp narrowed to a cone (a non-zero spot_axis).
+// A lamp narrowed to a cone (a non-zero spot_axis); any among `lights`. The shaders compile a
+// spot's cone and quadrature only for scenes that have one (SPOTS in lib/light_list.glsl).
 bool is_spot(const Light& light);
+bool any_spot(const std::vector<Light>& lights);
 
 // A spot's weight for the unit propagation direction `dir` (1 for a lamp that is not a spot):
 // smoothstep(cos outer, cos inner, dot(dir, axis)).

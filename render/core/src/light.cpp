@@ -68,14 +68,15 @@ void validate(const Light& l) {
   require(std::isfinite(l.min_distance_m) && l.min_distance_m > 0.0, "light min_distance_m must be finite and > 0");
   require(std::isfinite(l.bulb_radius_m) && l.bulb_radius_m >= 0.0, "light bulb_radius_m must be finite and >= 0");
   require(finite3(l.spot_axis), "light spot_axis must be finite");
-  if (glm::length(l.spot_axis) > 0.0) {
-    require(std::isfinite(l.spot_inner_rad) && std::isfinite(l.spot_outer_rad) && l.spot_inner_rad > 0.0 &&
-                l.spot_inner_rad <= l.spot_outer_rad && l.spot_outer_rad <= kPi,
-            "light spot cone must have 0 < spot_inner_rad <= spot_outer_rad <= pi");
-  }
+  require(valid_spot_cone(l), "light spot cone must have 0 < spot_inner_rad <= spot_outer_rad <= pi");
 }
 
 bool is_spot(const Light& l) { return l.kind == LightKind::Point && glm::length(l.spot_axis) > 0.0; }
+
+bool valid_spot_cone(const Light& l) {
+  return !is_spot(l) || (std::isfinite(l.spot_inner_rad) && std::isfinite(l.spot_outer_rad) && l.spot_inner_rad > 0.0 &&
+                         l.spot_inner_rad <= l.spot_outer_rad && l.spot_outer_rad <= kPi);
+}
 
 bool any_spot(const std::vector<Light>& lights) { return std::any_of(lights.begin(), lights.end(), is_spot); }
 

@@ -104,8 +104,7 @@ void validate(const Scene& s) {
     const std::string f = at("lamps", i);
     if (l.kind != LightKind::Point) fail(f, "must be a lamp (the sun is the scene's sun)");
     if (!finite3(l.spot_axis)) fail(f + ".spot_axis", "must be finite (zero: a lamp that shines every way)");
-    if (is_spot(l) && !(std::isfinite(l.spot_inner_rad) && std::isfinite(l.spot_outer_rad) && l.spot_inner_rad > 0.0 &&
-                        l.spot_inner_rad <= l.spot_outer_rad && l.spot_outer_rad <= M_PI))
+    if (!valid_spot_cone(l))
       fail(f + ".spot_inner_rad", "a spot's cone must have 0 < spot_inner_rad <= spot_outer_rad <= pi");
     if (!std::isfinite(l.min_distance_m) || !(l.min_distance_m > 0.0)) fail(f + ".min_distance_m", "must be finite and > 0");
     if (!finite3(l.position_m)) fail(f + ".position_m", "must be finite");

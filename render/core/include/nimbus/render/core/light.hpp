@@ -68,6 +68,10 @@ LightAtPoint light_at(const Light& light, const glm::dvec3& x);
 bool is_spot(const Light& light);
 bool any_spot(const std::vector<Light>& lights);
 
+// A spot's cone is valid: 0 < spot_inner_rad <= spot_outer_rad <= pi, both finite (true for a
+// lamp that is not a spot).
+bool valid_spot_cone(const Light& light);
+
 // A spot's weight for the unit propagation direction `dir` (1 for a lamp that is not a spot):
 // smoothstep(cos outer, cos inner, dot(dir, axis)).
 double spot_weight(const Light& light, const glm::dvec3& dir);

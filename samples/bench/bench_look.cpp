@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,12 @@ namespace {
 // The light volume's own default, unnamed in the rows' labels.
 const int kDefaultRefine = static_cast<int>(render::LightVolumeSettings{}.photons_per_cell);
 
+std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 struct BenchLookArgs {
   std::string preset = "cumulus-mediocris";
   std::string res = "120x90";
@@ -43,6 +50,8 @@ struct BenchLookArgs {
   std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
   std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
   std::string ms_fits = "1";           // light-volume rows: 1 with eq. MS-4's fits, 0 without
+  // light-volume rows: transport mean free paths deep beyond which light is diffused (0: all traced)
+  std::string ms_diffusion = number_text(render::LightVolumeSettings{}.diffusion_depth);
   // light-volume rows: photons per cell face for finer cells, 0 the grid exactly
   std::string ms_refine = std::to_string(kDefaultRefine);
   std::string lighting = "front-lit,back-lit";          // which lightings to run
@@ -61,6 +70,20 @@ std::vector<int> parse_ints(const std::string& flag, const std::string& text, in
   return v;
 }
 
+std::vector<double> parse_doubles(const std::string& flag, const std::string& text, double lo, double hi) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const std::optional<double> x = nimbus::parse_double(item);
+    if (!x || !(*x >= lo && *x <= hi))
+      throw UsageError(flag + ": '" + item + "' is not a number in [" + number_text(lo) + ", " + number_text(hi) + "]");
+    v.push_back(*x);
+  }
+  if (v.empty()) throw UsageError(flag + ": give at least one number");
+  return v;
+}
+
 struct Octaves {
   std::string name;
   int octaves;
@@ -71,6 +94,7 @@ struct Octaves {
   int lobes = 2;
   bool fits = true;
   int refine = kDefaultRefine;  // LightVolumeSettings::photons_per_cell
+  double diffusion = 0.0;       // LightVolumeSettings::diffusion_depth
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -158,13 +182,17 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
       for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0))
         for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
           for (int refine : parse_ints("--ms-refine", a.ms_refine, 1000000000, 0))
-            methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
-                                   (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
-                                   (fits ? "" : ", no fits") +
-                                   (refine == kDefaultRefine ? ""
-                                    : refine == 0  ? ", exact grid"
-                                                   : ", finer to " + std::to_string(refine) + " photons a cell"),
-                               0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine});
+            for (double diffusion : parse_doubles("--ms-diffusion-depth", a.ms_diffusion, 0.0, 1000.0)) {
+              methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
+                                     (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
+                                     (fits ? "" : ", no fits") +
+                                     (refine == kDefaultRefine ? ""
+                                      : refine == 0  ? ", exact grid"
+                                                     : ", finer to " + std::to_string(refine) + " photons a cell") +
+                                     (diffusion == 0.0 ? ""
+                                                       : ", diffused deeper than " + number_text(diffusion) + " mfp"),
+                                 0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion});
+            }
   }
   return methods;
 }
@@ -281,6 +309,7 @@ render::FrameSettings slicer_settings(const BenchLookArgs& a, const Octaves& m) 
     fs.slices.multiple.light_volume.lobe_orders = m.lobes;
     fs.slices.multiple.light_volume.fits = m.fits;
     fs.slices.multiple.light_volume.photons_per_cell = m.refine;
+    fs.slices.multiple.light_volume.diffusion_depth = m.diffusion;
   }
   return fs;
 }
@@ -362,6 +391,10 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ms-lobes", a->ms_lobes, "Comma-separated light-volume lobe orders, 0 to 2 (0: harmonics alone)")
       ->capture_default_str();
   cmd->add_option("--ms-fits", a->ms_fits, "Comma-separated: 1 light volume with its linear fits in each cell, 0 without")
+      ->capture_default_str();
+  cmd->add_option("--ms-diffusion-depth", a->ms_diffusion,
+                  "Comma-separated transport mean free paths inside the clouds beyond which the light volume's photons "
+                  "hand their light to diffusion (0: all traced)")
       ->capture_default_str();
   cmd->add_option("--ms-refine", a->ms_refine,
                   "Comma-separated photons per cell face down to which the light volume takes finer cells than --ms-grid "

@@ -140,6 +140,10 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
   cmd->add_option("--ms-lobes", a.ms_lobes, "Light volume: scattering orders kept as lobes about the sun, 0-2 (0: harmonics alone)")
       ->capture_default_str();
+  cmd->add_option("--ms-diffusion-depth", a.ms_diffusion,
+                  "Light volume: deeper than this many transport mean free paths inside the clouds, photons hand their "
+                  "light to a diffusion solve on its grid, 0-1000 (0: photons carry all of it)")
+      ->capture_default_str();
   cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();

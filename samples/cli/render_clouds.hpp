@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 #include "frame_range.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
 #include "render_args.hpp"
 
 namespace nimbus::cli {
@@ -41,6 +42,7 @@ struct CloudRenderArgs {
   int ms_grid = 48;                  // light volume: cells along the clouds' longest axis
   int64_t ms_photons = 1 << 21;      // light volume: photons from the sun
   int ms_lobes = 2;                  // light volume: scattering orders kept as lobes, [0, 2]
+  double ms_diffusion = render::LightVolumeSettings{}.diffusion_depth;  // light volume: diffusion deeper than this (transport mfp; 0: off)
   uint64_t ms_seed = 1;              // light volume
   double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;

@@ -55,7 +55,7 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     ms.octaves = a.multiple.value_or(0);
   }
   const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
-  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-seed"})
+  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-diffusion-depth", "--ms-seed"})
     refuse_if_given_without(a, flag, light_volume,
                             "applies to the light volume (--ms-method light-volume), and the multiple scattering here is "
                             "the octaves method");
@@ -71,6 +71,10 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
   ms.light_volume.photons = a.ms_photons;
   if (a.ms_lobes < 0 || a.ms_lobes > 2) throw UsageError("--ms-lobes: must be in [0, 2], got " + std::to_string(a.ms_lobes));
   ms.light_volume.lobe_orders = a.ms_lobes;
+  if (!std::isfinite(a.ms_diffusion) || a.ms_diffusion < 0.0 || a.ms_diffusion > 1000.0)
+    throw UsageError("--ms-diffusion-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
+                     std::to_string(a.ms_diffusion));
+  ms.light_volume.diffusion_depth = a.ms_diffusion;
   ms.light_volume.seed = a.ms_seed;
   auto check = [](double v, bool ok, const char* flag, const char* range) {
     if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));

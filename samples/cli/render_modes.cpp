@@ -28,7 +28,7 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       {"--light-res", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
       {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},
       {"--ambient", clouds}, {"--multiple", clouds}, {"--ms-method", clouds}, {"--ms-grid", clouds},
-      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
+      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-diffusion-depth", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
       {"--no-jitter", clouds}, {"--ms-occlusion", clouds}, {"--ms-contribution", clouds},
       {"--ms-eccentricity", clouds}, {"--spp", clouds}, {"--bounces", clouds}, {"--seed", clouds},
   };

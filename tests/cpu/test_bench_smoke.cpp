@@ -87,6 +87,7 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
   EXPECT_EQ(run("bench look --preset nothing").code, 2);
   EXPECT_EQ(run("bench look --view above").code, 2);
   EXPECT_EQ(run("bench look --ms-lobes 3").code, 2);
+  EXPECT_EQ(run("bench look --ms-diffusion-depth -1").code, 2);
   EXPECT_EQ(run("bench look --phases mie").code, 2);
   EXPECT_EQ(run("bench look --lighting side-lit").code, 2);
 }

@@ -75,7 +75,7 @@ TEST(LightVolumeStages, TheLaunchRectangleCoversTheBoxFromUpstream) {
 
 TEST(LightVolumeStages, CellValuesAreTrackPerCoveredVolumeAndPoolWhereBarelyCovered) {
   const CellGrid g{3, 3, 3};
-  std::vector<std::atomic<std::int64_t>> tally(g.cells() * kTallies);
+  std::vector<std::int64_t> tally(g.cells() * kTallies);
   std::vector<double> covered(g.cells(), 1.0);
   for (std::size_t q = 0; q < g.cells(); ++q)
     for (int c = 0; c < kTallies; ++c) tally[q * kTallies + c] = std::int64_t(100 + q + c);

@@ -2,6 +2,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/base/input_limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -58,6 +59,9 @@ void validate(const LightVolumeSettings& s) {
               std::to_string(s.photons_per_cell));
   require(s.lobe_orders >= 0 && s.lobe_orders <= 2,
           "light volume lobe orders must be in [0, 2], got " + std::to_string(s.lobe_orders));
+  require(std::isfinite(s.diffusion_depth) && s.diffusion_depth >= 0.0 && s.diffusion_depth <= 1000.0,
+          "light volume diffusion depth must be in [0, 1000] transport mean free paths (0: off), got " +
+              std::to_string(s.diffusion_depth));
   require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");
 }
 

@@ -168,12 +168,15 @@ namespace {
 // The image metadata's "light_volume": its grid, photons, seed, lobes and fits. No build time: a
 // frame's file depends on its inputs alone, byte for byte, whoever renders it when (docs/farm.md).
 std::string describe_light_volume(const LightVolume& v) {
-  char buf[320];
+  char depth[64];
+  std::snprintf(depth, sizeof depth, "diffused deeper than %g transport mean free paths", v.diffusion_depth);
+  const std::string traced = v.diffusion_depth > 0.0 ? depth : "all light traced";
+  char buf[400];
   std::snprintf(buf, sizeof buf,
-                "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, %d lobe orders, %s, built on the CPU",
+                "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, %d lobe orders, %s, %s, built on the CPU",
                 v.size[0], v.size[1], v.size[2], v.cell_m.x, v.cell_m.y, v.cell_m.z, static_cast<long long>(v.photons),
                 static_cast<unsigned long long>(v.seed), v.lobes.empty() ? 0 : v.lobe_orders,
-                v.gradient.empty() ? "no fits" : "linear fits");
+                v.gradient.empty() ? "no fits" : "linear fits", traced.c_str());
   return buf;
 }
 

@@ -3,6 +3,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/render/reference/light_volume_diffusion.hpp"
 #include "nimbus/render/reference/light_volume_stages.hpp"
 #include "traced_media.hpp"
 
@@ -47,8 +49,13 @@ double total_majorant(const std::vector<TracedCloud>& media, const glm::dvec3& w
 
 // Delta tracking in one cloud as TracedCloud::free_flight, recording every tentative collision
 // (the real one included) into `points`. Returns the real collision's distance or +inf.
+// A tentative collision of a flight: where (metres along it) and the majorant that drew it.
+struct Tentative {
+  double t, m;
+};
+
 double free_flight_recorded(const TracedCloud& c, const glm::dvec3& o, const glm::dvec3& d, double t1, PathRng& rng,
-                            std::vector<double>& points) {
+                            std::vector<Tentative>& points) {
   double hit = kInf;
   c.march(o, d, 0.0, t1, [&](double s0, double s1, double m, const glm::dvec3& lo, const glm::dvec3& ld) {
     if (m <= 0.0) return true;
@@ -56,7 +63,7 @@ double free_flight_recorded(const TracedCloud& c, const glm::dvec3& o, const glm
     while (true) {
       t -= std::log(1.0 - rng.uniform()) / m;
       if (t >= s1) return true;
-      points.push_back(t);
+      points.push_back({t, m});
       if (rng.uniform() * m < c.sigma_t(lo, ld, t)) {
         hit = t;
         return false;
@@ -113,12 +120,16 @@ LightVolume light_volume_grid(const std::vector<CloudVolume>& clouds, const Ligh
   v.photons = settings.photons;
   v.seed = settings.seed;
   v.lobe_orders = settings.lobe_orders;
+  v.diffusion_depth = settings.diffusion_depth;
   return v;
 }
 
 std::size_t light_volume_bytes(const LightVolume& grid) {
-  // Tallies (int64), the covered fraction (double), the values and the result (float).
-  return grid.cells() * (kTallies * sizeof(std::int64_t) + sizeof(double) + 2 * kTallies * sizeof(float) + 1);
+  // Tallies (int64), the covered fraction (double), the values and the result (float); with the
+  // deep light diffused, the cells' optics, sources, the linear system and its solution (about
+  // 400 bytes a cell, light_volume_diffusion.cpp).
+  return grid.cells() * (kTallies * sizeof(std::int64_t) + sizeof(double) + 2 * kTallies * sizeof(float) + 1 +
+                         (grid.diffusion_depth > 0.0 ? 400 : 0));
 }
 
 namespace {
@@ -126,8 +137,94 @@ namespace {
 // The fixed-point tallies of weight x metres (integer sums do not depend on the order of the adds).
 struct Tallies {
   double quantum = 0.0;  // metres of weighted track per unit
-  std::vector<std::atomic<std::int64_t>> sum;  // kTallies per cell
+  std::vector<std::int64_t> sum;  // kTallies per cell
+  // With diffused deep light: the weight that scatters in a deep cell, RGB per cell, in units of
+  // kSourceQuantum.
+  std::vector<std::int64_t> source;
 };
+constexpr double kSourceQuantum = 1e-9;
+// Each thread tallies into its own arrays, merged after (plain adds: a third less time than
+// atomic adds into one array, measured on the main job's volume), unless they would take more
+// than this together; then every thread adds atomically into one.
+constexpr std::size_t kThreadTallyBytes = std::size_t{512} << 20;
+
+// Where one thread's tallies go.
+struct TallySink {
+  std::int64_t* sum = nullptr;
+  std::int64_t* source = nullptr;
+  bool shared = false;  // the arrays are every thread's: add atomically
+  double quantum = 0.0;
+  static void add(std::int64_t* a, std::size_t i, double units, bool shared) {
+    const std::int64_t x = static_cast<std::int64_t>(units + (units >= 0.0 ? 0.5 : -0.5));  // to nearest
+    if (shared)
+      std::atomic_ref<std::int64_t>(a[i]).fetch_add(x, std::memory_order_relaxed);
+    else
+      a[i] += x;
+  }
+  void add_track(std::size_t i, double metres) const { add(sum, i, metres / quantum, shared); }
+  void add_source(std::size_t i, double weight) const { add(source, i, weight / kSourceQuantum, shared); }
+};
+
+// Whether world point p lies in a cell marked deep.
+bool in_deep_cell(const LightVolume& v, const CellGrid& g, const std::vector<char>& deep, const glm::dvec3& p) {
+  const glm::dvec3 ijk = glm::floor((p - v.world_min) / v.cell_m);
+  if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) return false;
+  return deep[g.index(int(ijk.x), int(ijk.y), int(ijk.z))] != 0;
+}
+
+// Where photons hand their light to diffusion: the deep cells, and the cells with medium (the
+// solve's unknowns, the only ones a source may land in).
+struct Handover {
+  std::vector<char> deep, solid;
+  std::vector<double> sigma_t;  // the cells' mean extinction, per metre
+  bool on() const { return !deep.empty(); }
+};
+
+// Where the light that scatters at p, arriving along d, is centred: a phase of mean cosine g sends
+// it on along d, by g / sigma_t in its first flight, g^2 / sigma_t in its second and so on, in
+// all g / (sigma_t (1 - g)) (an unabsorbed walk in a uniform medium). Diffusion's source is
+// isotropic about its point, so it is placed there: at the collision itself the diffused light
+// lay a transport mean free path short of where the photons carry it (measured on a ball 7.4
+// transport mean free paths in radius under HG 0.7: its core 11.5 % too dark).
+glm::dvec3 source_centre(const LightVolume& v, const CellGrid& g, const Handover& h, const glm::dvec3& p,
+                         const glm::dvec3& d, double mean_cosine) {
+  const glm::dvec3 ijk = glm::floor((p - v.world_min) / v.cell_m);
+  if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) return p;
+  const double sigma_t = h.sigma_t[g.index(int(ijk.x), int(ijk.y), int(ijk.z))];
+  if (!(sigma_t > 0.0) || !(mean_cosine > 0.0)) return p;
+  return p + d * (std::min(mean_cosine, 0.95) / (sigma_t * (1.0 - std::min(mean_cosine, 0.95))));
+}
+
+// Adds a photon's scattered weight at p to the diffusion's source, shared among the 8 cells whose
+// centres surround p by trilinear weights (cloud-in-cell): a source placed at its cell's centre
+// would move by up to half a cell, and where a cell is a sizeable part of the diffusion length
+// that changes how much of it escapes (measured on a slab 30 mean free paths thick in cells of
+// 3.9: the diffused fluence 20-30 % high). Weights on cells without medium, or past the grid, go
+// to the others.
+bool tally_source(const TallySink& sink, const LightVolume& v, const CellGrid& g, const Handover& h, const glm::dvec3& p,
+                  const glm::dvec3& weight) {
+  const glm::dvec3 u = (p - v.world_min) / v.cell_m - 0.5;
+  const glm::dvec3 base = glm::floor(u), f = u - base;
+  std::size_t cell[8];
+  double w[8], total = 0.0;
+  int n = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int i = int(base.x) + (corner & 1), j = int(base.y) + ((corner >> 1) & 1), k = int(base.z) + (corner >> 2);
+    if (i < 0 || j < 0 || k < 0 || i >= g.nx || j >= g.ny || k >= g.nz) continue;
+    const std::size_t c = g.index(i, j, k);
+    if (!h.solid[c]) continue;
+    const double wc = ((corner & 1) ? f.x : 1.0 - f.x) * (((corner >> 1) & 1) ? f.y : 1.0 - f.y) * ((corner >> 2) ? f.z : 1.0 - f.z);
+    if (!(wc > 0.0)) continue;
+    cell[n] = c;
+    w[n++] = wc;
+    total += wc;
+  }
+  if (!(total > 0.0)) return false;  // no cell with medium around p
+  for (int m = 0; m < n; ++m)
+    for (int c = 0; c < 3; ++c)
+      sink.add_source(cell[m] * 3 + c, weight[c] * w[m] / total);
+  return true;
+}
 
 // Each brick's majorant raised to one tentative collision per cell's width. A tentative collision
 // stands for 1 / m metres of track, so in a brick of thin cloud (small majorant m) one flight's
@@ -141,51 +238,77 @@ void raise_majorants(std::vector<TracedCloud>& media, double shortest_cell_m) {
       if (b > 0.0) b = std::max(b, 1.0 / shortest_cell_m);
 }
 
-// Adds one tentative collision at p (t along d) of a flight after `bounce` scatterings.
-void tally_collision(Tallies& tallies, const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
-                     const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& weight, int bounce, int lobe_orders,
-                     const glm::dvec3& l) {
-  const glm::dvec3 u = (p - v.world_min) / v.cell_m;  // in cells
-  const glm::dvec3 ijk = glm::floor(u);
-  // The bricks reach up to 7 voxels past a cloud's support, where only null collisions happen;
-  // the grid covers the support alone, and a point beyond it is no cell's track (clamped into the
-  // edge cells it made the stratus sheet's top layer 5.5x too bright).
-  if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) return;
-  const double m = total_majorant(media, p);
-  if (!(m > 0.0)) return;
-  const std::size_t k = g.index(int(ijk.x), int(ijk.y), int(ijk.z)) * kTallies;
-  auto add = [&](std::size_t idx, double value) {
-    tallies.sum[idx].fetch_add(std::llround(value / tallies.quantum), std::memory_order_relaxed);
+// Adds a flight's tentative collisions up to its end, after `bounce` scatterings, along d from o.
+// Within a flight the weight and the direction hold, so a run of collisions in one cell needs only
+// its track sum(1 / m) (each tentative collision stands for 1 / m metres) and its first moment
+// sum(off / m); the cell's tallies follow from the two once per run (half the adds of tallying each
+// collision: measured, the main job's volume a quarter faster).
+void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
+                  const glm::dvec3& o, const glm::dvec3& d, double end, const std::vector<Tentative>& points,
+                  const glm::dvec3& weight, int bounce, int lobe_orders, const glm::dvec3& l) {
+  constexpr std::size_t kNone = ~std::size_t{0};
+  std::size_t cell = kNone;
+  double track = 0.0;
+  glm::dvec3 moment(0.0);
+  const double w_mean = (weight.x + weight.y + weight.z) / 3.0;
+  const auto flush = [&] {
+    if (cell == kNone || !(track > 0.0)) return;
+    const std::size_t k = cell * kTallies;
+    const glm::dvec3 wt = weight * track;
+    sink.add_track(k + 0, wt.x);
+    sink.add_track(k + 1, wt.y);
+    sink.add_track(k + 2, wt.z);
+    const double mean = w_mean * track;
+    sink.add_track(k + 3, mean * d.x);
+    sink.add_track(k + 4, mean * d.y);
+    sink.add_track(k + 5, mean * d.z);
+    // The traceless second moment: w (d d^T - I / 3).
+    sink.add_track(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
+    sink.add_track(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
+    sink.add_track(k + 8, mean * d.x * d.y);
+    sink.add_track(k + 9, mean * d.x * d.z);
+    sink.add_track(k + 10, mean * d.y * d.z);
+    sink.add_track(k + kMomentTally + 0, w_mean * moment.x);
+    sink.add_track(k + kMomentTally + 1, w_mean * moment.y);
+    sink.add_track(k + kMomentTally + 2, w_mean * moment.z);
+    if (bounce <= lobe_orders) {  // the flight after scattering `bounce` times
+      sink.add_track(k + kLobeTally + 2 * (bounce - 1), mean);
+      sink.add_track(k + kLobeTally + 2 * (bounce - 1) + 1, mean * glm::dot(d, l));
+    }
   };
-  const glm::dvec3 wt = weight / m;  // each tentative collision stands for 1 / m metres of track
-  add(k + 0, wt.x);
-  add(k + 1, wt.y);
-  add(k + 2, wt.z);
-  const double mean = (wt.x + wt.y + wt.z) / 3.0;
-  add(k + 3, mean * d.x);
-  add(k + 4, mean * d.y);
-  add(k + 5, mean * d.z);
-  // The traceless second moment: w (d d^T - I / 3).
-  add(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
-  add(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
-  add(k + 8, mean * d.x * d.y);
-  add(k + 9, mean * d.x * d.z);
-  add(k + 10, mean * d.y * d.z);
-  const glm::dvec3 off = u - ijk - 0.5;
-  add(k + kMomentTally + 0, mean * off.x);
-  add(k + kMomentTally + 1, mean * off.y);
-  add(k + kMomentTally + 2, mean * off.z);
-  if (bounce <= lobe_orders) {  // the flight after scattering `bounce` times
-    add(k + kLobeTally + 2 * (bounce - 1), mean);
-    add(k + kLobeTally + 2 * (bounce - 1) + 1, mean * glm::dot(d, l));
+  for (const Tentative& c : points) {
+    if (c.t > end) continue;
+    const glm::dvec3 p = o + c.t * d;
+    const glm::dvec3 u = (p - v.world_min) / v.cell_m;  // in cells
+    const glm::dvec3 ijk = glm::floor(u);
+    // The bricks reach up to 7 voxels past a cloud's support, where only null collisions happen;
+    // the grid covers the support alone, and a point beyond it is no cell's track (clamped into the
+    // edge cells it made the stratus sheet's top layer 5.5x too bright).
+    if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) continue;
+    // Several clouds' collisions together come at the rate of their majorants' sum.
+    const double m = media.size() > 1 ? total_majorant(media, p) : c.m;
+    if (!(m > 0.0)) continue;
+    const std::size_t q = g.index(int(ijk.x), int(ijk.y), int(ijk.z));
+    if (q != cell) {
+      flush();
+      cell = q;
+      track = 0.0;
+      moment = glm::dvec3(0.0);
+    }
+    track += 1.0 / m;
+    moment += (u - ijk - 0.5) / m;
   }
+  flush();
 }
 
 // Photon i's path from the launch rectangle: after its first real collision, every tentative
-// collision of every flight is tallied, until it escapes, is absorbed or loses the roulette.
-void trace_photon(std::int64_t i, Tallies& tallies, const LightVolume& v, const CellGrid& g,
+// collision of every flight is tallied, until it escapes, is absorbed or loses the roulette; or,
+// where `deep` is given, until it scatters (after its lobe orders) in a deep cell, where its
+// scattered weight becomes the diffusion's source instead.
+void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, const CellGrid& g,
                   const std::vector<TracedCloud>& media, const LaunchRect& rect, double shift_u, double shift_v,
-                  double back_m, const LightVolumeSettings& settings, std::vector<double>& points) {
+                  double back_m, const LightVolumeSettings& settings, const Handover& handover,
+                  std::vector<Tentative>& points) {
   PathRng rng(settings.seed, static_cast<std::uint64_t>(i));
   const double fi = static_cast<double>(i);
   // Positions on the rectangle: the R2 sequence (Roberts 2018), shifted per seed (Cranley-Patterson).
@@ -201,6 +324,11 @@ void trace_photon(std::int64_t i, Tallies& tallies, const LightVolume& v, const 
     const CloudVolume& hit = *media[static_cast<std::size_t>(c.medium)].cloud;
     o += c.t * d;
     weight *= hit.optics.albedo;
+    if (handover.on() && bounce > settings.lobe_orders && in_deep_cell(v, g, handover.deep, o)) {
+      const glm::dvec3 centre = source_centre(v, g, handover, o, d, phase_legendre(hit.optics.phase, 1));
+      if (!tally_source(sink, v, g, handover, centre, weight)) tally_source(sink, v, g, handover, o, weight);
+      break;
+    }
     if (bounce >= 16 && !survives_roulette(weight, rng)) break;  // as the path tracer
     if (!(std::max({weight.x, weight.y, weight.z}) > 0.0)) break;
     d = sample_phase(hit.optics.phase, d, rng);
@@ -214,8 +342,7 @@ void trace_photon(std::int64_t i, Tallies& tallies, const LightVolume& v, const 
         c.medium = static_cast<int>(j);
       }
     }
-    for (double t : points)
-      if (!(t > c.t)) tally_collision(tallies, v, g, media, o + t * d, d, weight, bounce, settings.lobe_orders, rect.l);
+    tally_flight(sink, v, g, media, o, d, c.t, points, weight, bounce, settings.lobe_orders, rect.l);
     if (c.medium < 0) break;  // escaped
   }
 }
@@ -223,23 +350,45 @@ void trace_photon(std::int64_t i, Tallies& tallies, const LightVolume& v, const 
 // Stage: the photons, on the arena's threads; deterministic per seed (photon i draws from its
 // own stream, the tallies are integers).
 Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
-                      const LaunchRect& rect, const LightVolumeSettings& settings, tbb::task_arena& arena) {
+                      const LaunchRect& rect, const LightVolumeSettings& settings, const Handover& handover,
+                      tbb::task_arena& arena) {
   const double shortest = std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z});
   const double widest = std::max({v.cell_m.x, v.cell_m.y, v.cell_m.z});
   Tallies tallies;
   tallies.quantum = 1e-9 * shortest;
-  tallies.sum = std::vector<std::atomic<std::int64_t>>(g.cells() * kTallies);
-  for (auto& t : tallies.sum) t.store(0, std::memory_order_relaxed);
+  const std::size_t n_sum = g.cells() * kTallies, n_source = handover.on() ? g.cells() * 3 : 0;
+  tallies.sum.assign(n_sum, 0);
+  tallies.source.assign(n_source, 0);
   PathRng shift_rng(settings.seed, ~std::uint64_t{0});
   const double shift_u = shift_rng.uniform(), shift_v = shift_rng.uniform();
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, arena.max_concurrency()));
+  const bool shared = threads * (n_sum + n_source) * sizeof(std::int64_t) > kThreadTallyBytes;
+  struct Own {
+    std::vector<std::int64_t> sum, source;
+  };
+  tbb::enumerable_thread_specific<Own> own;
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
-                        std::vector<double> points;
+                        TallySink sink{tallies.sum.data(), tallies.source.data(), true, tallies.quantum};
+                        if (!shared) {
+                          Own& mine = own.local();
+                          if (mine.sum.empty()) {
+                            mine.sum.assign(n_sum, 0);
+                            mine.source.assign(n_source, 0);
+                          }
+                          sink = TallySink{mine.sum.data(), mine.source.data(), false, tallies.quantum};
+                        }
+                        std::vector<Tentative> points;
                         for (std::int64_t i = r.begin(); i < r.end(); ++i)
-                          trace_photon(i, tallies, v, g, media, rect, shift_u, shift_v, widest, settings, points);
+                          trace_photon(i, sink, v, g, media, rect, shift_u, shift_v, widest, settings, handover, points);
                       });
   });
+  // Integer sums: the same whatever thread tallied what.
+  for (const Own& mine : own) {
+    for (std::size_t i = 0; i < mine.sum.size(); ++i) tallies.sum[i] += mine.sum[i];
+    for (std::size_t i = 0; i < mine.source.size(); ++i) tallies.source[i] += mine.source[i];
+  }
   return tallies;
 }
 
@@ -279,6 +428,30 @@ Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<
   return cov;
 }
 
+// Stage: the diffused light (light_volume_diffusion.hpp) added to the cells' values: its fluence,
+// its flux F = -D grad phi (the channels' mean) and, for eq. MS-4's fits, the first moment a
+// linear fluence with its gradient has over the covered part; its second moment is 0 and it is in
+// no lobe (it has scattered more often than the lobe orders).
+void add_diffused_light(const CellGrid& g, LightVolume& v, const CellMedium& medium,
+                         const std::vector<std::int64_t>& source, double q_scale, const Coverage& cov,
+                         CellValues& values) {
+  std::vector<glm::dvec3> q(g.cells());
+  for (std::size_t c = 0; c < g.cells(); ++c)
+    for (int ch = 0; ch < 3; ++ch) q[c][ch] = q_scale * static_cast<double>(source[3 * c + ch]);
+  const DiffusedLight light = solve_diffusion(g, v.cell_m, medium, q);
+  v.diffusion_iterations = light.iterations;
+  for (std::size_t c = 0; c < g.cells(); ++c) {
+    if (!values.known[c]) continue;
+    float* value = &values.value[c * kTallies];
+    for (int ch = 0; ch < 3; ++ch) value[ch] += static_cast<float>(light.fluence[c][ch]);
+    const glm::dvec3 F = (light.flux[0][c] + light.flux[1][c] + light.flux[2][c]) / 3.0;
+    for (int a = 0; a < 3; ++a) value[3 + a] += static_cast<float>(F[a]);
+    const double phi = (light.fluence[c].x + light.fluence[c].y + light.fluence[c].z) / 3.0;
+    for (int a = 0; a < 3; ++a)
+      value[kMomentTally + a] += static_cast<float>(phi * cov.centroid[c][a] + cov.spread[c][a] * light.gradient[c][a]);
+  }
+}
+
 }  // namespace
 
 LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
@@ -298,12 +471,28 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   const LaunchRect rect = launch_rect(v, light.direction_to_sun);
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
 
-  const Tallies tallies = trace_photons(v, g, media, rect, settings, arena);
   const Coverage coverage = coverage_of(v, g, media, arena);
+  // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
+  CellMedium medium;
+  Handover handover;
+  if (settings.diffusion_depth > 0.0) {
+    arena.execute([&] { medium = cell_medium(v, g, clouds); });
+    handover.deep = cells_deeper_than(g, v.cell_m, medium, settings.diffusion_depth);
+    handover.sigma_t = medium.sigma_t;
+    handover.solid.resize(g.cells());
+    for (std::size_t c = 0; c < g.cells(); ++c) handover.solid[c] = medium.sigma_t[c] > 0.0;
+  }
+  const Tallies tallies = trace_photons(v, g, media, rect, settings, handover, arena);
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
   const double scale = rect.area_m2() / static_cast<double>(settings.photons) * tallies.quantum /
                        (v.cell_m.x * v.cell_m.y * v.cell_m.z);
   CellValues values = cell_values(g, tallies.sum, coverage.covered, scale);
+  if (handover.on()) {
+    // Source per unit volume: q = (E A / N) sum(w) / V, per unit irradiance E.
+    const double q_scale = rect.area_m2() / static_cast<double>(settings.photons) * kSourceQuantum /
+                           (v.cell_m.x * v.cell_m.y * v.cell_m.z);
+    arena.execute([&] { add_diffused_light(g, v, medium, tallies.source, q_scale, coverage, values); });
+  }
   clamp_spikes(g, values);
   smooth_anisotropy(g, values);
   std::vector<float> fit = linear_fits(g, values, coverage);

@@ -35,7 +35,7 @@ LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_s
   return r;
 }
 
-CellValues cell_values(const CellGrid& g, const std::vector<std::atomic<std::int64_t>>& tally,
+CellValues cell_values(const CellGrid& g, const std::vector<std::int64_t>& tally,
                        const std::vector<double>& covered, double scale) {
   const std::size_t n_cells = g.cells();
   CellValues v;
@@ -47,7 +47,7 @@ CellValues cell_values(const CellGrid& g, const std::vector<std::atomic<std::int
     if (covered[q] >= kPoolBelow) {
       for (int c = 0; c < kTallies; ++c)
         v.value[q * kTallies + c] =
-            static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c].load()) / covered[q]);
+            static_cast<float>(scale * static_cast<double>(tally[q * kTallies + c]) / covered[q]);
       return;
     }
     // A cell the cloud barely touches would divide a few rare collisions by a small covered
@@ -55,7 +55,7 @@ CellValues cell_values(const CellGrid& g, const std::vector<std::atomic<std::int
     double area = 0.0, sum[kTallies] = {};
     g.for_neighbourhood(i, j, k, [&](std::size_t r) {
       area += covered[r];
-      for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c].load());
+      for (int c = 0; c < kTallies; ++c) sum[c] += static_cast<double>(tally[r * kTallies + c]);
     });
     for (int c = 0; c < kTallies; ++c) v.value[q * kTallies + c] = static_cast<float>(scale * sum[c] / area);
   });

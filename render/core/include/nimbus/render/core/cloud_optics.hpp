@@ -45,6 +45,11 @@ struct LightVolumeSettings {
   int lobe_orders = 2;
   // Linear fits of the fluence inside each cell (light_volume.hpp, eq. MS-4); false: cell means.
   bool fits = true;
+  // Deep in the clouds light diffuses: a photon that scatters (after its lobe orders) in a cell
+  // at least this many transport mean free paths inside the clouds hands its light to a diffusion
+  // solve on the grid (render/reference light_volume_diffusion.hpp, eq. MS-5) instead of walking
+  // on. 0: photons carry all the light. [0, 1000]
+  double diffusion_depth = 0.0;
   bool operator==(const LightVolumeSettings&) const = default;
 };
 

@@ -63,6 +63,8 @@ struct LightVolume {
   std::int64_t photons = 0;
   std::uint64_t seed = 0;
   int lobe_orders = 0;  // orders kept as lobes (LightVolumeSettings::lobe_orders)
+  double diffusion_depth = 0.0;  // LightVolumeSettings::diffusion_depth (0: photons carried all the light)
+  int diffusion_iterations = 0;  // the diffusion solve's conjugate-gradient iterations (0: none)
   double build_seconds = 0.0;
 
   std::size_t cells() const { return static_cast<std::size_t>(size[0]) * size[1] * size[2]; }

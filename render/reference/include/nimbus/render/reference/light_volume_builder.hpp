@@ -5,7 +5,9 @@
 // majorant's rate m) tallies weight / m metres of track into its cell: an unbiased track-length
 // estimate of the fluence of scattered light (Spanier & Gelbard 1969; eq. MS-2 in docs/clouds.md),
 // and the same times the direction for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
-// threads: photon i draws from its own stream and the tallies are fixed-point integers.
+// threads: photon i draws from its own stream and the tallies are fixed-point integers, each
+// thread's own, summed after. With settings.diffusion_depth > 0 a photon that scatters deep inside
+// the clouds hands its light to a diffusion solve on the grid (light_volume_diffusion.hpp).
 #pragma once
 #include <vector>
 

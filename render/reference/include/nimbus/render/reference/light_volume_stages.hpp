@@ -6,7 +6,6 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,6 +38,17 @@ struct CellGrid {
     for (int k = 0; k < nz; ++k)
       for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) f(i, j, k, index(i, j, k));
+  }
+  // Cell q's neighbour across face f (0-5: -x, +x, -y, +y, -z, +z; axis f / 2), or false past
+  // the grid's edge.
+  bool face_neighbour(std::size_t q, int f, std::size_t& r) const {
+    int at[3] = {static_cast<int>(q % std::size_t(nx)), static_cast<int>((q / std::size_t(nx)) % std::size_t(ny)),
+                 static_cast<int>(q / (std::size_t(nx) * std::size_t(ny)))};
+    const int size[3] = {nx, ny, nz};
+    at[f / 2] += (f & 1) ? 1 : -1;
+    if (at[f / 2] < 0 || at[f / 2] >= size[f / 2]) return false;
+    r = index(at[0], at[1], at[2]);
+    return true;
   }
   // Calls f(r) for each cell r of the 3^3 neighbourhood of (i, j, k) inside the grid, itself included.
   template <class F>
@@ -83,7 +93,7 @@ struct CellValues {
 // Track length per volume (eq. MS-2): value = scale * tally / covered, where scale turns a
 // tally's fixed-point sum into fluence per unit irradiance; a cell covered less than kPoolBelow
 // takes its 3^3 neighbourhood's sum of tallies over their sum of covered fractions.
-CellValues cell_values(const CellGrid& g, const std::vector<std::atomic<std::int64_t>>& tally,
+CellValues cell_values(const CellGrid& g, const std::vector<std::int64_t>& tally,
                        const std::vector<double>& covered, double scale);
 
 // A known cell whose mean fluence exceeds kSpike times its known neighbours' mean (with at least

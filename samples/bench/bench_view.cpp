@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -72,15 +73,40 @@ struct PathResult {
   int stale = 0, stand_in = 0;    // frames drawn with an earlier light volume / the octaves standing in
   int64_t volumes = 0;            // light volumes made during the path
   double volume_s = 0.0;          // their build time
+  // GPU time per pass, per frame (timer queries where the driver has them: FrameStats), ms.
+  std::map<std::string, std::vector<double>> pass_ms;
+  std::string timing;             // how the GPU times were taken
+  int preview = 0;                // frames drawn with the new sun's quick volume
+  // The sun drag: per drag, real ms from its last step to the first frame lit by a volume of the
+  // new sun (its preview or its full volume) and to the first with its full volume.
+  std::vector<double> sun_first_ms, sun_full_ms;
 };
 
-enum class Path { Orbit, TimeLapse };
+// The passes of a frame whose GPU time bench view reports, in drawing order.
+const char* const kPasses[] = {"scene shadow maps", "scene surfaces", "shadow volume", "shafts", "cloud light",
+                               "cloud slices", "composite", "GPU total"};
+
+void add_pass_times(PathResult& r, const render::FrameStats& s) {
+  const double t[] = {s.scene.shadow_maps_ms, s.scene.surfaces_ms, s.scene.shadow_volume_ms, s.scene.shafts_ms,
+                      s.clouds.light_ms,      s.clouds.slices_ms,  s.clouds.composite_ms,    s.scene.total_ms + s.clouds.total_ms};
+  for (std::size_t i = 0; i < std::size(kPasses); ++i) r.pass_ms[kPasses[i]].push_back(t[i]);
+  if (r.timing.empty()) r.timing = s.clouds.timing.empty() ? s.scene.timing : s.clouds.timing;
+}
+
+enum class Path { Orbit, TimeLapse, SunDrag };
+
+// The sun drag: time held still; every kDragCycle frames the sun's azimuth is dragged kDragSteps
+// frames at kDragStepDeg a frame (the panel's slider), then held.
+constexpr int kDragCycle = 24, kDragSteps = 6;
+constexpr double kDragStepDeg = 3.0;
 
 PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool adaptive, int error_every) {
   PathResult r;
   v.adaptive().enabled = adaptive;
-  v.state().paused = false;
+  v.state().paused = path == Path::SunDrag;
   v.state().speed = path == Path::Orbit ? 10.0 : 30.0;
+  double drag_end = -1.0;  // the clock at the current drag's last step; < 0: none pending
+  bool first_seen = false;
   const auto k0 = v.keyframes().stats();
   const auto volume_stats = [&v] {
     return v.light_volumes() ? v.light_volumes()->stats() : render::KeyframeWorkerStats{};
@@ -94,15 +120,36 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     last = now;
     clock += dt;
     if (path == Path::Orbit) v.drag(0, 6.0, 0.0);  // 1.8 degrees a frame around the target
+    if (path == Path::SunDrag && f % kDragCycle < kDragSteps) {
+      v.set_sun(v.state().sky.sun_elevation_deg, std::fmod(v.state().sky.sun_azimuth_deg + kDragStepDeg, 360.0));
+      if (f % kDragCycle == kDragSteps - 1) {
+        drag_end = clock;
+        first_seen = false;
+      }
+    }
     v.advance(dt);
     const bool busy = v.keyframes().stats().busy;
     const int64_t made = v.keyframes().stats().made;
     v.draw(w, h, clock);
     const viewer::FrameReport& rep = v.report();
     r.ms.push_back(rep.cpu_ms);
+    add_pass_times(r, rep.stats);
     r.levels[rep.quality_level]++;
     r.held += rep.info.waited;
     r.stale += rep.info.multiple == "light volume (stale)";
+    r.preview += rep.info.multiple == "light volume (preview)";
+    if (path == Path::SunDrag && drag_end >= 0.0 && f % kDragCycle >= kDragSteps - 1) {
+      // This frame's image is on screen when draw returns: the clock then.
+      const double shown = clock + std::chrono::duration<double>(Clock::now() - now).count();
+      if (!first_seen && (rep.info.multiple == "light volume (preview)" || rep.info.multiple == "light volume")) {
+        r.sun_first_ms.push_back(1000.0 * (shown - drag_end));
+        first_seen = true;
+      }
+      if (rep.info.multiple == "light volume") {
+        r.sun_full_ms.push_back(1000.0 * (shown - drag_end));
+        drag_end = -1.0;
+      }
+    }
     r.stand_in += v.state().slices.multiple.method == render::MultipleScatteringMethod::LightVolume && rep.info.multiple == "octaves";
     if (busy || v.keyframes().stats().made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
     if (adaptive && error_every > 0 && f % error_every == 0) {
@@ -163,6 +210,11 @@ int run_bench_view(const BenchViewArgs& a) {
               "error median / max | keyframes made (s each) | frames held | longest frame while generating | "
               "light volumes made (s each) | frames: stale volume / octaves |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|---|---|\n");
+  struct PassRow {
+    std::string name;
+    PathResult result;
+  };
+  std::vector<PassRow> pass_rows;
   for (const auto& [w, h] : sizes) {
     struct Row {
       Path path;
@@ -171,7 +223,9 @@ int run_bench_view(const BenchViewArgs& a) {
       bool octaves = false;  // the octaves instead of the light volume: what the volume costs
     };
     for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
-                           Row{Path::Orbit, true, "orbit"}, Row{Path::TimeLapse, true, "time-lapse"}}) {
+                           Row{Path::Orbit, true, "orbit"}, Row{Path::TimeLapse, true, "time-lapse"},
+                           Row{Path::SunDrag, false, "sun drag"}}) {
+      if (row.path == Path::SunDrag && start.slices.multiple.method != render::MultipleScatteringMethod::LightVolume) continue;
       if (row.octaves && start.slices.multiple.method == render::MultipleScatteringMethod::Octaves) continue;
       render::ViewState state = start;
       if (row.octaves) state.slices.multiple.method = render::MultipleScatteringMethod::Octaves;
@@ -194,7 +248,34 @@ int run_bench_view(const BenchViewArgs& a) {
                   *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels).c_str(), err,
                   kf, r.held, gen, lv, r.stale, r.stand_in);
       std::fflush(stdout);
+      if (row.path == Path::SunDrag) {
+        const auto text = [](const std::vector<double>& xs) {
+          char t[64] = "never";
+          if (!xs.empty()) std::snprintf(t, sizeof t, "%.0f ms median, %.0f ms max", percentile(xs, 0.5), *std::max_element(xs.begin(), xs.end()));
+          return std::string(t);
+        };
+        std::printf("|  | sun drag: %zu drags of %d steps of %.0f deg | new sun's first volume on screen: %s (%d frames "
+                    "with its preview) | its full volume: %s | | | | | | | | | | | |\n",
+                    r.sun_first_ms.size(), kDragSteps, kDragStepDeg, text(r.sun_first_ms).c_str(), r.preview,
+                    text(r.sun_full_ms).c_str());
+      }
+      char name[96];
+      std::snprintf(name, sizeof name, "%dx%d | %s | %s", w, h, row.name, row.adaptive ? "adaptive" : "full (anchor)");
+      pass_rows.push_back({name, r});
     }
+  }
+  // Where the GPU's time goes, pass by pass: what a faster device changes.
+  std::printf("\n## GPU time per pass, median ms per frame, on %s (%s)\n\n", gl->renderer().c_str(),
+              pass_rows.empty() ? "-" : pass_rows.front().result.timing.c_str());
+  std::printf("| size | path | quality |");
+  for (const char* p : kPasses) std::printf(" %s |", p);
+  std::printf("\n|---|---|---|");
+  for (std::size_t i = 0; i < std::size(kPasses); ++i) std::printf("---:|");
+  std::printf("\n");
+  for (const PassRow& row : pass_rows) {
+    std::printf("| %s |", row.name.c_str());
+    for (const char* p : kPasses) std::printf(" %.1f |", percentile(row.result.pass_ms.at(p), 0.5));
+    std::printf("\n");
   }
   // Every level on one still state: what it costs and what it gives up.
   std::printf("\n## The adaptive quality's levels on the default view (time paused; best of 3 frames)\n\n");

@@ -118,7 +118,10 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
 }
 
 bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blend, bool wait) {
-  if (!volumes_ || volumes_->keyframes() != keyframes_) volumes_ = std::make_unique<KeyframeLightVolumes>(keyframes_);
+  if (!volumes_ || volumes_->keyframes() != keyframes_) {
+    volumes_ = std::make_unique<KeyframeLightVolumes>(keyframes_);
+    preview_of_.reset();  // a new sky's volumes start with their previews too
+  }
   // The volumes follow the newest sky; while an edited sky's keyframes are made, the old
   // clouds keep the volume last shown.
   shown_current_ = false;
@@ -130,7 +133,23 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
   light.albedo = s.optics.albedo;
   light.phase = s.optics.phase;
   light.settings = s.slices.multiple.light_volume;
-  volumes_->request(light, k, s.speed >= 0.0 ? 1 : -1);
+  const int direction = s.speed >= 0.0 ? 1 : -1;
+  // A new light (the sun dragged in the panel, new optics) gets a quick volume first, of a
+  // kPreviewShare-th of the photons, then its full one: the new sun's light is on screen after
+  // two quick builds, and the full volume replaces it when made (docs/viewer.md).
+  KeyframeLight preview = light;
+  preview.settings.photons = std::max<std::int64_t>(kPreviewMinPhotons, light.settings.photons / kPreviewShare);
+  shown_preview_ = false;
+  if (!wait && preview.settings.photons < light.settings.photons && !(preview_of_ && *preview_of_ == light)) {
+    volumes_->request(preview, k, direction);
+    const std::shared_ptr<const LightVolume> pa = volumes_->get(preview, k), pb = volumes_->get(preview, k + 1);
+    if (!pa || !pb) return shown_a_ != nullptr;  // the last one shown, if any, until the preview is made
+    show_light_volume(pa, pb, blend, 0.0);
+    preview_of_ = light;
+    shown_preview_ = true;
+    return true;
+  }
+  volumes_->request(light, k, direction);
   std::shared_ptr<const LightVolume> a, b;
   if (wait) {
     keyframes_->wait(k + 2);  // keyframe k + 1's volume is that of the pair (k + 1, k + 2)
@@ -140,7 +159,10 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
     a = volumes_->get(light, k);
     b = volumes_->get(light, k + 1);
   }
-  if (!a) return shown_a_ != nullptr;  // the last one shown, if any, until this one is made
+  if (!a) {  // the last one shown, if any, until this one is made: this light's preview, or older
+    shown_preview_ = shown_a_ != nullptr && preview_of_ && *preview_of_ == light && shown_photons_ < light.settings.photons;
+    return shown_a_ != nullptr;
+  }
   const bool both = b != nullptr;
   if (!both) {
     b = a;  // the pair's first end alone until its second is made
@@ -148,19 +170,24 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
   }
   // A new mix when the volumes change, or the blend by more than a 64th (exactly, when waiting:
   // the frame must be the state's).
-  const double step = wait ? 0.0 : 1.0 / 64.0;
-  if (a != shown_a_ || b != shown_b_ || std::abs(blend - shown_blend_) > step) {
-    // Keyframe k + 1's volume read on k's grid once per pair; each new blend is then a lerp.
-    if (a != shown_a_ || b != shown_b_) b_on_a_ = std::make_shared<const LightVolume>(mix_light_volumes(*a, *b, 1.0));
-    const LightVolume mixed = mix_light_volumes(*a, *b_on_a_, blend);
-    frame_->set_light_volume(mixed);
-    shown_a_ = a;
-    shown_b_ = b;
-    shown_blend_ = blend;
-    shown_min_ = mixed.world_min;
-  }
+  show_light_volume(a, b, blend, wait ? 0.0 : 1.0 / 64.0);
+  preview_of_ = light;
   shown_current_ = both;
   return true;
+}
+
+void SkyRenderer::show_light_volume(const std::shared_ptr<const LightVolume>& a, const std::shared_ptr<const LightVolume>& b,
+                                    double blend, double step) {
+  if (a == shown_a_ && b == shown_b_ && !(std::abs(blend - shown_blend_) > step)) return;
+  // Keyframe k + 1's volume read on k's grid once per pair; each new blend is then a lerp.
+  if (a != shown_a_ || b != shown_b_) b_on_a_ = std::make_shared<const LightVolume>(mix_light_volumes(*a, *b, 1.0));
+  const LightVolume mixed = mix_light_volumes(*a, *b_on_a_, blend);
+  frame_->set_light_volume(mixed);
+  shown_a_ = a;
+  shown_b_ = b;
+  shown_blend_ = blend;
+  shown_min_ = mixed.world_min;
+  shown_photons_ = a->photons;
 }
 
 Image SkyRenderer::render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
@@ -204,7 +231,7 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
     const auto start = std::chrono::steady_clock::now();
     if (update_light_volume(state, k, blend, wait)) {
       frame_->move_light_volume(shown_min_ + (motion.empty() ? glm::dvec3(0.0) : motion.front().offset_m));
-      fi.multiple = shown_current_ ? "light volume" : "light volume (stale)";
+      fi.multiple = shown_current_ ? "light volume" : shown_preview_ ? "light volume (preview)" : "light volume (stale)";
     } else {
       FrameSettings fs = frame_->settings();  // the octaves stand in until the first volume is made
       fs.slices.multiple.method = MultipleScatteringMethod::Octaves;

@@ -44,9 +44,10 @@ struct SkyFrameInfo {
   int width = 0, height = 0;      // pixels rendered
   int slices = 0;
   double upload_ms = 0.0;         // CPU time making and uploading the pair
-  // Multiple scattering drawn: "light volume" (this frame's pair and sun), "light volume (stale)"
-  // (an earlier one's, while this one's is built), or "octaves" (asked for, or standing in before
-  // the first light volume is made).
+  // Multiple scattering drawn: "light volume" (this frame's pair and sun), "light volume (preview)"
+  // (this sun's quick volume of fewer photons, while its full one is built), "light volume
+  // (stale)" (an earlier one's, while this one's is built), or "octaves" (asked for, or standing in
+  // before the first light volume is made).
   std::string multiple = "octaves";
   double light_volume_ms = 0.0;   // CPU time mixing and uploading a light volume this frame
 };
@@ -105,6 +106,16 @@ class SkyRenderer {
   double shown_blend_ = -1.0;
   glm::dvec3 shown_min_{0.0};
   bool shown_current_ = false;
+  // The light whose quick volume (a kPreviewShare-th of its photons) has been shown, and whether
+  // the volume on screen is that one.
+  std::optional<KeyframeLight> preview_of_;
+  bool shown_preview_ = false;
+  std::int64_t shown_photons_ = 0;
+  static constexpr std::int64_t kPreviewShare = 8, kPreviewMinPhotons = 1024;
+  // Uploads keyframe k's volume a mixed towards k + 1's b by `blend`, unless the same pair is on
+  // screen within `step` of that blend.
+  void show_light_volume(const std::shared_ptr<const LightVolume>& a, const std::shared_ptr<const LightVolume>& b,
+                         double blend, double step);
 };
 
 }  // namespace nimbus::render

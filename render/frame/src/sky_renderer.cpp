@@ -160,7 +160,7 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
     b = volumes_->get(light, k + 1);
   }
   if (!a) {  // the last one shown, if any, until this one is made: this light's preview, or older
-    shown_preview_ = shown_a_ != nullptr && preview_of_ && *preview_of_ == light && shown_photons_ < light.settings.photons;
+    shown_preview_ = shown_a_ != nullptr && preview_of_ && *preview_of_ == light && shown_a_->photons < light.settings.photons;
     return shown_a_ != nullptr;
   }
   const bool both = b != nullptr;
@@ -187,7 +187,6 @@ void SkyRenderer::show_light_volume(const std::shared_ptr<const LightVolume>& a,
   shown_b_ = b;
   shown_blend_ = blend;
   shown_min_ = mixed.world_min;
-  shown_photons_ = a->photons;
 }
 
 Image SkyRenderer::render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,

@@ -165,19 +165,24 @@ struct TallySink {
   void add_source(std::size_t i, double weight) const { add(source, i, weight / kSourceQuantum, shared); }
 };
 
-// Whether world point p lies in a cell marked deep.
-bool in_deep_cell(const LightVolume& v, const CellGrid& g, const std::vector<char>& deep, const glm::dvec3& p) {
+// The cell that world point p lies in, or false outside the grid.
+bool cell_at(const LightVolume& v, const CellGrid& g, const glm::dvec3& p, std::size_t& q) {
   const glm::dvec3 ijk = glm::floor((p - v.world_min) / v.cell_m);
   if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) return false;
-  return deep[g.index(int(ijk.x), int(ijk.y), int(ijk.z))] != 0;
+  q = g.index(int(ijk.x), int(ijk.y), int(ijk.z));
+  return true;
 }
 
-// Where photons hand their light to diffusion: the deep cells, and the cells with medium (the
-// solve's unknowns, the only ones a source may land in).
+// Where photons hand their light to diffusion: the deep cells, and the cells' mean optics (a
+// source lands only in cells with medium, the solve's unknowns).
 struct Handover {
-  std::vector<char> deep, solid;
-  std::vector<double> sigma_t;  // the cells' mean extinction, per metre
+  std::vector<char> deep;
+  const CellMedium* medium = nullptr;
   bool on() const { return !deep.empty(); }
+  bool deep_at(const LightVolume& v, const CellGrid& g, const glm::dvec3& p) const {
+    std::size_t q = 0;
+    return cell_at(v, g, p, q) && deep[q] != 0;
+  }
 };
 
 // Where the light that scatters at p, arriving along d, is centred: a phase of mean cosine g sends
@@ -188,9 +193,9 @@ struct Handover {
 // transport mean free paths in radius under HG 0.7: its core 11.5 % too dark).
 glm::dvec3 source_centre(const LightVolume& v, const CellGrid& g, const Handover& h, const glm::dvec3& p,
                          const glm::dvec3& d, double mean_cosine) {
-  const glm::dvec3 ijk = glm::floor((p - v.world_min) / v.cell_m);
-  if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) return p;
-  const double sigma_t = h.sigma_t[g.index(int(ijk.x), int(ijk.y), int(ijk.z))];
+  std::size_t q = 0;
+  if (!cell_at(v, g, p, q)) return p;
+  const double sigma_t = h.medium->sigma_t[q];
   if (!(sigma_t > 0.0) || !(mean_cosine > 0.0)) return p;
   return p + d * (std::min(mean_cosine, 0.95) / (sigma_t * (1.0 - std::min(mean_cosine, 0.95))));
 }
@@ -212,7 +217,7 @@ bool tally_source(const TallySink& sink, const LightVolume& v, const CellGrid& g
     const int i = int(base.x) + (corner & 1), j = int(base.y) + ((corner >> 1) & 1), k = int(base.z) + (corner >> 2);
     if (i < 0 || j < 0 || k < 0 || i >= g.nx || j >= g.ny || k >= g.nz) continue;
     const std::size_t c = g.index(i, j, k);
-    if (!h.solid[c]) continue;
+    if (!(h.medium->sigma_t[c] > 0.0)) continue;
     const double wc = ((corner & 1) ? f.x : 1.0 - f.x) * (((corner >> 1) & 1) ? f.y : 1.0 - f.y) * ((corner >> 2) ? f.z : 1.0 - f.z);
     if (!(wc > 0.0)) continue;
     cell[n] = c;
@@ -324,7 +329,7 @@ void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, c
     const CloudVolume& hit = *media[static_cast<std::size_t>(c.medium)].cloud;
     o += c.t * d;
     weight *= hit.optics.albedo;
-    if (handover.on() && bounce > settings.lobe_orders && in_deep_cell(v, g, handover.deep, o)) {
+    if (handover.on() && bounce > settings.lobe_orders && handover.deep_at(v, g, o)) {
       const glm::dvec3 centre = source_centre(v, g, handover, o, d, phase_legendre(hit.optics.phase, 1));
       if (!tally_source(sink, v, g, handover, centre, weight)) tally_source(sink, v, g, handover, o, weight);
       break;
@@ -478,9 +483,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   if (settings.diffusion_depth > 0.0) {
     arena.execute([&] { medium = cell_medium(v, g, clouds); });
     handover.deep = cells_deeper_than(g, v.cell_m, medium, settings.diffusion_depth);
-    handover.sigma_t = medium.sigma_t;
-    handover.solid.resize(g.cells());
-    for (std::size_t c = 0; c < g.cells(); ++c) handover.solid[c] = medium.sigma_t[c] > 0.0;
+    handover.medium = &medium;
   }
   const Tallies tallies = trace_photons(v, g, media, rect, settings, handover, arena);
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.

@@ -110,7 +110,6 @@ class SkyRenderer {
   // the volume on screen is that one.
   std::optional<KeyframeLight> preview_of_;
   bool shown_preview_ = false;
-  std::int64_t shown_photons_ = 0;
   static constexpr std::int64_t kPreviewShare = 8, kPreviewMinPhotons = 1024;
   // Uploads keyframe k's volume a mixed towards k + 1's b by `blend`, unless the same pair is on
   // screen within `step` of that blend.

@@ -31,6 +31,7 @@ uniform float u_march_cutoff_m;  // ray-march end for rays that hit nothing
 uniform float u_shadow_ceiling_m;  // no shadow of the sun (opaque or cloud) above this height; 1e30 = none known
 layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // tiled jitter values in [0, 1)
 uniform int u_jitter_mode;       // JITTER_* code
+uniform float u_jitter_shift;    // this frame's shift of the jitter values, modulo 1
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 #include "lib/phase.glsl"
@@ -57,10 +58,10 @@ float hash_jitter(uvec2 p) {
 }
 
 float pixel_jitter(ivec2 px) {
-  if (u_jitter_mode == JITTER_WHITE) return hash_jitter(uvec2(px));
+  if (u_jitter_mode == JITTER_WHITE) return fract(hash_jitter(uvec2(px)) + u_jitter_shift);
   if (u_jitter_mode == JITTER_BLUE_NOISE) {
     ivec2 size = textureSize(u_jitter, 0);
-    return texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r;
+    return fract(texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r + u_jitter_shift);
   }
   return 0.5;
 }

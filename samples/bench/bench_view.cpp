@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
+#include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
@@ -31,6 +32,7 @@ struct BenchViewArgs {
   double budget_ms = 100.0;
   int error_every = 3;   // compare every Nth adaptive frame with the full-quality frame
   std::string strip;     // a PNG strip of the time-lapse
+  int still_samples = 64;  // the still view's progressive samples measured (0: not measured)
 };
 
 using Clock = std::chrono::steady_clock;
@@ -178,6 +180,38 @@ std::string levels_text(const std::map<int, int>& levels) {
   return o.str();
 }
 
+// A still view's progressive samples (progressive_frame.hpp): the mean's error against the
+// 4x-supersampled frame (twice the size each way, 2x2 boxes, itself the mean of 16 samples)
+// after 1, 2, 4, ... samples, and the time they took.
+void print_still_view(const render::ViewState& start, const viewer::ViewerOptions& options,
+                      const std::vector<std::pair<int, int>>& sizes, int samples) {
+  std::printf("\n## A still view's samples on the default view (time paused): the mean against the 4x-supersampled frame\n\n");
+  std::printf("| size | samples | rel. RMSE vs 4x supersampled | median rel. | time for them, s |\n");
+  std::printf("|---|---:|---:|---:|---:|\n");
+  for (const auto& [w, h] : sizes) {
+    viewer::Viewer v(start, options);
+    v.state().paused = true;
+    v.draw(w, h, 0.0);
+    render::ProgressiveFrame fine;
+    for (unsigned i = 0; i < 16; ++i)
+      fine.add(v.render_at(2 * w, 2 * h, render::FrameQuality{1.0, 0, render::progressive_sample(i)}), "fine");
+    const render::Image reference = render::box_downsample(fine.mean(), 2);
+    render::ProgressiveFrame mean;
+    double seconds = 0.0;
+    for (int i = 0; i < samples; ++i) {
+      const auto t0 = Clock::now();
+      mean.add(v.render_at(w, h, render::FrameQuality{1.0, 0, render::progressive_sample(static_cast<unsigned>(i))}), "still");
+      seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      const int n = i + 1;
+      if ((n & (n - 1)) == 0 || n == samples) {
+        const render::ImageError e = render::compare_images(mean.mean(), reference);
+        std::printf("| %dx%d | %d | %.4f | %.4f | %.1f |\n", w, h, n, e.rel_rmse, e.median_rel, seconds);
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
 int run_bench_view(const BenchViewArgs& a) {
   std::vector<std::pair<int, int>> sizes;
   {
@@ -187,6 +221,7 @@ int run_bench_view(const BenchViewArgs& a) {
   }
   if (sizes.empty()) throw UsageError("--sizes: give at least one WxH");
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
+  if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
   check_outputs({{"--strip", a.strip}});
   const auto gl = render::GlContext::create_headless();
@@ -288,8 +323,9 @@ int run_bench_view(const BenchViewArgs& a) {
     const render::Image full = v.full_quality_frame(w, h);
     double full_ms = 0.0;
     for (int l = 0; l < viewer::kQualityLevelCount; ++l) {
-      const render::FrameQuality q{viewer::kQualityLevels[l].render_scale,
-                                   std::max(8, static_cast<int>(std::lround(start.slices.slices * viewer::kQualityLevels[l].slice_share)))};
+      render::FrameQuality q;
+      q.render_scale = viewer::kQualityLevels[l].render_scale;
+      q.slices = std::max(8, static_cast<int>(std::lround(start.slices.slices * viewer::kQualityLevels[l].slice_share)));
       double best = 1e300;
       render::Image img;
       for (int rep = 0; rep < 3; ++rep) {
@@ -302,6 +338,7 @@ int run_bench_view(const BenchViewArgs& a) {
                   full_ms / best, render::compare_images(upscale(img, w, h), full).rel_rmse);
     }
   }
+  if (a.still_samples > 0) print_still_view(start, options, sizes, a.still_samples);
   if (!a.strip.empty()) {
     // Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).
     options.wait_for_keyframes = true;
@@ -336,6 +373,9 @@ void add_bench_view(CLI::App& bench, Action& action) {
   cmd->add_option("--error-every", a->error_every, "Measure the error of every Nth adaptive frame (0: never)")
       ->capture_default_str();
   cmd->add_option("--strip", a->strip, "Also write a PNG strip of six time-lapse frames here");
+  cmd->add_option("--still-samples", a->still_samples,
+                  "A still view's progressive samples whose mean is measured against the 4x-supersampled frame (0: skip)")
+      ->capture_default_str();
   cmd->callback([&action, a] { action = [a] { return run_bench_view(*a); }; });
 }
 

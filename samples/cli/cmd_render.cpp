@@ -61,7 +61,8 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
     if (!a.camera.eye.empty() || !a.camera.look_at.empty() || !a.camera.up.empty() || a.camera.fov_deg)
       throw UsageError("--view-state: the camera comes from the state; only --res may be given");
     check_render_flags(cmd, kRenderViewState);
-    return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure);
+    const int samples = cmd.count("--spp") > 0 ? a.clouds.spp : 1;
+    return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure, samples);
   }
   if (!a.clouds.files.empty() || !a.clouds.presets.empty()) {
     check_render_flags(cmd, kRenderClouds);

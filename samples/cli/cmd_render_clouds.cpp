@@ -154,7 +154,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--ms-eccentricity", a.ms_eccentricity, "Multiple-scattering octaves: phase asymmetry scale c per octave, [0, 1]")
       ->capture_default_str();
-  cmd->add_option("--spp", a.spp, "--method pathtrace: samples per pixel")->capture_default_str();
+  cmd->add_option("--spp", a.spp, "--method pathtrace: samples per pixel; --view-state: progressive samples averaged (sub-pixel offsets, shifted jitter: the slicer's grain goes), default 1")->capture_default_str();
   cmd->add_option("--bounces", a.bounces, "--method pathtrace: scattering events per path at most (1: single scattering)")
       ->capture_default_str();
   cmd->add_option("--seed", a.seed, "--method pathtrace: random seed (the same seed gives the same image)")

@@ -9,6 +9,7 @@
 #include "outputs.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/sky/sky_keyframes.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
@@ -18,8 +19,9 @@
 namespace nimbus::cli {
 
 int run_render_view_state(const std::string& path, const CameraArgs& camera, const std::string& output,
-                          const std::string& preview, std::optional<double> exposure) {
+                          const std::string& preview, std::optional<double> exposure, int samples) {
   int width = 960, height = 540;
+  if (samples < 1 || samples > 4096) throw UsageError("--spp: must be in [1, 4096] with --view-state, got " + std::to_string(samples));
   if (!camera.res.empty()) std::tie(width, height) = parse_resolution("--res", camera.res);
   check_exposure(exposure);
   // One picture: a frame field would be written literally (a file named "o.%04d.exr").
@@ -45,9 +47,16 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   }
   render::SkyRenderer renderer(state);
   render::SkyFrameInfo info;
-  const render::Image image = naming_gpu_memory("--res", width, height, [&] {
-    return renderer.render(state, width, height, render::FrameQuality{}, true, nullptr, &info);
+  render::ProgressiveFrame mean;
+  naming_gpu_memory("--res", width, height, [&] {
+    for (int i = 0; i < samples; ++i) {
+      render::FrameQuality quality;
+      quality.sample = render::progressive_sample(static_cast<unsigned>(i));
+      mean.add(renderer.render(state, width, height, quality, true, nullptr, &info), "the state");
+    }
+    return 0;
   });
+  const render::Image& image = mean.mean();
   render::PreviewOptions po;
   po.exposure_stops = exposure ? *exposure : state.exposure_stops;
   write_image_files(output, preview, image, po);
@@ -56,6 +65,7 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   std::string size = std::to_string(info.width) + "x" + std::to_string(info.height);
   if (info.width != width || info.height != height)
     size += " (--res " + std::to_string(width) + "x" + std::to_string(height) + " at render scale " + number_text(state.render_scale) + ")";
+  if (samples > 1) size += ", " + std::to_string(samples) + " samples";
   std::fprintf(stderr, "%s: view state %s, %s, %.2f s\n", echo(output, 200).c_str(), echo(path, 200).c_str(), size.c_str(), seconds);
   return 0;
 }

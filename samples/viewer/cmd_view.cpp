@@ -36,6 +36,7 @@ struct ViewArgs {
   std::string sky, state, script, screenshot_dir = ".", shader_dir, size = "960x540", state_out;
   bool headless = false, no_adaptive = false;
   double budget_ms = 100.0;
+  int samples = 32;
 };
 
 // The shaders of the source tree this binary was built from, when it is still there (F5).
@@ -52,6 +53,7 @@ int run_view(const ViewArgs& a) {
   const auto [width, height] = parse_resolution("--size", a.size);
   if (a.headless && a.script.empty()) throw UsageError("--headless: needs --script (a window is what the interactive viewer is)");
   if (!(a.budget_ms > 0.0 && a.budget_ms <= 100000.0)) throw UsageError("--budget-ms: must be in (0, 100000]");
+  if (a.samples < 1 || a.samples > 4096) throw UsageError("--samples: must be in [1, 4096], got " + std::to_string(a.samples));
   if ((!a.sky.empty()) + (!a.presets.empty()) + (!a.files.empty()) > 1)
     throw UsageError("FILE.vdb, --preset and --sky: give one of them");
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
@@ -139,6 +141,8 @@ int run_view(const ViewArgs& a) {
   options.state_path = a.state_out.empty() ? (a.state.empty() ? "nimbus-view.json" : a.state) : a.state_out;
   options.wait_for_keyframes = !a.script.empty();
   options.frame_on_start = !a.files.empty() || !a.presets.empty();
+  // A window refines a still view; a script's frames are plain unless it asks for samples.
+  options.progressive_samples = a.script.empty() ? static_cast<unsigned>(a.samples) : static_cast<unsigned>(script.samples);
 
   std::unique_ptr<render::GlContext> headless;
   std::unique_ptr<viewer::Window> window;
@@ -188,6 +192,10 @@ void add_view_command(CLI::App& app, Action& action) {
   cmd->add_option("--shader-dir", a->shader_dir, "F5 reloads shaders from here (default: the source tree's, if present)");
   cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality: frame budget while moving, ms")->capture_default_str();
   cmd->add_flag("--no-adaptive", a->no_adaptive, "Always draw at full quality");
+  cmd->add_option("--samples", a->samples,
+                  "A still view is drawn again with sub-pixel and jitter offsets, up to this many times, and the mean "
+                  "shown (the slicer's grain goes); 1: one plain frame (scripts: their \"samples\" key)")
+      ->capture_default_str();
   cmd->callback([&action, a] { action = [a] { return run_view(*a); }; });
 }
 

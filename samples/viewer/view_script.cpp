@@ -52,6 +52,8 @@ Script load_script(const std::string& path) {
       s.screenshot_every = integer(v, key, 0, 100000);
     } else if (k == "adaptive") {
       s.adaptive = volume::json_bool(v, key);
+    } else if (k == "samples") {
+      s.samples = integer(v, key, 0, 4096);
     } else if (k == "record") {
       if (!v.is_string() || v.get<std::string>().empty()) bad(key + " must be a file name");
       s.record = v.get<std::string>();
@@ -116,7 +118,7 @@ Script load_script(const std::string& path) {
         s.events.push_back(ev);
       }
     } else {
-      bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, record, camera, events)");
+      bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, samples, record, camera, events)");
     }
   }
   // An event after the last frame would never happen: say so rather than skip it.
@@ -185,6 +187,7 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
                       {"cpu_ms", r.cpu_ms},
                       {"gpu_ms", r.stats.scene.total_ms + r.stats.clouds.total_ms},
                       {"quality_level", r.quality_level},
+                      {"samples", r.samples},
                       {"width", r.info.width},
                       {"height", r.info.height},
                       {"slices", r.info.slices},

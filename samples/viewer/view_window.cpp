@@ -170,6 +170,8 @@ int run_interactive(Window& window, Viewer& viewer) {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     window.swap();
+    // A converged still view draws nothing new: wait for input rather than spin.
+    if (viewer.converged()) glfwWaitEventsTimeout(0.1);
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -16,6 +16,16 @@
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::viewer {
+namespace {
+
+// Whether a frame showed the state as it will stay: its keyframes were there and its light
+// volume is the full one (not a preview, a stale one, or the octaves standing in).
+bool final_frame(const render::SkyFrameInfo& info, const render::ViewState& state) {
+  if (info.waited) return false;
+  return state.slices.multiple.method != render::MultipleScatteringMethod::LightVolume || info.multiple == "light volume";
+}
+
+}  // namespace
 
 Viewer::Viewer(render::ViewState state, ViewerOptions options)
     : state_(std::move(state)), options_(std::move(options)), home_(state_) {
@@ -117,17 +127,42 @@ void Viewer::set_sun(double elevation_deg, double azimuth_deg) {
   moved_ = true;
 }
 
+std::string Viewer::progressive_key(int width, int height) const {
+  return render::view_state_to_json(state_).dump() + " " + std::to_string(width) + "x" + std::to_string(height);
+}
+
 const render::Image& Viewer::draw(int width, int height, double now_s) {
   last_width_ = width;
   last_height_ = height;
+  // A still view (nothing moved, full quality, the same state and size as the mean's) draws
+  // its next progressive sample; a changed one starts again from the plain frame.
+  const std::string view_key = progressive_key(width, height);
+  const bool still = options_.progressive_samples > 0 && !moved_ && adaptive_.level() == 0 &&
+                     progressive_.samples() > 0 && progressive_.key().starts_with(view_key + " |");
+  if (still && report_.converged) return frame_;
+  if (still && progressive_.samples() >= options_.progressive_samples && final_frame(report_.info, state_)) {
+    report_.converged = true;
+    return frame_;
+  }
   const auto start = std::chrono::steady_clock::now();
   FrameReport r;
   r.quality_level = adaptive_.level();
   r.moving = moved_;
-  frame_ = renderer_->render(state_, width, height, adaptive_.quality(state_.slices.slices), options_.wait_for_keyframes,
-                             &r.stats, &r.info);
+  render::FrameQuality quality = adaptive_.quality(state_.slices.slices);
+  quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
+  render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
   // The evolution waits while its keyframes are made: carry on from what was drawn.
   if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
+  if (options_.progressive_samples > 0 && r.quality_level == 0) {
+    // What was drawn joins the key: a light volume replacing its preview, or keyframes that
+    // arrived, start a new mean although the state held still.
+    frame_ = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] + " | " +
+                                         frame.metadata["evolution_time_s"]);
+    r.samples = progressive_.samples();
+  } else {
+    progressive_.reset();
+    frame_ = std::move(frame);
+  }
   r.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   adaptive_.update(moved_, r.cpu_ms, now_s);
   moved_ = false;
@@ -147,7 +182,11 @@ void Viewer::display(int width, int height) {
 }
 
 std::string Viewer::screenshot(int width, int height) {
-  // Full quality and exactly the state, whatever the adaptive quality drew last.
+  // Full quality and exactly the state, whatever the adaptive quality drew last: the still
+  // view's mean where it is of this state and size, else a plain frame.
+  if (progressive_.samples() > 0 && progressive_.key().starts_with(progressive_key(width, height) + " |") &&
+      final_frame(report_.info, state_))
+    return write_shot(progressive_.mean());
   return write_shot(renderer_->render(state_, width, height, render::FrameQuality{}, true));
 }
 

@@ -12,6 +12,7 @@
 #include "camera_control.hpp"
 #include "display.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 
@@ -25,6 +26,10 @@ struct ViewerOptions {
   std::string shader_dir;                   // F5 reads shaders from here; empty: F5 reports it cannot
   bool wait_for_keyframes = false;          // scripts: every frame is exactly its state
   bool frame_on_start = false;              // after the first frame, frame the clouds (G) and make that home
+  // While nothing changes, draw progressive samples and show their mean (progressive_frame.hpp),
+  // up to this many; then draw nothing until something changes. 0: every frame is the plain one
+  // (scripts, unless they ask: each frame is then exactly `nimbus render --view-state`).
+  unsigned progressive_samples = 0;
 };
 
 // What the last frame cost and showed.
@@ -34,6 +39,8 @@ struct FrameReport {
   double cpu_ms = 0.0;          // the whole frame on the CPU (render, readback, display)
   bool moving = false;          // the camera or the sun moved for it
   int quality_level = 0;
+  unsigned samples = 1;         // progressive samples in the frame shown (1: a plain frame)
+  bool converged = false;       // the still view has all its samples: nothing was drawn
 };
 
 class Viewer {
@@ -70,6 +77,9 @@ class Viewer {
   // The last frame into the bound framebuffer's viewport.
   void display(int width, int height);
   const FrameReport& report() const { return report_; }
+  // The still view holds all its progressive samples: draw() draws nothing until something
+  // changes (the window may wait for input instead of spinning).
+  bool converged() const { return report_.converged; }
   const render::Image& frame() const { return frame_; }
 
   // F12: a full-quality frame of the current state at width x height into the screenshot folder
@@ -106,7 +116,10 @@ class Viewer {
   std::unique_ptr<Display> display_;
   AdaptiveQuality adaptive_;
   render::ViewState home_;
+  // The frame's progressive key: the state and size it shows, so a change starts a new mean.
+  std::string progressive_key(int width, int height) const;
   render::Image frame_;
+  render::ProgressiveFrame progressive_;
   FrameReport report_;
   bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
   int last_width_ = 0, last_height_ = 0;

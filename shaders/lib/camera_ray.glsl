@@ -10,9 +10,10 @@ layout(std140, binding = BLOCK_CAMERA) uniform CameraBlock {
   vec3 right_scaled;   // right * tan(fov/2)
   vec3 up_scaled;      // up * tan(fov/2) * height / width
   vec2 viewport;       // width, height in pixels
+  vec2 pixel_offset;   // every ray's sub-pixel shift, GL window pixels (y up)
 } camera;
 
 vec3 pixel_ray_dir(vec2 frag_coord) {
-  vec2 ndc = 2.0 * frag_coord / camera.viewport - 1.0;
+  vec2 ndc = 2.0 * (frag_coord + camera.pixel_offset) / camera.viewport - 1.0;
   return normalize(camera.forward + ndc.x * camera.right_scaled + ndc.y * camera.up_scaled);
 }

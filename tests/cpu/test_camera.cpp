@@ -70,6 +70,14 @@ TEST(Camera, ValidationNamesTheField) {
   c = tilted_camera();
   c.far_m = c.near_m;
   expect_error_naming(c, "far_m");
+  for (const glm::dvec2 o : {glm::dvec2(1.01, 0.0), glm::dvec2(0.0, -1.5), glm::dvec2(std::nan(""), 0.0)}) {
+    c = tilted_camera();
+    c.pixel_offset = o;
+    expect_error_naming(c, "pixel_offset");
+  }
+  c = tilted_camera();
+  c.pixel_offset = {-1.0, 1.0};
+  EXPECT_NO_THROW(nr::validate(c));
 }
 
 TEST(Camera, FrameIsOrthonormalAndRightHanded) {
@@ -115,8 +123,22 @@ TEST(Camera, HorizontalFieldOfViewAndAspect) {
   EXPECT_NEAR(glm::length(nr::pixel_ray(c, 3, 5)), 1.0, 1e-15);
 }
 
+TEST(Camera, PixelOffsetMovesEveryRayAcrossTheImagePlane) {
+  nr::Camera c = tilted_camera();
+  const nr::Camera centred = c;
+  c.pixel_offset = {0.375, -0.625};
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{63, 35}, std::pair{17, 22}}) {
+    const glm::dvec3 moved = nr::pixel_ray(c, x, y);
+    const glm::dvec3 expected = nr::pixel_ray(centred, x + 0.375, y - 0.625);
+    EXPECT_NEAR(angle_between(moved, expected), 0.0, 1e-14) << x << "," << y;
+    EXPECT_GT(angle_between(moved, nr::pixel_ray(centred, x, y)), 1e-4);
+  }
+}
+
 TEST(Camera, ProjectionPutsEachPixelRayAtItsPixelCentre) {
-  const nr::Camera c = tilted_camera();
+  for (const glm::dvec2 offset : {glm::dvec2(0.0), glm::dvec2(0.43, -0.91)}) {
+  nr::Camera c = tilted_camera();
+  c.pixel_offset = offset;
   const glm::dmat4 vp = nr::projection_matrix(c) * nr::view_matrix(c);
   for (int y = 0; y < c.height; y += 7) {
     for (int x = 0; x < c.width; x += 9) {
@@ -133,6 +155,7 @@ TEST(Camera, ProjectionPutsEachPixelRayAtItsPixelCentre) {
         EXPECT_LT(ndc.z, 1.0);
       }
     }
+  }
   }
 }
 

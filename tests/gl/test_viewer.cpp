@@ -219,6 +219,40 @@ TEST(Viewer, ScreenshotEqualsRenderOfItsViewState) {
   EXPECT_EQ(meta["time"]["sky"], saved["time"]["sky"]);
 }
 
+// A still view refines: a paused script with "samples": 4 draws samples 0 to 3 and then nothing
+// new; its screenshot is the mean of those samples, what `nimbus render --view-state --spp 4`
+// writes, and not the plain frame.
+TEST(Viewer, AStillViewShowsTheMeanOfItsSamplesAsRenderSppDoes) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("still");
+  json state = small_state();
+  state["time"]["paused"] = true;
+  const json script = {{"size", {160, 90}}, {"frames", 6}, {"samples", 4}, {"screenshot_every", 5},
+                       {"record", (d / "record.json")}};
+  const test::RunResult r = view(d, script, &state, "--state-out " + d / "last.json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream rec(d / "record.json");
+  const json frames = json::parse(rec);
+  ASSERT_EQ(frames.size(), 6u);
+  for (int f = 0; f < 6; ++f) EXPECT_EQ(frames[f]["samples"], std::min(f + 1, 4)) << "frame " << f;
+  for (const char* spp : {"4", "1"}) {
+    const test::RunResult off = run_nimbus("render --view-state " + d / "last.json" + " --res 160x90 --spp " + spp +
+                                           " -o " + d / (std::string("off") + spp + ".exr"));
+    ASSERT_EQ(off.code, 0) << off.output;
+  }
+  const Image still = shot(d, "shots", 2);
+  const Image mean = read_exr(d.path / "off4.exr"), plain = read_exr(d.path / "off1.exr");
+  EXPECT_EQ(still.metadata.at("progressive_samples"), "4");
+  const ImageError same = compare_images(still, mean), grain = compare_images(still, plain);
+  std::printf("[ still view, 4 samples ] against render --spp 4: %.2e; against the plain frame: %.4f\n", same.rel_rmse,
+              grain.rel_rmse);
+  EXPECT_LT(same.rel_rmse, 1e-5);
+  EXPECT_GT(grain.rel_rmse, 100.0 * std::max(same.rel_rmse, 1e-6));
+  const test::RunResult bad = run_nimbus("render --view-state " + d / "last.json" + " --res 160x90 --spp 0 -o " + d / "x.exr");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--spp"), std::string::npos) << bad.output;
+}
+
 TEST(Viewer, ShaderReloadTakesEffectAndABrokenShaderKeepsRunning) {
   NIMBUS_REQUIRE_GL();
   Dir d("reload");

@@ -58,6 +58,8 @@ void validate(const Camera& c) {
   if (c.height <= 0) fail("height", "must be > 0, got " + std::to_string(c.height));
   if (!std::isfinite(c.near_m) || !(c.near_m > 0.0)) fail("near_m", "must be finite and > 0");
   if (!std::isfinite(c.far_m) || !(c.far_m > c.near_m)) fail("far_m", "must be finite and > near_m");
+  if (!(std::abs(c.pixel_offset.x) <= 1.0) || !(std::abs(c.pixel_offset.y) <= 1.0))
+    fail("pixel_offset", "must be finite and within [-1, 1] pixels on each axis");
 }
 
 CameraFrame camera_frame(const Camera& c) {
@@ -72,19 +74,22 @@ glm::dvec3 pixel_ray(const Camera& c, double x, double y) {
   const CameraFrame f = camera_frame(c);
   const PlaneHalfExtent e = half_extent(c);
   // Normalised device coordinates of the pixel centre, y up (row 0 is the top).
-  const double ndc_x = 2.0 * (x + 0.5) / c.width - 1.0;
-  const double ndc_y = 1.0 - 2.0 * (y + 0.5) / c.height;
+  const double ndc_x = 2.0 * (x + 0.5 + c.pixel_offset.x) / c.width - 1.0;
+  const double ndc_y = 1.0 - 2.0 * (y + 0.5 + c.pixel_offset.y) / c.height;
   return glm::normalize(f.forward + (ndc_x * e.x) * f.right + (ndc_y * e.y) * f.up);
 }
 
 glm::dmat4 view_matrix(const Camera& c) { return glm::lookAtRH(c.eye, c.look_at, c.up); }
 
 glm::dmat4 projection_matrix(const Camera& c) {
-  // Symmetric frustum whose near-plane rectangle is the image plane scaled by near_m; the
-  // usual GL depth mapping of [-near, -far] (view z) onto NDC z in [-1, 1].
+  // The frustum whose near-plane rectangle is the image plane scaled by near_m, shifted by
+  // pixel_offset (a pixel is 2 e.x n / width across on the near plane; image y runs down, the
+  // frustum's up); the usual GL depth mapping of [-near, -far] (view z) onto NDC z in [-1, 1].
   const PlaneHalfExtent e = half_extent(c);
   const double n = c.near_m, f = c.far_m;
-  return glm::frustumRH_NO(-n * e.x, n * e.x, -n * e.y, n * e.y, n, f);
+  const double sx = 2.0 * n * e.x * c.pixel_offset.x / c.width;
+  const double sy = -2.0 * n * e.y * c.pixel_offset.y / c.height;
+  return glm::frustumRH_NO(-n * e.x + sx, n * e.x + sx, -n * e.y + sy, n * e.y + sy, n, f);
 }
 
 }  // namespace nimbus::render

@@ -240,6 +240,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
                                      settings_.cloud_shadow_res, cloud_renderer_->next_textures());
       shaft_renderer_->set_cloud_shadow(map ? &*map : nullptr);
       try {
+        shaft_renderer_->set_jitter_frame(settings_.slices.frame);  // one frame's jitter for every pass
         shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);
         const SceneUnderlay under{shaft_renderer_->color_texture(), shaft_renderer_->distance_texture(), &*scene_};
         image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, &under, stats ? &st.clouds : nullptr);

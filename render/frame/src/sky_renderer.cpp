@@ -20,7 +20,9 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   fs.method = CloudMethod::Slices;
   fs.slices = s.slices;
   if (q.slices > 0) fs.slices.slices = q.slices;
-  fs.slices.frame = 0;  // a fixed blue-noise pattern: no banding, and no flicker while paused
+  // A fixed blue-noise pattern per sample: no banding, and no flicker while paused; a still
+  // view's samples shift it, and their mean loses the grain (progressive_frame.hpp).
+  fs.slices.frame = q.sample.jitter_frame;
   fs.slices.ambient = true;
   fs.shafts = s.shafts;
   fs.cloud_shadow_res = s.cloud_shadow_res;
@@ -241,7 +243,8 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
   const double scale = std::clamp(state.render_scale * quality.render_scale, 0.01, 1.0);
   const auto [sw, sh] = scaled_frame_size(width, height, scale);
   const int w = std::max(1, sw), h = std::max(1, sh);
-  const Camera camera = state_camera(state, w, h, frame_->clouds());
+  Camera camera = state_camera(state, w, h, frame_->clouds());
+  camera.pixel_offset = quality.sample.pixel_offset;
   Image image = frame_->render(camera, stats);
   fi.keyframe = k;
   fi.blend = blend;

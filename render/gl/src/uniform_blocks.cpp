@@ -20,7 +20,8 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CameraBlock.forward", offsetof(CameraBlock, forward)},
         {"CameraBlock.right_scaled", offsetof(CameraBlock, right_scaled)},
         {"CameraBlock.up_scaled", offsetof(CameraBlock, up_scaled)},
-        {"CameraBlock.viewport", offsetof(CameraBlock, viewport)}}},
+        {"CameraBlock.viewport", offsetof(CameraBlock, viewport)},
+        {"CameraBlock.pixel_offset", offsetof(CameraBlock, pixel_offset)}}},
       {"LightsBlock",
        contract::BLOCK_LIGHTS,
        sizeof(LightsBlock),
@@ -73,6 +74,7 @@ CameraBlock camera_block(const Camera& camera) {
   b.right_scaled = to_float(frame.right * tan_half);
   b.up_scaled = to_float(frame.up * (tan_half * camera.height / camera.width));
   b.viewport = glm::vec2(static_cast<float>(camera.width), static_cast<float>(camera.height));
+  b.pixel_offset = glm::vec2(static_cast<float>(camera.pixel_offset.x), static_cast<float>(-camera.pixel_offset.y));
   return b;
 }
 

@@ -106,6 +106,7 @@ ShaftRenderer::ShaftRenderer(const Scene& scene, const ShaftSettings& settings)
 }
 
 void ShaftRenderer::set_cloud_shadow(const CloudShadowMap* map) { impl_->cloud_shadow = map; }
+void ShaftRenderer::set_jitter_frame(unsigned frame) { impl_->jitter_frame = frame; }
 GLuint ShaftRenderer::color_texture() const { return impl_->out.id(); }
 GLuint ShaftRenderer::distance_texture() const { return impl_->distance.id(); }
 
@@ -202,6 +203,8 @@ void ShaftRenderer::Impl::draw_shafts(const Camera& camera, const ShaderProgram&
   p.set("u_march_cutoff_m",
         static_cast<float>(sigma_t > 0 ? std::min(settings.march_cutoff_optical / sigma_t, camera.far_m) : camera.far_m));
   p.set("u_jitter_mode", jitter_code(method.jitter));
+  const double shift = jitter_frame * 0.6180339887498949;
+  p.set("u_jitter_shift", static_cast<float>(shift - std::floor(shift)));
   glBindTextureUnit(contract::UNIT_SURFACE_RADIANCE, radiance.id());
   glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, distance.id());
   glBindTextureUnit(contract::UNIT_JITTER, jitter_tex.id());

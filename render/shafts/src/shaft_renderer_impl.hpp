@@ -43,6 +43,7 @@ class ShaftMethodPass;
 struct ShaftRenderer::Impl {
   Scene scene;
   ShaftSettings settings;
+  unsigned jitter_frame = 0;  // set_jitter_frame
   shaft_detail::GpuMesh occluders, ground;
   std::vector<shaft_detail::GpuMesh> bulbs;
   GlVertexArray empty_vao;

@@ -14,6 +14,9 @@ struct Camera {
   int height = 360;                   // pixels
   double near_m = 0.05;               // GL near plane, metres (the reference ignores it)
   double far_m = 2000.0;              // GL far plane, metres (the reference ignores it)
+  // Every ray moved across the image plane by this many pixels (x right, y down), each in
+  // [-1, 1]: the sub-pixel offsets of a still view's progressive samples (progressive_frame.hpp).
+  glm::dvec2 pixel_offset{0.0, 0.0};
 };
 
 // Throws std::invalid_argument naming the field when the camera is unusable (eye == look_at,
@@ -26,12 +29,14 @@ struct CameraFrame {
 };
 CameraFrame camera_frame(const Camera& camera);
 
-// Unit direction of the ray through the centre of pixel (x, y); y = 0 is the top row.
-// Pixel (x, y) covers [x, x+1] x [y, y+1]; the image plane spans tan(fov/2) horizontally.
+// Unit direction of the ray through the centre of pixel (x, y), moved by pixel_offset; y = 0 is
+// the top row. Pixel (x, y) covers [x, x+1] x [y, y+1]; the image plane spans tan(fov/2)
+// horizontally.
 glm::dvec3 pixel_ray(const Camera& camera, double x, double y);
 
 // OpenGL matrices (right-handed view, perspective with the camera's near/far planes) that
-// put the centre of pixel (x, y) exactly where pixel_ray points.
+// put the centre of pixel (x, y) exactly where pixel_ray points (the frustum shifted by
+// pixel_offset).
 glm::dmat4 view_matrix(const Camera& camera);
 glm::dmat4 projection_matrix(const Camera& camera);
 

@@ -16,6 +16,7 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/sky/sky_keyframes.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
@@ -27,6 +28,9 @@ namespace nimbus::render {
 struct FrameQuality {
   double render_scale = 1.0;  // (0, 1], times the state's render_scale
   int slices = 0;             // 0: the state's
+  // A still view's progressive sample (progressive_sample(i), progressive_frame.hpp): its
+  // sub-pixel offset and jitter. {} is the plain frame.
+  ProgressiveSample sample;
 };
 
 // The pixels a frame of width x height is rendered at under a render scale: each side rounded,

@@ -31,12 +31,13 @@ struct CameraBlock {
   glm::vec3 up_scaled{0.0f};  // up * tan(fov/2) * height / width
   float pad2 = 0.0f;
   glm::vec2 viewport{0.0f};   // width, height in pixels
-  float pad3[2] = {0.0f, 0.0f};
+  glm::vec2 pixel_offset{0.0f};  // Camera::pixel_offset in GL window pixels (y up)
 };
 static_assert(offsetof(CameraBlock, view_proj) == 0 && offsetof(CameraBlock, eye) == 64 &&
               offsetof(CameraBlock, near_m) == 76 && offsetof(CameraBlock, forward) == 80 &&
               offsetof(CameraBlock, right_scaled) == 96 && offsetof(CameraBlock, up_scaled) == 112 &&
-              offsetof(CameraBlock, viewport) == 128 && sizeof(CameraBlock) == 144,
+              offsetof(CameraBlock, viewport) == 128 &&
+              offsetof(CameraBlock, pixel_offset) == 136 && sizeof(CameraBlock) == 144,
               "CameraBlock must follow std140 as lib/camera_ray.glsl declares it");
 
 // lib/light_list.glsl: LightsBlock.

@@ -49,6 +49,9 @@ class ShaftRenderer {
   // One frame. `method` must not be Reference (that is render_reference, on the CPU); the
   // analytic table form covers the isotropic phase only (std::invalid_argument otherwise).
   Image render(const Camera& camera, const ShaftMethod& method, ShaftFrameStats* stats = nullptr);
+  // Varies the ray march's jitter from frame to frame (CloudSliceSettings::frame): frame f adds
+  // f times the golden ratio, modulo 1, to every pixel's jitter value; 0 keeps the tile's.
+  void set_jitter_frame(unsigned frame);
 
   // The clouds' shadow (gl/cloud_shadow_map.hpp), multiplied into the sun's visibility on surfaces in
   // every method and in the fog's shafts by ray marching (the analytic and shadow-volume

@@ -12,7 +12,8 @@
 // fog's airlight in front of the clouds (cloud_composite.frag.glsl). OCTAVES: extra
 // multiple-scattering octaves (0 = single scattering). MS_VOLUME 1: the light volume's
 // in-scattered radiance of scattered light (lib/cloud_light_volume.glsl) is added to the exact
-// single scattering at each sample.
+// single scattering at each sample; MS_VOLUME 2: the same from the frame's radiance toward the
+// eye (light_volume_radiance, one cell-centre evaluation per frame instead of one per sample).
 // LAMP 1: the light is a lamp (lib/cloud_lamp.glsl): per fragment its direction, its
 // irradiance (inverse square, spot cone) and the slab along its ray, d / dot(l, s); the light
 // buffer is its perspective view (slice_light.world_to_lamp_clip). A sample on the lamp's near side of
@@ -99,7 +100,11 @@ void main() {
   float alpha = od < 1.0e-3 ? od * (1.0 - 0.5 * od) : 1.0 - exp(-od);
   float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(light_dir, q) * inv_len, tau);
 #if MS_VOLUME
-  vec3 scattered = light_volume_inscatter(v_world + k * q, -q * inv_len);
+#if MS_VOLUME == 2
+  vec3 scattered = light_volume_radiance(v_world + k * q);  // made for this eye and the clouds' phase
+#else
+  vec3 scattered = light_volume_inscatter(v_world + k * q, -q * inv_len, cloud.phase);
+#endif
   vec3 color = cloud.albedo * (irradiance * (lit + scattered) + cloud.ambient) * alpha;  // (S / sigma_t) alpha
 #else
   vec3 color = cloud.albedo * (irradiance * lit + cloud.ambient) * alpha;  // (S / sigma_t) alpha

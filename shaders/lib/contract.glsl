@@ -61,10 +61,12 @@ const int UNIT_AERIAL_SCATTERING = 17;   // sampler3D: the air's in-scattered ra
 const int UNIT_AERIAL_TRANSMITTANCE = 18; // sampler3D: the air's transmittance to a distance
 const int UNIT_LIGHT_VOLUME = 19;        // sampler3D: scattered light's fluence and flux (lib/cloud_light_volume.glsl)
 const int UNIT_SURFACE_AIRLIGHT = 20;    // sampler2D: the surface airlight's g(ln Tsp, theta_s) (lib/surface_airlight_texture.glsl)
+const int UNIT_LIGHT_RADIANCE = 21;      // sampler3D: the light volume's in-scattered radiance toward this frame's eye
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built
 const int IMAGE_CLOUD_RANGE = 1;       // image2D rg32f
+const int IMAGE_LIGHT_RADIANCE = 2;    // image3D rgba32f: the light volume's radiance toward the eye being made
 
 // --- Shader storage buffers (layout(std430, binding = ...); glBindBufferBase) -------------
 const int STORAGE_AIRLIGHT_QUERIES = 0;

@@ -93,7 +93,7 @@ TEST(ContractCodes, TextureUnitsAreDistinct) {
                        contract::UNIT_SCENE_COLOR,      contract::UNIT_CLOUD_COLOR,    contract::UNIT_CLOUD_DISTANCE,
                        contract::UNIT_CLOUD_DENSITY_NEXT, contract::UNIT_SKY_VIEW,     contract::UNIT_AERIAL_SCATTERING,
                        contract::UNIT_AERIAL_TRANSMITTANCE, contract::UNIT_LIGHT_VOLUME,
-                       contract::UNIT_SURFACE_AIRLIGHT};
+                       contract::UNIT_SURFACE_AIRLIGHT, contract::UNIT_LIGHT_RADIANCE};
   EXPECT_EQ(std::set<int>(std::begin(units), std::end(units)).size(), std::size(units));
   for (int u : units) {
     EXPECT_GE(u, 0);

@@ -43,10 +43,12 @@ std::vector<ProgramSpec> renderer_programs() {
       {{"shadow_volume_interval.vert.glsl", "shadow_volume_interval.frag.glsl"}, ""},
       {{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 1\n#define OCTAVES 2\n"},
       {{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 1\n#define OCTAVES 0\n#define MS_VOLUME 1\n"},
+      {{"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, "#define UNDERLAY 1\n#define OCTAVES 0\n#define MS_VOLUME 2\n"},
       {{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, ""},
       {{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}, ""},
       {{"fullscreen.vert.glsl", "cloud_composite.frag.glsl"}, ""},
       {{"cloud_shadow_build.comp.glsl"}, ""},
+      {{"light_volume_radiance.comp.glsl"}, ""},
       {{"airlight_eval.comp.glsl"}, ""},
   };
 }
@@ -114,6 +116,7 @@ bool is_opaque(GLint type) {
     case GL_SAMPLER_2D_ARRAY:
     case GL_SAMPLER_CUBE_MAP_ARRAY:
     case GL_IMAGE_2D:
+    case GL_IMAGE_3D:
       return true;
     default:
       return false;
@@ -137,6 +140,7 @@ const std::map<std::string, int>& expected_units() {
       {"u_frame", contract::UNIT_SCENE_COLOR},            {"u_sky_view", contract::UNIT_SKY_VIEW},
       {"u_aerial_scattering", contract::UNIT_AERIAL_SCATTERING}, {"u_aerial_transmittance", contract::UNIT_AERIAL_TRANSMITTANCE},
       {"u_light_volume", contract::UNIT_LIGHT_VOLUME},  {"u_surface_airlight_table", contract::UNIT_SURFACE_AIRLIGHT},
+      {"u_light_radiance", contract::UNIT_LIGHT_RADIANCE}, {"u_radiance", contract::IMAGE_LIGHT_RADIANCE},
   };
   return units;
 }
@@ -159,7 +163,7 @@ TEST(Contract, SamplersHaveTheirRolesUnitAndNeverShareOne) {
       const auto expected = expected_units().find(name);
       ASSERT_NE(expected, expected_units().end()) << name << " in " << describe(spec) << " has no role in the contract";
       EXPECT_EQ(unit, expected->second) << name << " in " << describe(spec);
-      const auto key = std::make_pair(type == GL_IMAGE_2D, unit);
+      const auto key = std::make_pair(type == GL_IMAGE_2D || type == GL_IMAGE_3D, unit);
       EXPECT_EQ(used.count(key), 0u) << name << " and " << used[key] << " share unit " << unit << " in "
                                      << describe(spec);
       used[key] = name;

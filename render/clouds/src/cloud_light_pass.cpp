@@ -89,12 +89,7 @@ void set_pass_uniforms(const CloudRenderer::Impl& s, const FrameContext& frame, 
   eye.set("u_view_proj", frame.camera_block.view_proj);
   eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                     static_cast<float>(ms.eccentricity)));
-  if (frame.light_volume) {
-    eye.set("u_lv_world_min", to_float(s.lv_world_min));
-    eye.set("u_lv_cell_m", to_float(s.lv_cell_m));
-    eye.set("u_lv_cells", glm::vec3(s.lv_cells));
-    eye.set("u_lv_light_dir", to_float(s.lv_light_dir));
-  }
+  if (frame.light_volume) s.set_light_volume_uniforms(eye);
   set_jitter_uniforms(eye, frame.settings);
   if (frame.underlay) {
     const Scene* scene = frame.underlay->scene;
@@ -274,7 +269,7 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Lig
   const CloudSliceSettings& settings = frame.settings;
   s.upload_mesh(plan.mesh);
   const ShaderProgram& eye = s.eye_program(frame.underlay != nullptr, frame.light_volume ? 0 : settings.multiple.octaves,
-                                           frame.light_volume, plan.lamp);
+                                           frame.light_volume ? (s.lr_made ? 2 : 1) : 0, plan.lamp);
   const ShaderProgram& lp = plan.lamp ? s.lamp_light_program : s.light_program;
   s.slice_light_ubo.update(slice_light_block(frame, light, plan));
   s.slice_light_ubo.bind(contract::BLOCK_SLICE_LIGHT);
@@ -292,7 +287,10 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Lig
       glClearNamedFramebufferfv(s.pass_fbo.id(), GL_COLOR, 1, zero);
     });
   glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
-  if (frame.light_volume) glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
+  if (frame.light_volume) {
+    glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
+    if (s.lr_made) glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, s.light_radiance_tex.id());
+  }
   if (frame.underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, frame.underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());
   const int drawn = draw_slices(s, frame, plan, eye, lp, target);

@@ -20,6 +20,7 @@
 #include "nimbus/render/core/blue_noise.hpp"
 #include "nimbus/render/core/metadata.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
+#include "nimbus/render/gl/to_float.hpp"
 #include "nimbus/render/gl/readback.hpp"
 
 namespace nimbus::render {
@@ -158,6 +159,32 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
 }
 
 bool CloudRenderer::has_light_volume() const { return impl_->light_volume_tex.id() != 0; }
+
+void CloudRenderer::Impl::set_light_volume_uniforms(const ShaderProgram& program) const {
+  program.set("u_lv_world_min", to_float(lv_world_min));
+  program.set("u_lv_cell_m", to_float(lv_cell_m));
+  program.set("u_lv_cells", glm::vec3(lv_cells));
+  program.set("u_lv_light_dir", to_float(lv_light_dir));
+}
+
+void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase) {
+  if (light_radiance_tex.id() == 0 || lr_cells != lv_cells) {
+    light_radiance_tex = make_texture_3d(GL_RGBA32F, 2 * lv_cells.x, lv_cells.y, lv_cells.z,
+                                         TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+    lr_cells = lv_cells;
+  }
+  if (!radiance_program) radiance_program.emplace(std::vector<std::string>{"light_volume_radiance.comp.glsl"});
+  const ShaderProgram& p = *radiance_program;
+  p.use();
+  set_light_volume_uniforms(p);
+  p.set("u_lr_phase", phase);
+  p.set("u_eye", to_float(eye));
+  glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, light_volume_tex.id());
+  glBindImageTexture(contract::IMAGE_LIGHT_RADIANCE, light_radiance_tex.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute((lv_cells.x + 3) / 4, (lv_cells.y + 3) / 4, (lv_cells.z + 3) / 4);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  check_gl("the light volume's radiance toward the eye");
+}
 
 void CloudRenderer::move_light_volume(const glm::dvec3& world_min) {
   if (!has_light_volume()) throw std::logic_error("cloud renderer: no light volume to move");
@@ -340,6 +367,23 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
     if (underlay) glClearNamedFramebufferfv(s.eye_fbo.id(), GL_COLOR, 1, zero);
   });
 
+  // The light volume's radiance toward this eye, once for every slice, when the clouds share one
+  // phase (in a sky they do); clouds of several phases read the volume per sample.
+  s.lr_made = false;
+  if (light_volume && !s.clouds.empty()) {
+    const DualLobePhase& g = s.clouds.front().optics.phase;
+    const auto same = [&](const CloudVolume& c) {
+      return c.optics.phase.g_forward == g.g_forward && c.optics.phase.g_back == g.g_back &&
+             c.optics.phase.forward_weight == g.forward_weight;
+    };
+    if (std::all_of(s.clouds.begin(), s.clouds.end(), same)) {
+      timer.time(kLight, [&] {
+        s.make_light_radiance(camera.eye, glm::vec3(static_cast<float>(g.g_forward), static_cast<float>(g.g_back),
+                                                    static_cast<float>(g.forward_weight)));
+      });
+      s.lr_made = true;
+    }
+  }
   // One pass per light, its radiance added into the first's.
   const FrameContext frame{camera, camera_values, settings, light_volume, underlay, timer};
   int drawn = 0;

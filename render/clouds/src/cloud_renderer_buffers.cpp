@@ -9,12 +9,12 @@
 
 namespace nimbus::render {
 
-const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves, bool light_volume, bool lamp) {
-  const auto key = std::make_tuple(underlay, octaves, light_volume, lamp);
+const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves, int ms_volume, bool lamp) {
+  const auto key = std::make_tuple(underlay, octaves, ms_volume, lamp);
   auto it = eye_programs.find(key);
   if (it == eye_programs.end()) {
     const std::string defines = "#define UNDERLAY " + std::string(underlay ? "1" : "0") + "\n#define OCTAVES " +
-                                std::to_string(octaves) + "\n#define MS_VOLUME " + (light_volume ? "1" : "0") +
+                                std::to_string(octaves) + "\n#define MS_VOLUME " + std::to_string(ms_volume) +
                                 "\n#define LAMP " + (lamp ? "1" : "0") + "\n";
     it = eye_programs.emplace(key, ShaderProgram({"cloud_slice.vert.glsl", "cloud_slice.frag.glsl"}, defines)).first;
   }

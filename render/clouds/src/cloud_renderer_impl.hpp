@@ -48,7 +48,7 @@ struct CloudRenderer::Impl {
   ShaderProgram lamp_light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 1\n"};
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
   std::optional<ShaderProgram> accumulate_program;  // the second light's pass on
-  std::map<std::tuple<bool, int, bool, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, light volume, lamp)
+  std::map<std::tuple<bool, int, int, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, MS_VOLUME, lamp)
   std::optional<ShaderProgram> composite_programs[2];  // [spots]: without and with spots in the scene
   const ShaderProgram& composite_program_for(bool spots);
   std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
@@ -80,8 +80,18 @@ struct CloudRenderer::Impl {
   glm::dvec3 lv_cell_m{0.0};
   glm::dvec3 lv_light_dir{0.0, -1.0, 0.0};
   glm::ivec3 lv_cells{0};
+  // The light volume's radiance toward this frame's eye at its cell centres, for clouds of phase
+  // lr_phase (make_light_radiance; lib/cloud_light_volume.glsl's light_volume_radiance).
+  GlTexture light_radiance_tex;
+  glm::ivec3 lr_cells{0};
+  std::optional<ShaderProgram> radiance_program;
+  bool lr_made = false;  // made for this frame: every cloud has the same phase
+  void make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase);
 
-  const ShaderProgram& eye_program(bool underlay, int octaves, bool light_volume, bool lamp);
+  // ms_volume: MS_VOLUME of cloud_slice.frag.glsl (0 none, 1 per sample, 2 the frame's radiance).
+  const ShaderProgram& eye_program(bool underlay, int octaves, int ms_volume, bool lamp);
+  // The light volume's uniforms (u_lv_*) on a program that reads it.
+  void set_light_volume_uniforms(const ShaderProgram& program) const;
   void upload_mesh(const cloud_detail::SliceMesh& mesh);
   void ensure_light_buffers(int res);
   void ensure_eye_buffers(int w, int h, bool distance);

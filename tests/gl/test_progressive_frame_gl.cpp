@@ -109,5 +109,35 @@ TEST(ProgressiveFrameGl, AStillViewConvergesToTheSupersampledFrame) {
   EXPECT_GT(plain_error, 2.0 * last_error) << "the plain frame's grain and aliasing should be what the samples remove";
 }
 
+// A resize, a sun jump and a new sample restart the mean, and nothing that reaches a frame or the
+// mean is NaN or Inf (check_image throws on either, so add() would refuse the frame).
+TEST(ProgressiveFrameGl, AResizeOrASunJumpStartsAFiniteMeanAgain) {
+  NIMBUS_REQUIRE_GL();
+  ViewState s = small_sky();
+  SkyRenderer sky(s);
+  ProgressiveFrame mean;
+  const auto key = [](const ViewState& v, int w, int h) {
+    return view_state_to_json(v).dump() + " " + std::to_string(w) + "x" + std::to_string(h);
+  };
+  struct Step {
+    int w, h;
+    double sun_elevation_deg;
+    unsigned samples;
+  };
+  for (const Step& step : {Step{160, 90, 35.0, 3}, Step{97, 53, 35.0, 2}, Step{97, 53, 2.0, 2}, Step{160, 90, 85.0, 2}}) {
+    s.sky.sun_elevation_deg = step.sun_elevation_deg;
+    for (unsigned i = 0; i < step.samples; ++i) {
+      FrameQuality q;
+      q.sample = progressive_sample(i);
+      const Image frame = sky.render(s, step.w, step.h, q, true);
+      EXPECT_NO_THROW(check_image(frame, "frame")) << step.w << "x" << step.h << " sun " << step.sun_elevation_deg;
+      mean.add(frame, key(s, step.w, step.h));
+    }
+    EXPECT_EQ(mean.samples(), step.samples) << "a new size or sun starts a new mean";
+    EXPECT_EQ(mean.mean().width, step.w);
+    EXPECT_NO_THROW(check_image(mean.mean(), "mean"));
+  }
+}
+
 }  // namespace
 }  // namespace nimbus::render

@@ -12,6 +12,7 @@
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 #include "test_gl_support.hpp"
+#include "test_small_sky.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -19,18 +20,10 @@ namespace {
 // Two small clouds over the sky scene (sky, ground, shafts), the sun low enough for shadows on
 // the ground, the octaves for multiple scattering (the light volume is not what is tested).
 ViewState small_sky() {
-  nlohmann::json sky = {{"clouds",
-                         {{{"preset", "cumulus-humilis"}, {"position", {-400, 0, 0}}, {"seed", 1}},
-                          {{"preset", "cumulus-mediocris"}, {"position", {900, 600, 0}}, {"seed", 2}}}},
-                        {"wind", {0, 0, 0}},
-                        {"sun", {{"elevation", 35}, {"azimuth", 135}}},
-                        {"voxel_size", 60},
-                        {"keyframe_interval", 10}};
-  ViewState s = view_state_from_json({{"sky", sky}}, "test state");
+  ViewState s = view_state_from_json({{"sky", test::small_sky_json(0.0, 0.0, 1.0)}, {"camera", test::small_sky_camera()}},
+                                     "test state");
   s.scene = "sky";
   s.paused = true;
-  s.camera.eye = glm::dvec3(-300, 300, 4200);
-  s.camera.look_at = glm::dvec3(300, 1400, 0);
   s.slices.multiple.method = MultipleScatteringMethod::Octaves;
   return s;
 }

@@ -18,6 +18,7 @@
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "test_gl_support.hpp"
+#include "test_small_sky.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -25,18 +26,9 @@ namespace {
 // Two small clouds at 60 m voxels, keyframes every 10 s of sky time, the clouds alone (no
 // scene), a coarse light volume of few photons: what is compared is the drawing, not the volume.
 ViewState small_sky() {
-  nlohmann::json sky = {{"clouds",
-                         {{{"preset", "cumulus-humilis"}, {"position", {-400, 0, 0}}, {"seed", 1}},
-                          {{"preset", "cumulus-mediocris"}, {"position", {900, 600, 0}}, {"seed", 2}}}},
-                        {"wind", {40, 10, 0}},
-                        {"evolution", 25.0},
-                        {"sun", {{"elevation", 35}, {"azimuth", 135}}},
-                        {"voxel_size", 60},
-                        {"keyframe_interval", 10}};
-  ViewState s = view_state_from_json({{"sky", sky}}, "test state");
+  ViewState s = view_state_from_json({{"sky", test::small_sky_json(40.0, 10.0, 25.0)}, {"camera", test::small_sky_camera()}},
+                                     "test state");
   s.scene = "none";
-  s.camera.eye = glm::dvec3(-300, 300, 4200);
-  s.camera.look_at = glm::dvec3(300, 1400, 0);
   s.slices.slices = 64;
   s.slices.light_res = 128;
   s.slices.jitter = false;

@@ -19,6 +19,7 @@
 #include "nimbus/render/image/image_metrics.hpp"
 #include "support/run_nimbus.hpp"
 #include "test_gl_support.hpp"
+#include "test_small_sky.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -41,16 +42,8 @@ void write(const std::string& path, const json& j) { std::ofstream(path) << j.du
 
 // Two small clouds at 60 m voxels that evolve quickly (keyframes every 10 s of sky time).
 json small_state() {
-  json sky = {{"clouds",
-               {{{"preset", "cumulus-humilis"}, {"position", {-400, 0, 0}}, {"seed", 1}},
-                {{"preset", "cumulus-mediocris"}, {"position", {900, 600, 0}}, {"seed", 2}}}},
-              {"wind", {12, 3, 0}},
-              {"evolution", 25.0},
-              {"sun", {{"elevation", 35}, {"azimuth", 135}}},
-              {"voxel_size", 60},
-              {"keyframe_interval", 10}};
-  return {{"sky", sky},
-          {"camera", {{"eye", {-300, 300, 4200}}, {"look_at", {300, 1400, 0}}, {"fov", 60}}},
+  return {{"sky", test::small_sky_json(12.0, 3.0, 25.0)},
+          {"camera", test::small_sky_camera()},
           {"time", {{"speed", 10.0}}},
           {"optics", {{"ms_photons", 262144}}},  // a light volume of few photons: quick to build
           {"renderer", {{"slices", 64}, {"light_res", 128}, {"cloud_shadow_res", 128}, {"shafts", "raymarch:8"}}}};

@@ -131,14 +131,17 @@ std::string Viewer::progressive_key(int width, int height) const {
   return render::view_state_to_json(state_).dump() + " " + std::to_string(width) + "x" + std::to_string(height);
 }
 
+bool Viewer::mean_is_of(int width, int height) const {
+  return progressive_.samples() > 0 && progressive_.key().starts_with(progressive_key(width, height) + " |");
+}
+
 const render::Image& Viewer::draw(int width, int height, double now_s) {
   last_width_ = width;
   last_height_ = height;
   // A still view (nothing moved, full quality, the same state and size as the mean's) draws
   // its next progressive sample; a changed one starts again from the plain frame.
   const std::string view_key = progressive_key(width, height);
-  const bool still = options_.progressive_samples > 0 && !moved_ && adaptive_.level() == 0 &&
-                     progressive_.samples() > 0 && progressive_.key().starts_with(view_key + " |");
+  const bool still = options_.progressive_samples > 0 && !moved_ && adaptive_.level() == 0 && mean_is_of(width, height);
   if (still && report_.converged) return frame_;
   if (still && progressive_.samples() >= options_.progressive_samples && final_frame(report_.info, state_)) {
     report_.converged = true;
@@ -184,8 +187,7 @@ void Viewer::display(int width, int height) {
 std::string Viewer::screenshot(int width, int height) {
   // Full quality and exactly the state, whatever the adaptive quality drew last: the still
   // view's mean where it is of this state and size, else a plain frame.
-  if (progressive_.samples() > 0 && progressive_.key().starts_with(progressive_key(width, height) + " |") &&
-      final_frame(report_.info, state_))
+  if (mean_is_of(width, height) && final_frame(report_.info, state_))
     return write_shot(progressive_.mean());
   return write_shot(renderer_->render(state_, width, height, render::FrameQuality{}, true));
 }

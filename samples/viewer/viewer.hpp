@@ -118,6 +118,8 @@ class Viewer {
   render::ViewState home_;
   // The frame's progressive key: the state and size it shows, so a change starts a new mean.
   std::string progressive_key(int width, int height) const;
+  // Whether the progressive mean holds samples of the current state at this size.
+  bool mean_is_of(int width, int height) const;
   render::Image frame_;
   render::ProgressiveFrame progressive_;
   FrameReport report_;

@@ -269,7 +269,7 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Lig
   const CloudSliceSettings& settings = frame.settings;
   s.upload_mesh(plan.mesh);
   const ShaderProgram& eye = s.eye_program(frame.underlay != nullptr, frame.light_volume ? 0 : settings.multiple.octaves,
-                                           frame.light_volume ? (s.lr_made ? 2 : 1) : 0, plan.lamp);
+                                           frame.light_volume ? (frame.light_radiance ? 2 : 1) : 0, plan.lamp);
   const ShaderProgram& lp = plan.lamp ? s.lamp_light_program : s.light_program;
   s.slice_light_ubo.update(slice_light_block(frame, light, plan));
   s.slice_light_ubo.bind(contract::BLOCK_SLICE_LIGHT);
@@ -289,7 +289,7 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Lig
   glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
   if (frame.light_volume) {
     glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
-    if (s.lr_made) glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, s.light_radiance_tex.id());
+    if (frame.light_radiance) glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, s.light_radiance_tex.id());
   }
   if (frame.underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, frame.underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());

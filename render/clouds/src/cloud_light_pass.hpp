@@ -40,6 +40,7 @@ struct FrameContext {
   const CameraBlock& camera_block;
   const CloudSliceSettings& settings;
   bool light_volume = false;              // the multiple-scattering method reads the light volume
+  bool light_radiance = false;            // ...from the radiance made toward this eye (MS_VOLUME 2)
   const SceneUnderlay* underlay = nullptr;
   GpuTimer& timer;
 };

@@ -369,7 +369,7 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
 
   // The light volume's radiance toward this eye, once for every slice, when the clouds share one
   // phase (in a sky they do); clouds of several phases read the volume per sample.
-  s.lr_made = false;
+  bool light_radiance = false;
   if (light_volume && !s.clouds.empty()) {
     const DualLobePhase& g = s.clouds.front().optics.phase;
     const auto same = [&](const CloudVolume& c) {
@@ -381,11 +381,11 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
         s.make_light_radiance(camera.eye, glm::vec3(static_cast<float>(g.g_forward), static_cast<float>(g.g_back),
                                                     static_cast<float>(g.forward_weight)));
       });
-      s.lr_made = true;
+      light_radiance = true;
     }
   }
   // One pass per light, its radiance added into the first's.
-  const FrameContext frame{camera, camera_values, settings, light_volume, underlay, timer};
+  const FrameContext frame{camera, camera_values, settings, light_volume, light_radiance, underlay, timer};
   int drawn = 0;
   SliceAxis first_axis;
   std::string lamp_notes;

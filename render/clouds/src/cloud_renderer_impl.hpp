@@ -85,7 +85,6 @@ struct CloudRenderer::Impl {
   GlTexture light_radiance_tex;
   glm::ivec3 lr_cells{0};
   std::optional<ShaderProgram> radiance_program;
-  bool lr_made = false;  // made for this frame: every cloud has the same phase
   void make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase);
 
   // ms_volume: MS_VOLUME of cloud_slice.frag.glsl (0 none, 1 per sample, 2 the frame's radiance).

@@ -7,7 +7,9 @@
 // (spots among them, lib/lamp_airlight.glsl) take A * A_fog(0, D) at the alpha-weighted mean
 // distance D. With a physical sky the air's aerial perspective (lib/aerial_perspective.glsl)
 // hazes the clouds at D and the surfaces at their distance: x -> x T_air + S_air (weighted by
-// alpha for the clouds). Output alpha 1.
+// alpha for the clouds). Output alpha 1. Second output, for carrying the frame into the next
+// (temporal_frame.hpp, pixel_depths.hpp): the distance to what the pixel mostly shows (D where
+// A >= 1/2, else the surface's, 0 for the sky) and A.
 in vec2 uv;
 #include "lib/camera_ray.glsl"
 #include "lib/light_list.glsl"
@@ -22,6 +24,7 @@ uniform float u_sigma_s;             // fog scattering, per metre
 uniform int u_phase_kind;            // PHASE_* code
 uniform float u_phase_g;
 layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec2 o_depth;
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -50,5 +53,7 @@ void main() {
       scene = scene * T + S;
     }
   }
+  float surface_m = max(texelFetch(u_scene_distance, px, 0).r, 0.0);
+  o_depth = vec2(A >= 0.5 ? D : surface_m, A);
   o_color = vec4(scene * (1.0 - A) + clouds + air, 1.0);
 }

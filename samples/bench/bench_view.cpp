@@ -17,6 +17,7 @@
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/core/image_resample.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
@@ -33,7 +34,28 @@ struct BenchViewArgs {
   int error_every = 3;   // compare every Nth adaptive frame with the full-quality frame
   std::string strip;     // a PNG strip of the time-lapse
   int still_samples = 64;  // the still view's progressive samples measured (0: not measured)
+  std::string paths;       // path names to run (as the table names them), separated by '|'; empty: all
 };
+
+// The paths' names, as the table prints them; --paths takes them separated by '|'.
+const std::string kPathNames[] = {"orbit", "orbit, octaves", "orbit, temporal", "time-lapse", "time-lapse, temporal", "sun drag"};
+
+std::vector<std::string> split_paths(const std::string& paths) {
+  std::vector<std::string> out;
+  if (paths.empty()) return out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = paths.find('|', start);
+    out.push_back(paths.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return out;
+    start = end + 1;
+  }
+}
+
+bool path_chosen(const std::string& paths, const std::string& name) {
+  const std::vector<std::string> names = split_paths(paths);
+  return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -43,26 +65,6 @@ double percentile(std::vector<double> v, double q) {
   const double x = q * (v.size() - 1);
   const std::size_t i = static_cast<std::size_t>(x);
   return i + 1 < v.size() ? v[i] + (x - i) * (v[i + 1] - v[i]) : v.back();
-}
-
-// Bilinear upscaling with pixel centres at +0.5, as the display's linear filtering does.
-render::Image upscale(const render::Image& src, int w, int h) {
-  if (src.width == w && src.height == h) return src;
-  render::Image out(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const double sx = std::clamp((x + 0.5) * src.width / w - 0.5, 0.0, src.width - 1.0);
-      const double sy = std::clamp((y + 0.5) * src.height / h - 0.5, 0.0, src.height - 1.0);
-      const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
-      const int x1 = std::min(x0 + 1, src.width - 1), y1 = std::min(y0 + 1, src.height - 1);
-      const double fx = sx - x0, fy = sy - y0;
-      for (int c = 0; c < 4; ++c) {
-        const double v = (1 - fy) * ((1 - fx) * src.pixel(x0, y0)[c] + fx * src.pixel(x1, y0)[c]) +
-                         fy * ((1 - fx) * src.pixel(x0, y1)[c] + fx * src.pixel(x1, y1)[c]);
-        out.pixel(x, y)[c] = static_cast<float>(v);
-      }
-    }
-  return out;
 }
 
 struct PathResult {
@@ -82,6 +84,7 @@ struct PathResult {
   // The sun drag: per drag, real ms from its last step to the first frame lit by a volume of the
   // new sun (its preview or its full volume) and to the first with its full volume.
   std::vector<double> sun_first_ms, sun_full_ms;
+  std::vector<double> temporal_ms;  // the accumulation's CPU time per frame (temporal paths)
 };
 
 // The passes of a frame whose GPU time bench view reports, in drawing order.
@@ -135,6 +138,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     v.draw(w, h, clock);
     const viewer::FrameReport& rep = v.report();
     r.ms.push_back(rep.cpu_ms);
+    if (rep.temporal_frames > 0) r.temporal_ms.push_back(rep.temporal_ms);
     add_pass_times(r, rep.stats);
     r.levels[rep.quality_level]++;
     r.held += rep.info.waited;
@@ -157,7 +161,7 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     if (adaptive && error_every > 0 && f % error_every == 0) {
       // Outside the clock: the viewer does not see the time this takes.
       const render::Image full = v.full_quality_frame(w, h);
-      r.errors.push_back(render::compare_images(upscale(v.frame(), w, h), full).rel_rmse);
+      r.errors.push_back(render::compare_images(render::upscale_bilinear(v.frame(), w, h), full).rel_rmse);
       last = Clock::now();
     }
   }
@@ -170,10 +174,10 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
   return r;
 }
 
-std::string levels_text(const std::map<int, int>& levels) {
+std::string levels_text(const std::map<int, int>& levels, bool temporal) {
   std::ostringstream o;
   for (const auto& [l, n] : levels) {
-    const viewer::QualityLevel& q = viewer::kQualityLevels[l];
+    const viewer::QualityLevel& q = (temporal ? viewer::kTemporalQualityLevels : viewer::kQualityLevels)[l];
     if (o.tellp() > 0) o << ", ";
     o << "x" << q.render_scale << "/" << q.slice_share << ": " << n;
   }
@@ -223,6 +227,10 @@ int run_bench_view(const BenchViewArgs& a) {
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
+  for (const std::string& name : split_paths(a.paths))
+    if (std::find(std::begin(kPathNames), std::end(kPathNames), name) == std::end(kPathNames))
+      throw UsageError("--paths: unknown path '" + name + "' (known: orbit|orbit, octaves|orbit, temporal|time-lapse|"
+                       "time-lapse, temporal|sun drag)");
   check_outputs({{"--strip", a.strip}});
   const auto gl = render::GlContext::create_headless();
   const render::ViewState start = render::default_view_state();
@@ -256,15 +264,21 @@ int run_bench_view(const BenchViewArgs& a) {
       bool adaptive;
       const char* name;
       bool octaves = false;  // the octaves instead of the light volume: what the volume costs
+      bool temporal = false; // the moving frames accumulated (ViewerOptions::temporal)
     };
     for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
-                           Row{Path::Orbit, true, "orbit"}, Row{Path::TimeLapse, true, "time-lapse"},
+                           Row{Path::Orbit, true, "orbit"}, Row{Path::Orbit, true, "orbit, temporal", false, true},
+                           Row{Path::TimeLapse, true, "time-lapse"},
+                           Row{Path::TimeLapse, true, "time-lapse, temporal", false, true},
                            Row{Path::SunDrag, false, "sun drag"}}) {
+      if (!path_chosen(a.paths, row.name)) continue;
       if (row.path == Path::SunDrag && start.slices.multiple.method != render::MultipleScatteringMethod::LightVolume) continue;
       if (row.octaves && start.slices.multiple.method == render::MultipleScatteringMethod::Octaves) continue;
       render::ViewState state = start;
       if (row.octaves) state.slices.multiple.method = render::MultipleScatteringMethod::Octaves;
-      viewer::Viewer v(state, options);
+      viewer::ViewerOptions row_options = options;
+      row_options.temporal = row.temporal;
+      viewer::Viewer v(state, row_options);
       v.adaptive().budget_ms = a.budget_ms;
       v.draw(w, h, 0.0);  // the first pair and every program, before timing
       const PathResult r = run_path(v, row.path, w, h, a.frames, row.adaptive, a.error_every);
@@ -280,7 +294,7 @@ int run_bench_view(const BenchViewArgs& a) {
       if (r.volumes > 0) std::snprintf(lv, sizeof lv, "%lld (%.2f s)", static_cast<long long>(r.volumes), r.volume_s / r.volumes);
       std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s | %s | %d / %d |\n", w, h, row.name,
                   row.adaptive ? "adaptive" : "full (anchor)", a.frames, med, percentile(r.ms, 0.95),
-                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels).c_str(), err,
+                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels, row.temporal).c_str(), err,
                   kf, r.held, gen, lv, r.stale, r.stand_in);
       std::fflush(stdout);
       if (row.path == Path::SunDrag) {
@@ -294,6 +308,9 @@ int run_bench_view(const BenchViewArgs& a) {
                     r.sun_first_ms.size(), kDragSteps, kDragStepDeg, text(r.sun_first_ms).c_str(), r.preview,
                     text(r.sun_full_ms).c_str());
       }
+      if (!r.temporal_ms.empty())
+        std::printf("|  | %s: the accumulation (TemporalFrame::add, CPU) %.1f ms median of the frame | | | | | | | | | | | | | |\n",
+                    row.name, percentile(r.temporal_ms, 0.5));
       char name[96];
       std::snprintf(name, sizeof name, "%dx%d | %s | %s", w, h, row.name, row.adaptive ? "adaptive" : "full (anchor)");
       pass_rows.push_back({name, r});
@@ -335,7 +352,7 @@ int run_bench_view(const BenchViewArgs& a) {
       }
       if (l == 0) full_ms = best;
       std::printf("| %dx%d | %d | %.2f | %d | %.0f | %.1fx | %.4f |\n", w, h, l, q.render_scale, q.slices, best,
-                  full_ms / best, render::compare_images(upscale(img, w, h), full).rel_rmse);
+                  full_ms / best, render::compare_images(render::upscale_bilinear(img, w, h), full).rel_rmse);
     }
   }
   if (a.still_samples > 0) print_still_view(start, options, sizes, a.still_samples);
@@ -372,6 +389,7 @@ void add_bench_view(CLI::App& bench, Action& action) {
   cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality's frame budget while moving")->capture_default_str();
   cmd->add_option("--error-every", a->error_every, "Measure the error of every Nth adaptive frame (0: never)")
       ->capture_default_str();
+  cmd->add_option("--paths", a->paths, "Only these paths, by the table's names separated by '|' (e.g. 'orbit|orbit, temporal')");
   cmd->add_option("--strip", a->strip, "Also write a PNG strip of six time-lapse frames here");
   cmd->add_option("--still-samples", a->still_samples,
                   "A still view's progressive samples whose mean is measured against the 4x-supersampled frame (0: skip)")

@@ -11,8 +11,8 @@ void AdaptiveQuality::update(bool moving, double frame_ms, double now_s) {
     last_motion_s = now_s;
     // A frame costs about pixels x slices: predict each level from this frame and take the best
     // one that fits the budget (the cheapest when none does).
-    auto cost = [](int l) {
-      const QualityLevel& q = kQualityLevels[l];
+    auto cost = [this](int l) {
+      const QualityLevel& q = level_values(l);
       return q.render_scale * q.render_scale * (0.5 + 0.5 * q.slice_share);
     };
     const double now_cost = cost(level_);
@@ -30,7 +30,7 @@ void AdaptiveQuality::update(bool moving, double frame_ms, double now_s) {
 }
 
 render::FrameQuality AdaptiveQuality::quality(int full_slices) const {
-  const QualityLevel& q = kQualityLevels[level()];
+  const QualityLevel& q = level_values(level());
   render::FrameQuality f;
   f.render_scale = q.render_scale;
   f.slices = std::max(8, static_cast<int>(std::lround(full_slices * q.slice_share)));

@@ -14,18 +14,24 @@ struct QualityLevel {
 };
 // Level 0 is full quality; each next one is cheaper.
 inline constexpr QualityLevel kQualityLevels[] = {{1.0, 1.0}, {0.75, 0.75}, {0.5, 0.5}, {0.5, 0.34}, {0.35, 0.25}, {0.25, 0.2}};
+// The same number of levels for accumulated frames (ViewerOptions::temporal): the accumulation
+// recovers the pixels a smaller frame drops, not the slices, so the pixels go first.
+inline constexpr QualityLevel kTemporalQualityLevels[] = {{1.0, 1.0}, {0.75, 1.0}, {0.5, 1.0}, {0.5, 0.75}, {0.35, 0.6}, {0.25, 0.5}};
 inline constexpr int kQualityLevelCount = sizeof(kQualityLevels) / sizeof(kQualityLevels[0]);
+static_assert(sizeof(kTemporalQualityLevels) == sizeof(kQualityLevels));
 
 class AdaptiveQuality {
  public:
   double budget_ms = 100.0;  // per frame while moving
   double settle_s = 0.3;     // still this long (real time) before full quality returns
   bool enabled = true;
+  bool temporal = false;     // the levels of kTemporalQualityLevels
 
   // After a frame: whether the camera or sun moved for it, what it cost, and the real time now.
   void update(bool moving, double frame_ms, double now_s);
   int level() const { return enabled ? level_ : 0; }
   render::FrameQuality quality(int full_slices) const;
+  const QualityLevel& level_values(int level) const { return (temporal ? kTemporalQualityLevels : kQualityLevels)[level]; }
 
  private:
   int level_ = 0;

@@ -34,7 +34,7 @@ struct ViewArgs {
   std::vector<std::string> files, presets;
   std::string scene, grid, up = "auto";
   std::string sky, state, script, screenshot_dir = ".", shader_dir, size = "960x540", state_out;
-  bool headless = false, no_adaptive = false;
+  bool headless = false, no_adaptive = false, no_temporal = false;
   double budget_ms = 100.0;
   int samples = 32;
 };
@@ -143,6 +143,8 @@ int run_view(const ViewArgs& a) {
   options.frame_on_start = !a.files.empty() || !a.presets.empty();
   // A window refines a still view; a script's frames are plain unless it asks for samples.
   options.progressive_samples = a.script.empty() ? static_cast<unsigned>(a.samples) : static_cast<unsigned>(script.samples);
+  // A window accumulates moving frames; a script's frames are plain unless it asks.
+  options.temporal = a.script.empty() ? !a.no_temporal : script.temporal;
 
   std::unique_ptr<render::GlContext> headless;
   std::unique_ptr<viewer::Window> window;
@@ -192,6 +194,9 @@ void add_view_command(CLI::App& app, Action& action) {
   cmd->add_option("--shader-dir", a->shader_dir, "F5 reloads shaders from here (default: the source tree's, if present)");
   cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality: frame budget while moving, ms")->capture_default_str();
   cmd->add_flag("--no-adaptive", a->no_adaptive, "Always draw at full quality");
+  cmd->add_flag("--no-temporal", a->no_temporal,
+                "While the view or the clock moves, show each frame alone, scaled up, instead of accumulated with the "
+                "last ones, reprojected (scripts: their \"temporal\" key)");
   cmd->add_option("--samples", a->samples,
                   "A still view is drawn again with sub-pixel and jitter offsets, up to this many times, and the mean "
                   "shown (the slicer's grain goes); 1: one plain frame (scripts: their \"samples\" key)")

@@ -35,9 +35,13 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
   ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("nimbus");
   ImGui::PushItemWidth(-190.0f);  // room for the labels on the right
-  ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d, %u sample%s%s)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
-              r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.samples, r.samples == 1 ? "" : "s",
-              r.converged ? ", still" : "");
+  if (r.temporal_frames > 0)
+    ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d, %u frames accumulated)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
+                r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.temporal_frames);
+  else
+    ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d, %u sample%s%s)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
+                r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.samples, r.samples == 1 ? "" : "s",
+                r.converged ? ", still" : "");
   if (!viewer.message().empty()) ImGui::TextWrapped("%s", viewer.message().c_str());
   if (!viewer.shader_error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", viewer.shader_error().c_str());
 
@@ -148,6 +152,8 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     slider("exposure (stops)", s.exposure_stops, -6.0, 6.0, "%.2f");
     AdaptiveQuality& a = viewer.adaptive();
     ImGui::Checkbox("adaptive quality", &a.enabled);
+    bool temporal = viewer.temporal();
+    if (ImGui::Checkbox("accumulate moving frames", &temporal)) viewer.set_temporal(temporal);
     slider("frame budget (ms)", a.budget_ms, 10.0, 1000.0, "%.0f", true);
   }
   if (ImGui::CollapsingHeader("Frame times", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -54,6 +54,8 @@ Script load_script(const std::string& path) {
       s.adaptive = volume::json_bool(v, key);
     } else if (k == "samples") {
       s.samples = integer(v, key, 0, 4096);
+    } else if (k == "temporal") {
+      s.temporal = volume::json_bool(v, key);
     } else if (k == "record") {
       if (!v.is_string() || v.get<std::string>().empty()) bad(key + " must be a file name");
       s.record = v.get<std::string>();
@@ -118,7 +120,7 @@ Script load_script(const std::string& path) {
         s.events.push_back(ev);
       }
     } else {
-      bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, samples, record, camera, events)");
+      bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, samples, temporal, record, camera, events)");
     }
   }
   // An event after the last frame would never happen: say so rather than skip it.
@@ -188,6 +190,7 @@ int run_script(const Script& s, Viewer& viewer, const std::function<void()>& pre
                       {"gpu_ms", r.stats.scene.total_ms + r.stats.clouds.total_ms},
                       {"quality_level", r.quality_level},
                       {"samples", r.samples},
+                      {"temporal_frames", r.temporal_frames},
                       {"width", r.info.width},
                       {"height", r.info.height},
                       {"slices", r.info.slices},

@@ -34,6 +34,7 @@ struct Script {
   int screenshot_every = 0;       // 0: none; else frames 0, K, 2K, ...
   bool adaptive = false;          // on: the adaptive quality runs (on measured frame times, against the script's clock)
   int samples = 0;                // a still view's progressive samples (ViewerOptions); 0: plain frames
+  bool temporal = false;          // moving frames through the temporal frame (ViewerOptions)
   std::string record;             // a JSON file of every frame's clocks, keyframes and costs; empty: none
   std::vector<ScriptCameraKey> camera;
   std::vector<ScriptEvent> events;

@@ -3,6 +3,7 @@
 
 #include "nimbus/base/staged_files.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +31,7 @@ bool final_frame(const render::SkyFrameInfo& info, const render::ViewState& stat
 Viewer::Viewer(render::ViewState state, ViewerOptions options)
     : state_(std::move(state)), options_(std::move(options)), home_(state_) {
   render::validate(state_);
+  adaptive_.temporal = options_.temporal;
   renderer_ = std::make_unique<render::SkyRenderer>(state_);
   display_ = std::make_unique<Display>();
 }
@@ -125,6 +127,7 @@ void Viewer::set_sun(double elevation_deg, double azimuth_deg) {
   state_.sky.sun_elevation_deg = elevation_deg;
   state_.sky.sun_azimuth_deg = azimuth_deg;
   moved_ = true;
+  reset_temporal_ = true;  // another light on everything: nothing of the last frames carries over
 }
 
 std::string Viewer::progressive_key(int width, int height) const {
@@ -151,23 +154,32 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   FrameReport r;
   r.quality_level = adaptive_.level();
   r.moving = moved_;
+  // With the temporal frame, a running clock is motion too: the frames are drawn small and
+  // accumulated, as while the camera moves.
+  const bool clock_runs = !state_.paused && state_.speed != 0.0;
+  const bool animating = moved_ || (options_.temporal && clock_runs);
   render::FrameQuality quality = adaptive_.quality(state_.slices.slices);
-  quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
-  render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
-  // The evolution waits while its keyframes are made: carry on from what was drawn.
-  if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
-  if (options_.progressive_samples > 0 && r.quality_level == 0) {
+  if (options_.temporal && animating && !still) {
+    frame_ = draw_temporal(width, height, quality, r);
+  } else {
+    temporal_.reset();
+    quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
+    render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
+    // The evolution waits while its keyframes are made: carry on from what was drawn.
+    if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
+    if (options_.progressive_samples > 0 && r.quality_level == 0) {
     // What was drawn joins the key: a light volume replacing its preview, or keyframes that
     // arrived, start a new mean although the state held still.
-    frame_ = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] + " | " +
-                                         frame.metadata["evolution_time_s"]);
-    r.samples = progressive_.samples();
-  } else {
-    progressive_.reset();
-    frame_ = std::move(frame);
+      frame_ = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] + " | " +
+                                           frame.metadata["evolution_time_s"]);
+      r.samples = progressive_.samples();
+    } else {
+      progressive_.reset();
+      frame_ = std::move(frame);
+    }
   }
   r.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  adaptive_.update(moved_, r.cpu_ms, now_s);
+  adaptive_.update(animating, r.cpu_ms, now_s);
   moved_ = false;
   report_ = r;
   if (options_.frame_on_start && !framed_) {
@@ -178,6 +190,35 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
     home_.camera.look_at = state_.camera.look_at;
   }
   return frame_;
+}
+
+void Viewer::set_temporal(bool on) {
+  options_.temporal = on;
+  adaptive_.temporal = on;
+  reset_temporal_ = true;
+}
+
+render::Image Viewer::draw_temporal(int width, int height, render::FrameQuality quality, FrameReport& r) {
+  progressive_.reset();
+  quality.sample.pixel_offset = render::temporal_pixel_offset(temporal_index_);
+  quality.sample.jitter_frame = temporal_index_;
+  ++temporal_index_;
+  render::PixelDepths depths;
+  render::Image frame =
+      renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info, &depths);
+  if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
+  // A light volume replacing its preview or a stale one relights everything: start again.
+  if (reset_temporal_ || r.info.multiple != temporal_multiple_) temporal_.reset();
+  reset_temporal_ = false;
+  const glm::dvec3 shift = temporal_.frames() > 0 ? r.info.cloud_offset_m - temporal_offset_m_ : glm::dvec3(0.0);
+  temporal_offset_m_ = r.info.cloud_offset_m;
+  temporal_multiple_ = r.info.multiple;
+  const auto [ow, oh] = render::scaled_frame_size(width, height, std::clamp(state_.render_scale, 0.01, 1.0));
+  const auto start = std::chrono::steady_clock::now();
+  render::Image shown = temporal_.add(frame, r.info.camera, depths, std::max(ow, frame.width), std::max(oh, frame.height), shift);
+  r.temporal_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  r.temporal_frames = temporal_.frames();
+  return shown;
 }
 
 void Viewer::display(int width, int height) {
@@ -240,6 +281,7 @@ void Viewer::reload_shaders() {
     renderer->render(state_, 64, 36, render::FrameQuality{}, false);
     renderer_ = std::move(renderer);
     display_ = std::move(display);
+    reset_temporal_ = true;
     shader_error_.clear();
     message_ = "shaders reloaded from " + options_.shader_dir;
   } catch (const std::exception& e) {
@@ -273,6 +315,7 @@ void Viewer::load_state() {
   try {
     state_ = render::load_view_state(options_.state_path);
     moved_ = true;
+    reset_temporal_ = true;
     message_ = "loaded " + options_.state_path;
   } catch (const std::exception& e) {
     message_ = std::string("load failed: ") + e.what();

@@ -13,6 +13,7 @@
 #include "display.hpp"
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/core/temporal_frame.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 
@@ -30,6 +31,11 @@ struct ViewerOptions {
   // up to this many; then draw nothing until something changes. 0: every frame is the plain one
   // (scripts, unless they ask: each frame is then exactly `nimbus render --view-state`).
   unsigned progressive_samples = 0;
+  // While the camera, the sun or the clock move, draw each frame small (the adaptive quality's
+  // level) with a sub-pixel jitter and show it accumulated with the last ones, reprojected
+  // (temporal_frame.hpp); the adaptive quality then treats a running clock as motion. false:
+  // each frame is the level's frame, scaled up (scripts, unless they ask).
+  bool temporal = false;
 };
 
 // What the last frame cost and showed.
@@ -40,6 +46,8 @@ struct FrameReport {
   bool moving = false;          // the camera or the sun moved for it
   int quality_level = 0;
   unsigned samples = 1;         // progressive samples in the frame shown (1: a plain frame)
+  unsigned temporal_frames = 0; // frames accumulated in the temporal frame shown (0: not one)
+  double temporal_ms = 0.0;     // CPU time of the accumulation (TemporalFrame::add)
   bool converged = false;       // the still view has all its samples: nothing was drawn
 };
 
@@ -51,6 +59,9 @@ class Viewer {
   render::ViewState& state() { return state_; }
   const render::ViewState& state() const { return state_; }
   AdaptiveQuality& adaptive() { return adaptive_; }
+  // Whether moving frames are accumulated (ViewerOptions::temporal); the panel switches it.
+  bool temporal() const { return options_.temporal; }
+  void set_temporal(bool on);
   bool fly_mode() const { return fly_; }
   bool quit_requested() const { return quit_; }
   // How many saves, loads and screenshots have failed so far (each also sets message()): a
@@ -122,6 +133,16 @@ class Viewer {
   bool mean_is_of(int width, int height) const;
   render::Image frame_;
   render::ProgressiveFrame progressive_;
+  // The temporal frame (options_.temporal): its history, the next frame's jitter index, the
+  // clouds' drift and the multiple scattering of the last frame it took; reset_temporal_: the
+  // next frame starts it again (a new sun, state or programs).
+  render::TemporalFrame temporal_;
+  unsigned temporal_index_ = 1;
+  glm::dvec3 temporal_offset_m_{0.0};
+  std::string temporal_multiple_;
+  bool reset_temporal_ = false;
+  // Draws this frame through the temporal frame; returns the frame shown.
+  render::Image draw_temporal(int width, int height, render::FrameQuality quality, FrameReport& r);
   FrameReport report_;
   bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
   int last_width_ = 0, last_height_ = 0;

@@ -92,6 +92,14 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
   EXPECT_EQ(run("bench look --lighting side-lit").code, 2);
 }
 
+// `nimbus bench view --paths`: a name the table does not print is a usage error, named, before
+// any context is made.
+TEST(BenchSmoke, BenchViewRefusesAnUnknownPath) {
+  const Result r = run("bench view --paths 'orbit|spiral'");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("'spiral'"), std::string::npos) << r.output;
+}
+
 // `nimbus bench look --view below --lighting back-lit --phases hg`: only the chosen case runs,
 // with a row per light-volume variant asked for (lobes and fits on and off), all finite.
 TEST(BenchLook, ChosenCasesSeenFromBelow) {

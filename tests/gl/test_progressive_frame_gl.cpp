@@ -17,16 +17,7 @@
 namespace nimbus::render {
 namespace {
 
-// Two small clouds over the sky scene (sky, ground, shafts), the sun low enough for shadows on
-// the ground, the octaves for multiple scattering (the light volume is not what is tested).
-ViewState small_sky() {
-  ViewState s = view_state_from_json({{"sky", test::small_sky_json(0.0, 0.0, 1.0)}, {"camera", test::small_sky_camera()}},
-                                     "test state");
-  s.scene = "sky";
-  s.paused = true;
-  s.slices.multiple.method = MultipleScatteringMethod::Octaves;
-  return s;
-}
+ViewState small_sky() { return test::small_sky_still_state(); }
 
 // `a` moved by (dx, dy) pixels against `b`, over the pixels both hold: rel RMSE of a(x, y)
 // against b(x + dx, y + dy).

@@ -338,6 +338,35 @@ TEST(Viewer, AdaptiveQualityDropsInMotionAndRefinesWhenStill) {
   }
 }
 
+// With the temporal frame, a running clock is motion: every frame is drawn small and joins the
+// accumulated one, which a new sun starts again.
+TEST(Viewer, MovingFramesAccumulateUntilTheSunMoves) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("temporal");
+  const json state = small_state();
+  const json script = {{"size", {160, 96}}, {"frames", 8}, {"dt", 0.1}, {"adaptive", true}, {"temporal", true},
+                       {"record", d / "record.json"}, {"screenshot_every", 8},
+                       {"events", {{{"frame", 1}, {"drag", {10, 0}}}, {{"frame", 5}, {"sun", {20, 200}}}}}};
+  const test::RunResult r = view(d, script, &state, "--budget-ms 0.001");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(d / "record.json");
+  const json rec = json::parse(in);
+  ASSERT_EQ(rec.size(), 8u);
+  for (int f = 0; f < 8; ++f) {
+    const unsigned want = f < 5 ? f + 1 : f - 4;  // the sun's move at frame 5 starts again
+    EXPECT_EQ(rec[f]["temporal_frames"], want) << "frame " << f;
+  }
+  for (int f = 1; f < 8; ++f) {
+    EXPECT_EQ(rec[f]["width"], 40) << f;   // the accumulated frames' lowest level: 0.25 x 160
+    EXPECT_EQ(rec[f]["slices"], 32) << f;  // and half the slices (kTemporalQualityLevels)
+  }
+  // Frame 0, at full quality, is saved as shown: the window's size, the first of its frames.
+  const Image first = shot(d, "shots", 1);
+  EXPECT_EQ(first.width, 160);
+  EXPECT_EQ(first.metadata.at("temporal_frames"), "1");
+  EXPECT_NO_THROW(check_image(first, "accumulated frame"));
+}
+
 TEST(Viewer, BadInputGetsOneLineAndItsExitCode) {
   Dir d("errors");
   test::RunResult r = run_nimbus("view --headless");

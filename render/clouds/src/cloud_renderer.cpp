@@ -310,7 +310,7 @@ const ShaderProgram& CloudRenderer::Impl::composite_program_for(bool spots) {
   return *p;
 }
 
-Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h) {
+Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h, PixelDepths* depths) {
   const Scene* scene = underlay.scene;
   const ShaderProgram& cp = composite_program_for(scene != nullptr && any_spot(scene->lamps));
   const Medium fog = scene ? scene->medium : Medium{0.0, 0.0, Phase{}};
@@ -338,12 +338,19 @@ Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& ti
     draw_fullscreen_triangle(empty_vao);
   });
   check_gl("cloud composite");
+  if (depths) {
+    depths->width = w;
+    depths->height = h;
+    depths->values = read_rg(out_fbo, w, h, GL_COLOR_ATTACHMENT1);
+  }
   return read_rgba(out_fbo, w, h);
 }
 
 Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_lights,
-                            const CloudSliceSettings& settings, const SceneUnderlay* underlay, CloudFrameStats* stats) {
+                            const CloudSliceSettings& settings, const SceneUnderlay* underlay, CloudFrameStats* stats,
+                            PixelDepths* depths) {
   validate_frame(camera, all_lights, settings, underlay);
+  if (depths) *depths = PixelDepths{};
   Impl& s = *impl_;
   const bool light_volume = settings.multiple.method == MultipleScatteringMethod::LightVolume;
   if (light_volume && !has_light_volume())
@@ -397,7 +404,7 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
     drawn += draw_light_pass(s, frame, light, plan, static_cast<int>(pass));
   }
 
-  Image img = underlay ? s.composite(*underlay, timer, w, h) : read_rgba(s.eye_fbo, w, h);
+  Image img = underlay ? s.composite(*underlay, timer, w, h, depths) : read_rgba(s.eye_fbo, w, h);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   try {
     check_image(img, "cloud slices");

@@ -56,10 +56,12 @@ void CloudRenderer::Impl::ensure_eye_buffers(int w, int h, bool distance) {
     eye_distance = make_texture_2d(GL_RGBA32F, w, h, nearest);
     eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}, {GL_COLOR_ATTACHMENT1, eye_distance.id()}});
     out_color = make_texture_2d(GL_RGBA32F, w, h, nearest);
-    out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out_color.id()}});
+    out_depth = make_texture_2d(GL_RG32F, w, h, nearest);
+    out_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, out_color.id()}, {GL_COLOR_ATTACHMENT1, out_depth.id()}});
   } else {
     eye_distance.reset();
     out_color.reset();
+    out_depth.reset();
     out_fbo.reset();
     eye_fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, eye_color.id()}});
   }

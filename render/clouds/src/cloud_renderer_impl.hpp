@@ -67,7 +67,7 @@ struct CloudRenderer::Impl {
 
   int eye_w = 0, eye_h = 0;
   bool eye_has_distance = false;
-  GlTexture eye_color, eye_distance, out_color;
+  GlTexture eye_color, eye_distance, out_color, out_depth;  // out_depth: RG32F (distance, cloud alpha)
   GlFramebuffer eye_fbo, out_fbo;
   // The second light's pass on draws here, then adds its radiance into eye_color.
   int pass_w = 0, pass_h = 0;
@@ -97,8 +97,9 @@ struct CloudRenderer::Impl {
   void ensure_pass_buffers(int w, int h);
   // Buffers and programs for a frame of w x h with `passes` lights (and an underlay or not).
   void prepare_frame(int w, int h, const CloudSliceSettings& settings, std::size_t passes, bool underlay);
-  // The clouds (and the fog in front of them) over the underlay's scene, read back.
-  Image composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h);
+  // The clouds (and the fog in front of them) over the underlay's scene, read back, with what
+  // each pixel shows when `depths` is given.
+  Image composite(const SceneUnderlay& underlay, GpuTimer& timer, int w, int h, PixelDepths* depths);
 };
 
 }  // namespace nimbus::render

@@ -211,8 +211,9 @@ double FrameRenderer::update_light_volume() {
   return 1000.0 * v.build_seconds;
 }
 
-Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
+Image FrameRenderer::render(const Camera& camera, FrameStats* stats, PixelDepths* depths) {
   validate(camera);
+  if (depths) *depths = PixelDepths{};
   FrameStats st;
   Image image;
   if (settings_.method == CloudMethod::Reference) {
@@ -243,7 +244,7 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats) {
         shaft_renderer_->set_jitter_frame(settings_.slices.frame);  // one frame's jitter for every pass
         shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);
         const SceneUnderlay under{shaft_renderer_->color_texture(), shaft_renderer_->distance_texture(), &*scene_};
-        image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, &under, stats ? &st.clouds : nullptr);
+        image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, &under, stats ? &st.clouds : nullptr, depths);
       } catch (...) {
         shaft_renderer_->set_cloud_shadow(nullptr);  // the map dies here
         throw;

@@ -192,7 +192,7 @@ void SkyRenderer::show_light_volume(const std::shared_ptr<const LightVolume>& a,
 }
 
 Image SkyRenderer::render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
-                          FrameStats* stats, SkyFrameInfo* info) {
+                          FrameStats* stats, SkyFrameInfo* info, PixelDepths* depths) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw std::invalid_argument("sky frame size must be in [1, 16384] pixels per side");
   apply(state, quality);
@@ -245,7 +245,9 @@ Image SkyRenderer::render(const ViewState& state, int width, int height, const F
   const int w = std::max(1, sw), h = std::max(1, sh);
   Camera camera = state_camera(state, w, h, frame_->clouds());
   camera.pixel_offset = quality.sample.pixel_offset;
-  Image image = frame_->render(camera, stats);
+  Image image = frame_->render(camera, stats, depths);
+  fi.camera = camera;
+  fi.cloud_offset_m = motion.empty() ? glm::dvec3(0.0) : motion.front().offset_m;
   fi.keyframe = k;
   fi.blend = blend;
   fi.evolution_time_s = fi.waited ? (static_cast<double>(k) + blend) * drawn_->interval_s() : state.evolution_time_s;

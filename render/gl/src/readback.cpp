@@ -87,6 +87,9 @@ std::vector<float> read_red(GLuint framebuffer, int width, int height, GLenum re
 std::vector<float> read_red(const GlFramebuffer& framebuffer, int width, int height, GLenum read_buffer) {
   return read_red(framebuffer.id(), width, height, read_buffer);
 }
+std::vector<float> read_rg(const GlFramebuffer& framebuffer, int width, int height, GLenum read_buffer) {
+  return read_framebuffer(framebuffer.id(), width, height, read_buffer, GL_RG, 2);
+}
 std::vector<float> read_red_texture(GLuint texture, int width, int height, int level) {
   return read_texture(texture, width, height, level, GL_RED, 1);
 }

@@ -14,6 +14,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/pixel_depths.hpp"
 #include "nimbus/render/core/light_volume.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/cloud_slice_settings.hpp"
@@ -87,8 +88,11 @@ class CloudRenderer {
   // its perspective view); their radiance adds up, the coverage is the first pass's, the ambient
   // term enters once. Lights left out are named in the metadata key "lights_left_out". A lamp
   // takes the octaves method of multiple scattering (std::invalid_argument with light-volume).
+  // `depths`: with an underlay, what each pixel shows and how far (pixel_depths.hpp), read back
+  // from the composite; without one it is left empty.
   Image render(const Camera& camera, const std::vector<Light>& lights, const CloudSliceSettings& settings,
-               const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr);
+               const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr,
+               PixelDepths* depths = nullptr);
 
   struct Impl;
 

@@ -114,8 +114,9 @@ class FrameRenderer {
   // waits for each pass to finish); without, nothing waits. Metadata: the scene's (describe_frame, method
   // "slices over <shafts>"), the clouds', the slicer's or the reference's settings, and "device".
   // Throws std::logic_error when no clouds were set, std::runtime_error when a pixel came out
-  // NaN or infinite.
-  Image render(const Camera& camera, FrameStats* stats = nullptr);
+  // NaN or infinite. `depths`: what each pixel shows and how far (pixel_depths.hpp), for the
+  // Slices method over a scene; otherwise left empty.
+  Image render(const Camera& camera, FrameStats* stats = nullptr, PixelDepths* depths = nullptr);
 
  private:
   std::optional<Scene> scene_;

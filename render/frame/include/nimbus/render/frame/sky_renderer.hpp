@@ -54,6 +54,8 @@ struct SkyFrameInfo {
   // before the first light volume is made).
   std::string multiple = "octaves";
   double light_volume_ms = 0.0;   // CPU time mixing and uploading a light volume this frame
+  glm::dvec3 cloud_offset_m{0.0};  // the wind's drift of every cloud at this sky time, render space
+  Camera camera;                  // the camera drawn (its size and pixel offset)
 };
 
 // The camera a state describes, at a size (near and far planes fitted to the clouds).
@@ -80,8 +82,9 @@ class SkyRenderer {
   // otherwise draw the nearest made evolution time at or before the state's (never waiting).
   // Applies a changed sky (new keyframes), sun, optics and settings first. Throws
   // std::runtime_error when keyframe generation failed, std::invalid_argument for a bad state.
+  // `depths`: what each pixel shows and how far, for the temporal frame (FrameRenderer::render).
   Image render(const ViewState& state, int width, int height, const FrameQuality& quality, bool wait,
-               FrameStats* stats = nullptr, SkyFrameInfo* info = nullptr);
+               FrameStats* stats = nullptr, SkyFrameInfo* info = nullptr, PixelDepths* depths = nullptr);
 
   // The clouds as last drawn (moved); empty before the first frame.
   const std::vector<CloudVolume>& clouds() const;

@@ -25,6 +25,10 @@ std::vector<float> read_red(const GlFramebuffer& framebuffer, int width, int hei
                             GLenum read_buffer = GL_COLOR_ATTACHMENT0);
 std::vector<float> read_red_texture(GLuint texture, int width, int height, int level = 0);
 std::vector<float> read_red(const GlTexture& texture, int width, int height, int level = 0);
+// The red and green channels (two-channel results), same layout and flip: width * height * 2
+// floats, interleaved.
+std::vector<float> read_rg(const GlFramebuffer& framebuffer, int width, int height,
+                           GLenum read_buffer = GL_COLOR_ATTACHMENT0);
 // A depth texture's values in [0, 1], same layout and flip.
 std::vector<float> read_depth_texture(GLuint texture, int width, int height);
 

@@ -1,0 +1,322 @@
+// Temporal upsampling with reprojection (temporal_frame.hpp).
+#include "nimbus/render/core/temporal_frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "nimbus/render/core/progressive_frame.hpp"
+
+namespace nimbus::render {
+namespace {
+
+// A smooth bump of a squared distance: (1 - d2 / r2)^2 within r, 0 beyond (a cheap Gaussian).
+inline double bump(double d2, double r2) {
+  const double t = std::max(0.0, 1.0 - d2 / r2);
+  return t * t;
+}
+
+// The history is clipped to the new samples' weighted mean +- this many standard deviations.
+constexpr double kClipSpread = 1.25;
+
+// A camera's frame and image plane, with pixel centres at whole coordinates: pixel (i, j) is at
+// (i, j), row 0 at the top (the pixel_ray convention less its half pixel).
+struct View {
+  glm::dvec3 eye, right, up, forward;
+  double half_x = 1.0, half_y = 1.0;  // tan of the half field of view, across and up
+  int width = 1, height = 1;
+  glm::dvec2 offset{0.0};
+};
+
+View view_of(const Camera& c) {
+  const CameraFrame f = camera_frame(c);
+  View v;
+  v.eye = c.eye;
+  v.right = f.right;
+  v.up = f.up;
+  v.forward = f.forward;
+  v.half_x = std::tan(0.5 * c.fov_deg * M_PI / 180.0);
+  v.half_y = v.half_x * c.height / c.width;
+  v.width = c.width;
+  v.height = c.height;
+  v.offset = c.pixel_offset;
+  return v;
+}
+
+glm::dvec3 centre_ray(const View& v, int x, int y) {
+  const double nx = 2.0 * (x + 0.5) / v.width - 1.0, ny = 1.0 - 2.0 * (y + 0.5) / v.height;
+  return glm::normalize(v.forward + (nx * v.half_x) * v.right + (ny * v.half_y) * v.up);
+}
+
+// Where `rel` (a point less the eye, or a direction) lands on v's image, in pixel-centre
+// coordinates; false behind the eye.
+bool project(const View& v, const glm::dvec3& rel, glm::dvec2& at) {
+  const double z = glm::dot(rel, v.forward);
+  if (!(z > 1e-9 * glm::length(rel))) return false;
+  const double nx = glm::dot(rel, v.right) / (z * v.half_x), ny = glm::dot(rel, v.up) / (z * v.half_y);
+  at = {(nx + 1.0) * 0.5 * v.width - 0.5, (1.0 - ny) * 0.5 * v.height - 0.5};
+  return std::isfinite(at.x) && std::isfinite(at.y);
+}
+
+struct Rgba {
+  float c[4] = {0, 0, 0, 0};
+};
+
+const float* texel(const std::vector<float>& img, int w, int h, int x, int y) {
+  x = std::clamp(x, 0, w - 1);
+  y = std::clamp(y, 0, h - 1);
+  return img.data() + (static_cast<std::size_t>(y) * w + x) * 4;
+}
+
+Rgba bilinear(const std::vector<float>& img, int w, int h, double x, double y) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  const float* a = texel(img, w, h, x0, y0);
+  const float* b = texel(img, w, h, x0 + 1, y0);
+  const float* c = texel(img, w, h, x0, y0 + 1);
+  const float* d = texel(img, w, h, x0 + 1, y0 + 1);
+  Rgba out;
+  for (int k = 0; k < 4; ++k)
+    out.c[k] = (1 - ty) * ((1 - tx) * a[k] + tx * b[k]) + ty * ((1 - tx) * c[k] + tx * d[k]);
+  return out;
+}
+
+// Catmull-Rom weights of the four texels around t in [0, 1).
+void catmull_rom(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t;
+  w[0] = 0.5f * (-t3 + 2 * t2 - t);
+  w[1] = 0.5f * (3 * t3 - 5 * t2 + 2);
+  w[2] = 0.5f * (-3 * t3 + 4 * t2 + t);
+  w[3] = 0.5f * (t3 - t2);
+}
+
+// The history read with a Catmull-Rom filter: a resampling that stays sharp frame after frame
+// (its overshoot is clamped afterwards, with the neighbourhood).
+Rgba bicubic(const std::vector<float>& img, int w, int h, double x, double y) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  float wx[4], wy[4];
+  catmull_rom(static_cast<float>(x - fx), wx);
+  catmull_rom(static_cast<float>(y - fy), wy);
+  const int x0 = static_cast<int>(fx) - 1, y0 = static_cast<int>(fy) - 1;
+  int xs[4], ys[4];
+  for (int i = 0; i < 4; ++i) {
+    xs[i] = std::clamp(x0 + i, 0, w - 1) * 4;
+    ys[i] = std::clamp(y0 + i, 0, h - 1);
+  }
+  Rgba out;
+  for (int j = 0; j < 4; ++j) {
+    const float* row = img.data() + static_cast<std::size_t>(ys[j]) * w * 4;
+    float r[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 4; ++i) {
+      const float* t = row + xs[i];
+      for (int k = 0; k < 4; ++k) r[k] += wx[i] * t[k];
+    }
+    for (int k = 0; k < 4; ++k) out.c[k] += wy[j] * r[k];
+  }
+  return out;
+}
+
+double bilinear_weight(const std::vector<float>& weight, int w, int h, double x, double y) {
+  const double fx = std::floor(x), fy = std::floor(y), tx = x - fx, ty = y - fy;
+  auto at = [&](int i, int j) {
+    return static_cast<double>(weight[static_cast<std::size_t>(std::clamp(j, 0, h - 1)) * w + std::clamp(i, 0, w - 1)]);
+  };
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+// A small-frame pixel's 3x3 neighbourhood: its samples' mean, mean square and extremes per
+// channel; and the distance (0: the sky) and clouds' alpha the pixel is carried by: its own, or
+// the nearest cloud's among its neighbours when one is nearer (a cloud's edge over the sky or
+// the ground moves with the cloud, Karis 2014's nearest depth; a surface keeps its own, which on
+// a ground seen at a grazing angle differs from row to row).
+struct Neighbourhood {
+  float mean[4] = {0, 0, 0, 0}, meansq[4] = {0, 0, 0, 0}, lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+  float distance = 0.0f, alpha = 0.0f;
+};
+
+std::vector<Neighbourhood> neighbourhoods(const Image& frame, const PixelDepths& depths) {
+  const int w = frame.width, h = frame.height;
+  std::vector<Neighbourhood> out(static_cast<std::size_t>(w) * h);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        Neighbourhood& n = out[static_cast<std::size_t>(y) * w + x];
+        for (int c = 0; c < 4; ++c) n.lo[c] = n.hi[c] = frame.pixel(x, y)[c];
+        int count = 0;
+        for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j)
+          for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i) {
+            const float* p = frame.pixel(i, j);
+            ++count;
+            for (int c = 0; c < 4; ++c) {
+              n.mean[c] += p[c];
+              n.meansq[c] += p[c] * p[c];
+              n.lo[c] = std::min(n.lo[c], p[c]);
+              n.hi[c] = std::max(n.hi[c], p[c]);
+            }
+          }
+        if (!depths.empty()) {
+          n.distance = depths.distance_m(x, y);
+          n.alpha = depths.cloud_alpha(x, y);
+          for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j)
+            for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i) {
+              const float d = depths.distance_m(i, j);
+              if (depths.cloud_alpha(i, j) >= 0.5f && d > 0.0f && (n.distance == 0.0f || d < n.distance)) {
+                n.distance = d;
+                n.alpha = depths.cloud_alpha(i, j);
+              }
+            }
+        }
+        for (int c = 0; c < 4; ++c) {
+          n.mean[c] /= count;
+          n.meansq[c] /= count;
+        }
+      }
+  });
+  return out;
+}
+
+// The statistics' mean and mean square read bilinearly at (x, y) of the small frame.
+Neighbourhood blend_stats(const std::vector<Neighbourhood>& stats, int w, int h, double x, double y) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
+  const int x0 = std::clamp(static_cast<int>(fx), 0, w - 1), x1 = std::clamp(static_cast<int>(fx) + 1, 0, w - 1);
+  const int y0 = std::clamp(static_cast<int>(fy), 0, h - 1), y1 = std::clamp(static_cast<int>(fy) + 1, 0, h - 1);
+  const Neighbourhood* q[4] = {&stats[static_cast<std::size_t>(y0) * w + x0], &stats[static_cast<std::size_t>(y0) * w + x1],
+                               &stats[static_cast<std::size_t>(y1) * w + x0], &stats[static_cast<std::size_t>(y1) * w + x1]};
+  const float wt[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
+  Neighbourhood m;
+  for (int i = 0; i < 4; ++i)
+    for (int c = 0; c < 4; ++c) {
+      m.mean[c] += wt[i] * q[i]->mean[c];
+      m.meansq[c] += wt[i] * q[i]->meansq[c];
+    }
+  return m;
+}
+
+void check_inputs(const Image& frame, const Camera& camera, const PixelDepths& depths, int out_w, int out_h) {
+  check_image(frame, "temporal frame");
+  validate(camera);
+  if (camera.width != frame.width || camera.height != frame.height)
+    throw std::invalid_argument("temporal frame: the camera is " + std::to_string(camera.width) + "x" +
+                                std::to_string(camera.height) + ", the frame " + std::to_string(frame.width) + "x" +
+                                std::to_string(frame.height));
+  if (out_w < 1 || out_h < 1 || out_w > 16384 || out_h > 16384)
+    throw std::invalid_argument("temporal frame: the output size must be in [1, 16384] pixels per side");
+  if (frame.width > out_w || frame.height > out_h)
+    throw std::invalid_argument("temporal frame: a " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                " frame is larger than its " + std::to_string(out_w) + "x" + std::to_string(out_h) +
+                                " output");
+  if (!depths.empty()) {
+    if (depths.width != frame.width || depths.height != frame.height ||
+        depths.values.size() != 2 * static_cast<std::size_t>(frame.width) * frame.height)
+      throw std::invalid_argument("temporal frame: its depths are not the frame's size");
+    for (const float v : depths.values)
+      if (!std::isfinite(v) || v < 0.0f) throw std::invalid_argument("temporal frame: a depth is negative or not finite");
+  }
+}
+
+}  // namespace
+
+void validate(const TemporalSettings& s) {
+  if (!(s.max_history > 0.0 && s.max_history <= 1e6))
+    throw std::invalid_argument("temporal settings max_history: must be in (0, 1e6] samples");
+}
+
+glm::dvec2 temporal_pixel_offset(unsigned index) { return progressive_sample(index).pixel_offset; }
+
+TemporalFrame::TemporalFrame(TemporalSettings settings) : settings_(settings) { validate(settings_); }
+
+void TemporalFrame::reset() {
+  output_ = Image();
+  weight_.clear();
+  frames_ = 0;
+}
+
+const Image& TemporalFrame::add(const Image& frame, const Camera& camera, const PixelDepths& depths, int out_w,
+                                int out_h, const glm::dvec3& cloud_shift_m) {
+  check_inputs(frame, camera, depths, out_w, out_h);
+  if (!(std::isfinite(cloud_shift_m.x) && std::isfinite(cloud_shift_m.y) && std::isfinite(cloud_shift_m.z)))
+    throw std::invalid_argument("temporal frame: the clouds' shift is not finite");
+  Camera out_camera = camera;
+  out_camera.width = out_w;
+  out_camera.height = out_h;
+  out_camera.pixel_offset = glm::dvec2(0.0);
+  const bool history = frames_ > 0 && output_.width == out_w && output_.height == out_h;
+  const View now = view_of(out_camera), small = view_of(camera), before = view_of(camera_);
+  Camera small_centred = camera;
+  small_centred.pixel_offset = glm::dvec2(0.0);
+  const double aspect = now.half_y / view_of(small_centred).half_y;
+  const double spacing_x = static_cast<double>(out_w) / frame.width, spacing_y = static_cast<double>(out_h) / frame.height;
+
+  const std::vector<Neighbourhood> stats = neighbourhoods(frame, depths);
+  Image next(out_w, out_h);
+  std::vector<float> next_weight(static_cast<std::size_t>(out_w) * out_h, 0.0f);
+  const int fw = frame.width, fh = frame.height;
+  tbb::parallel_for(tbb::blocked_range<int>(0, out_h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < out_w; ++x) {
+        const glm::dvec3 dir = centre_ray(now, x, y);
+        // This pixel's centre on the small frame's grid (its samples at whole + offset): the
+        // same view, whose height may be rounded to another aspect.
+        const double nx = 2.0 * (x + 0.5) / out_w - 1.0, ny = 1.0 - 2.0 * (y + 0.5) / out_h;
+        const glm::dvec2 at{(nx + 1.0) * 0.5 * fw - 0.5, (1.0 - ny * aspect) * 0.5 * fh - 0.5};
+        const int si = std::clamp(static_cast<int>(std::lround(at.x - small.offset.x)), 0, fw - 1);
+        const int sj = std::clamp(static_cast<int>(std::lround(at.y - small.offset.y)), 0, fh - 1);
+        // The nearest sample and how near it fell (in output pixels).
+        const float* nearest = frame.pixel(si, sj);
+        const double dx = (si + small.offset.x - at.x) * spacing_x, dy = (sj + small.offset.y - at.y) * spacing_y;
+        const double k = bump(dx * dx + dy * dy, 1.5);  // near Karis 2014's exp(-2.29 d^2), without the exp
+        // The range the history is clamped to: the samples' mean and spread around the pixel,
+        // read bilinearly from the small frame's 3x3 statistics (so the range changes smoothly
+        // from pixel to pixel, Salvi 2016's variance clipping), within the nearest sample's
+        // neighbourhood's extremes; and the nearest sample's distance, for the reprojection.
+        const Neighbourhood& n = stats[static_cast<std::size_t>(sj) * fw + si];
+        const Neighbourhood m = blend_stats(stats, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
+        Rgba lo, hi;
+        for (int c = 0; c < 4; ++c) {
+          const double spread = std::sqrt(std::max(0.0f, m.meansq[c] - m.mean[c] * m.mean[c]));
+          lo.c[c] = static_cast<float>(std::max<double>(n.lo[c], m.mean[c] - kClipSpread * spread));
+          hi.c[c] = static_cast<float>(std::min<double>(n.hi[c], m.mean[c] + kClipSpread * spread));
+          if (lo.c[c] > hi.c[c]) lo.c[c] = hi.c[c] = 0.5f * (lo.c[c] + hi.c[c]);
+        }
+        const double distance = n.distance, alpha = n.alpha;
+        Rgba carried = bilinear(frame.rgba, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
+        double h = 1.0;  // the upsampled frame stands in for a history worth one sample
+        glm::dvec2 from;
+        if (history) {
+          // Where this pixel's surface was in the last frame: the clouds carried by the wind.
+          glm::dvec3 rel = dir;
+          if (distance > 0.0) rel = camera.eye + distance * dir - (alpha >= 0.5 ? cloud_shift_m : glm::dvec3(0.0)) - before.eye;
+          if (project(before, rel, from) && from.x >= -0.5 && from.y >= -0.5 && from.x <= out_w - 0.5 &&
+              from.y <= out_h - 0.5) {
+            carried = bicubic(output_.rgba, out_w, out_h, from.x, from.y);
+            for (int c = 0; c < 4; ++c) carried.c[c] = std::clamp(carried.c[c], lo.c[c], hi.c[c]);
+            h = bilinear_weight(weight_, out_w, out_h, from.x, from.y);
+          }
+        }
+        float* o = next.pixel(x, y);
+        const double total = h + k;
+        for (int c = 0; c < 4; ++c) {
+          const double v = (h * carried.c[c] + k * nearest[c]) / total;
+          o[c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : nearest[c];
+        }
+        next_weight[static_cast<std::size_t>(y) * out_w + x] = static_cast<float>(std::min(total, settings_.max_history));
+      }
+  });
+  next.metadata = frame.metadata;
+  frames_ = history ? frames_ + 1 : 1;
+  next.metadata["temporal_frames"] = std::to_string(frames_);
+  next.metadata["temporal_from"] = std::to_string(fw) + "x" + std::to_string(fh);
+  output_ = std::move(next);
+  weight_ = std::move(next_weight);
+  camera_ = out_camera;
+  return output_;
+}
+
+}  // namespace nimbus::render

@@ -8,8 +8,9 @@
 // distance D. With a physical sky the air's aerial perspective (lib/aerial_perspective.glsl)
 // hazes the clouds at D and the surfaces at their distance: x -> x T_air + S_air (weighted by
 // alpha for the clouds). Output alpha 1. Second output, for carrying the frame into the next
-// (temporal_frame.hpp, pixel_depths.hpp): the distance to what the pixel mostly shows (D where
-// A >= 1/2, else the surface's, 0 for the sky) and A.
+// (temporal_frame.hpp, pixel_depths.hpp): the distance to what carries the pixel's detail (D
+// where A >= 1/2 or where clouds are over the sky, else the surface's, else 0 for the sky) and
+// 1 when that is the clouds'.
 in vec2 uv;
 #include "lib/camera_ray.glsl"
 #include "lib/light_list.glsl"
@@ -54,6 +55,7 @@ void main() {
     }
   }
   float surface_m = max(texelFetch(u_scene_distance, px, 0).r, 0.0);
-  o_depth = vec2(A >= 0.5 ? D : surface_m, A);
+  bool on_clouds = D > 0.0 && (A >= 0.5 || (surface_m == 0.0 && A > 1.0e-3));
+  o_depth = vec2(on_clouds ? D : surface_m, on_clouds ? 1.0 : 0.0);
   o_color = vec4(scene * (1.0 - A) + clouds + air, 1.0);
 }

@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
+#include "bench_view_accumulated.hpp"
 #include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/core/image_resample.hpp"
 #include "nimbus/render/sky/view_state.hpp"
@@ -355,6 +356,8 @@ int run_bench_view(const BenchViewArgs& a) {
                   full_ms / best, render::compare_images(render::upscale_bilinear(img, w, h), full).rel_rmse);
     }
   }
+  print_accumulated_levels(start, options, sizes);
+  print_accumulated_motion(start, sizes);
   if (a.still_samples > 0) print_still_view(start, options, sizes, a.still_samples);
   if (!a.strip.empty()) {
     // Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).

@@ -20,6 +20,13 @@ inline double bump(double d2, double r2) {
   return t * t;
 }
 
+// How much a clipped history is still trusted: its weight times exp(-kTrust m), m how far the
+// clip moved it, as a share of the clip's range (a history the new samples disown counts for
+// little). And the weight of the new frame upsampled, always in the blend: where the history is
+// gone, the pixel is what the frame alone would show, not its nearest point sample. Chosen on
+// the default sky orbiting at 1 and 1.8 degrees a frame at a quarter of the pixels (docs/viewer.md).
+constexpr double kTrust = 20.0, kUpsampled = 1.0;
+
 // The history is clipped to the new samples' weighted mean +- this many standard deviations.
 constexpr double kClipSpread = 1.25;
 
@@ -131,13 +138,14 @@ double bilinear_weight(const std::vector<float>& weight, int w, int h, double x,
 }
 
 // A small-frame pixel's 3x3 neighbourhood: its samples' mean, mean square and extremes per
-// channel; and the distance (0: the sky) and clouds' alpha the pixel is carried by: its own, or
+// channel; and the distance (0: the sky) the pixel is carried by, and whether it is the clouds': its own, or
 // the nearest cloud's among its neighbours when one is nearer (a cloud's edge over the sky or
 // the ground moves with the cloud, Karis 2014's nearest depth; a surface keeps its own, which on
 // a ground seen at a grazing angle differs from row to row).
 struct Neighbourhood {
   float mean[4] = {0, 0, 0, 0}, meansq[4] = {0, 0, 0, 0}, lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
-  float distance = 0.0f, alpha = 0.0f;
+  float distance = 0.0f;
+  bool clouds = false;  // the distance is the clouds'
 };
 
 std::vector<Neighbourhood> neighbourhoods(const Image& frame, const PixelDepths& depths) {
@@ -162,13 +170,13 @@ std::vector<Neighbourhood> neighbourhoods(const Image& frame, const PixelDepths&
           }
         if (!depths.empty()) {
           n.distance = depths.distance_m(x, y);
-          n.alpha = depths.cloud_alpha(x, y);
+          n.clouds = depths.on_clouds(x, y);
           for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j)
             for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i) {
               const float d = depths.distance_m(i, j);
-              if (depths.cloud_alpha(i, j) >= 0.5f && d > 0.0f && (n.distance == 0.0f || d < n.distance)) {
+              if (depths.on_clouds(i, j) && d > 0.0f && (n.distance == 0.0f || d < n.distance)) {
                 n.distance = d;
-                n.alpha = depths.cloud_alpha(i, j);
+                n.clouds = true;
               }
             }
         }
@@ -285,25 +293,32 @@ const Image& TemporalFrame::add(const Image& frame, const Camera& camera, const 
           hi.c[c] = static_cast<float>(std::min<double>(n.hi[c], m.mean[c] + kClipSpread * spread));
           if (lo.c[c] > hi.c[c]) lo.c[c] = hi.c[c] = 0.5f * (lo.c[c] + hi.c[c]);
         }
-        const double distance = n.distance, alpha = n.alpha;
-        Rgba carried = bilinear(frame.rgba, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
+        const double distance = n.distance;
+        const Rgba upsampled = bilinear(frame.rgba, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
+        Rgba carried = upsampled;
         double h = 1.0;  // the upsampled frame stands in for a history worth one sample
         glm::dvec2 from;
         if (history) {
           // Where this pixel's surface was in the last frame: the clouds carried by the wind.
           glm::dvec3 rel = dir;
-          if (distance > 0.0) rel = camera.eye + distance * dir - (alpha >= 0.5 ? cloud_shift_m : glm::dvec3(0.0)) - before.eye;
+          if (distance > 0.0) rel = camera.eye + distance * dir - (n.clouds ? cloud_shift_m : glm::dvec3(0.0)) - before.eye;
           if (project(before, rel, from) && from.x >= -0.5 && from.y >= -0.5 && from.x <= out_w - 0.5 &&
               from.y <= out_h - 0.5) {
             carried = bicubic(output_.rgba, out_w, out_h, from.x, from.y);
-            for (int c = 0; c < 4; ++c) carried.c[c] = std::clamp(carried.c[c], lo.c[c], hi.c[c]);
-            h = bilinear_weight(weight_, out_w, out_h, from.x, from.y);
+            double moved = 0.0;  // how far the clip moved the history, in the samples' spreads
+            for (int c = 0; c < 3; ++c) {
+              const float clipped = std::clamp(carried.c[c], lo.c[c], hi.c[c]);
+              moved = std::max(moved, std::abs(clipped - carried.c[c]) / (1e-6 + hi.c[c] - lo.c[c]));
+              carried.c[c] = clipped;
+            }
+            carried.c[3] = std::clamp(carried.c[3], lo.c[3], hi.c[3]);
+            h = bilinear_weight(weight_, out_w, out_h, from.x, from.y) * std::exp(-kTrust * moved);
           }
         }
         float* o = next.pixel(x, y);
-        const double total = h + k;
+        const double total = h + k + kUpsampled;
         for (int c = 0; c < 4; ++c) {
-          const double v = (h * carried.c[c] + k * nearest[c]) / total;
+          const double v = (h * carried.c[c] + k * nearest[c] + kUpsampled * upsampled.c[c]) / total;
           o[c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : nearest[c];
         }
         next_weight[static_cast<std::size_t>(y) * out_w + x] = static_cast<float>(std::min(total, settings_.max_history));

@@ -163,20 +163,7 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
     frame_ = draw_temporal(width, height, quality, r);
   } else {
     temporal_.reset();
-    quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
-    render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
-    // The evolution waits while its keyframes are made: carry on from what was drawn.
-    if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
-    if (options_.progressive_samples > 0 && r.quality_level == 0) {
-    // What was drawn joins the key: a light volume replacing its preview, or keyframes that
-    // arrived, start a new mean although the state held still.
-      frame_ = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] + " | " +
-                                           frame.metadata["evolution_time_s"]);
-      r.samples = progressive_.samples();
-    } else {
-      progressive_.reset();
-      frame_ = std::move(frame);
-    }
+    frame_ = draw_plain(width, height, quality, still, view_key, r);
   }
   r.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   adaptive_.update(animating, r.cpu_ms, now_s);
@@ -190,6 +177,24 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
     home_.camera.look_at = state_.camera.look_at;
   }
   return frame_;
+}
+
+render::Image Viewer::draw_plain(int width, int height, render::FrameQuality quality, bool still,
+                                 const std::string& view_key, FrameReport& r) {
+  quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
+  render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
+  // The evolution waits while its keyframes are made: carry on from what was drawn.
+  if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
+  if (options_.progressive_samples == 0 || r.quality_level != 0) {
+    progressive_.reset();
+    return frame;
+  }
+  // What was drawn joins the key: a light volume replacing its preview, or keyframes that
+  // arrived, start a new mean although the state held still.
+  render::Image mean = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] +
+                                                   " | " + frame.metadata["evolution_time_s"]);
+  r.samples = progressive_.samples();
+  return mean;
 }
 
 void Viewer::set_temporal(bool on) {

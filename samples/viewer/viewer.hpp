@@ -143,6 +143,10 @@ class Viewer {
   bool reset_temporal_ = false;
   // Draws this frame through the temporal frame; returns the frame shown.
   render::Image draw_temporal(int width, int height, render::FrameQuality quality, FrameReport& r);
+  // Draws a plain frame, or a still view's next progressive sample; returns the frame shown
+  // (the samples' mean).
+  render::Image draw_plain(int width, int height, render::FrameQuality quality, bool still, const std::string& view_key,
+                           FrameReport& r);
   FrameReport report_;
   bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
   int last_width_ = 0, last_height_ = 0;

@@ -207,6 +207,84 @@ Neighbourhood blend_stats(const std::vector<Neighbourhood>& stats, int w, int h,
   return m;
 }
 
+// What one output pixel needs: the new frame and its statistics, the three views (the output's,
+// the small frame's with its offset, the history's), the clouds' shift and the history.
+struct Resolve {
+  const Image& frame;
+  const std::vector<Neighbourhood>& stats;
+  View now, small, before;
+  double aspect;         // the output's vertical half-extent over the small frame's (rounded sizes)
+  glm::dvec2 spacing;    // output pixels per small-frame pixel
+  glm::dvec3 cloud_shift_m;
+  const Image* history;  // null: none to carry
+  const std::vector<float>& weight;
+  double max_history;
+};
+
+// The range the history is clipped to: the samples' mean and spread around the pixel, read
+// bilinearly from the small frame's 3x3 statistics (so the range changes smoothly from pixel to
+// pixel, Salvi 2016's variance clipping), within the nearest sample's neighbourhood's extremes.
+void clip_range(const Resolve& r, const Neighbourhood& n, const glm::dvec2& at_sample, Rgba& lo, Rgba& hi) {
+  const Neighbourhood m = blend_stats(r.stats, r.frame.width, r.frame.height, at_sample.x, at_sample.y);
+  for (int c = 0; c < 4; ++c) {
+    const double spread = std::sqrt(std::max(0.0f, m.meansq[c] - m.mean[c] * m.mean[c]));
+    lo.c[c] = static_cast<float>(std::max<double>(n.lo[c], m.mean[c] - kClipSpread * spread));
+    hi.c[c] = static_cast<float>(std::min<double>(n.hi[c], m.mean[c] + kClipSpread * spread));
+    if (lo.c[c] > hi.c[c]) lo.c[c] = hi.c[c] = 0.5f * (lo.c[c] + hi.c[c]);
+  }
+}
+
+// The history where this pixel's surface was in the last frame (the clouds carried by the
+// wind), clipped, and its weight. Where there is none (no last frame, or the surface was not in
+// it), the new frame upsampled stands in, worth one sample.
+double carry_history(const Resolve& r, const glm::dvec3& dir, const Neighbourhood& n, const Rgba& lo, const Rgba& hi,
+                     const Rgba& upsampled, Rgba& carried) {
+  carried = upsampled;
+  if (!r.history) return 1.0;
+  const int w = r.history->width, h = r.history->height;
+  glm::dvec3 rel = dir;  // the sky: by direction
+  if (n.distance > 0.0) rel = r.now.eye + static_cast<double>(n.distance) * dir - (n.clouds ? r.cloud_shift_m : glm::dvec3(0.0)) - r.before.eye;
+  glm::dvec2 from;
+  if (!project(r.before, rel, from) || from.x < -0.5 || from.y < -0.5 || from.x > w - 0.5 || from.y > h - 0.5) return 1.0;
+  carried = bicubic(r.history->rgba, w, h, from.x, from.y);
+  double moved = 0.0;  // how far the clip moved it, as a share of the clip's range
+  for (int c = 0; c < 4; ++c) {
+    const float clipped = std::clamp(carried.c[c], lo.c[c], hi.c[c]);
+    if (c < 3) moved = std::max(moved, std::abs(clipped - carried.c[c]) / (1e-6 + hi.c[c] - lo.c[c]));
+    carried.c[c] = clipped;
+  }
+  return bilinear_weight(r.weight, w, h, from.x, from.y) * std::exp(-kTrust * moved);
+}
+
+// One output pixel: the carried history, the nearest new sample and the new frame upsampled,
+// blended by their weights. Writes its RGBA and returns the history weight it leaves.
+float resolve_pixel(const Resolve& r, int x, int y, float* out) {
+  const int fw = r.frame.width, fh = r.frame.height;
+  const glm::dvec3 dir = centre_ray(r.now, x, y);
+  // This pixel's centre on the small frame's grid (its samples at whole + offset): the same
+  // view, whose height may be rounded to another aspect.
+  const double nx = 2.0 * (x + 0.5) / r.now.width - 1.0, ny = 1.0 - 2.0 * (y + 0.5) / r.now.height;
+  const glm::dvec2 at_sample = glm::dvec2((nx + 1.0) * 0.5 * fw - 0.5, (1.0 - ny * r.aspect) * 0.5 * fh - 0.5) - r.small.offset;
+  const int si = std::clamp(static_cast<int>(std::lround(at_sample.x)), 0, fw - 1);
+  const int sj = std::clamp(static_cast<int>(std::lround(at_sample.y)), 0, fh - 1);
+  // The nearest sample, weighted by how near it fell (in output pixels).
+  const float* nearest = r.frame.pixel(si, sj);
+  const double dx = (si - at_sample.x) * r.spacing.x, dy = (sj - at_sample.y) * r.spacing.y;
+  const double k = bump(dx * dx + dy * dy, 1.5);  // near Karis 2014's exp(-2.29 d^2), without the exp
+  const Neighbourhood& n = r.stats[static_cast<std::size_t>(sj) * fw + si];
+  Rgba lo, hi;
+  clip_range(r, n, at_sample, lo, hi);
+  const Rgba upsampled = bilinear(r.frame.rgba, fw, fh, at_sample.x, at_sample.y);
+  Rgba carried;
+  const double h = carry_history(r, dir, n, lo, hi, upsampled, carried);
+  const double total = h + k + kUpsampled;
+  for (int c = 0; c < 4; ++c) {
+    const double v = (h * carried.c[c] + k * nearest[c] + kUpsampled * upsampled.c[c]) / total;
+    out[c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : nearest[c];
+  }
+  return static_cast<float>(std::min(total, r.max_history));
+}
+
 void check_inputs(const Image& frame, const Camera& camera, const PixelDepths& depths, int out_w, int out_h) {
   check_image(frame, "temporal frame");
   validate(camera);
@@ -255,79 +333,32 @@ const Image& TemporalFrame::add(const Image& frame, const Camera& camera, const 
   out_camera.width = out_w;
   out_camera.height = out_h;
   out_camera.pixel_offset = glm::dvec2(0.0);
-  const bool history = frames_ > 0 && output_.width == out_w && output_.height == out_h;
-  const View now = view_of(out_camera), small = view_of(camera), before = view_of(camera_);
   Camera small_centred = camera;
   small_centred.pixel_offset = glm::dvec2(0.0);
-  const double aspect = now.half_y / view_of(small_centred).half_y;
-  const double spacing_x = static_cast<double>(out_w) / frame.width, spacing_y = static_cast<double>(out_h) / frame.height;
-
+  const bool history = frames_ > 0 && output_.width == out_w && output_.height == out_h;
   const std::vector<Neighbourhood> stats = neighbourhoods(frame, depths);
+  const Resolve r{frame,
+                  stats,
+                  view_of(out_camera),
+                  view_of(camera),
+                  view_of(camera_),
+                  view_of(out_camera).half_y / view_of(small_centred).half_y,
+                  {static_cast<double>(out_w) / frame.width, static_cast<double>(out_h) / frame.height},
+                  cloud_shift_m,
+                  history ? &output_ : nullptr,
+                  weight_,
+                  settings_.max_history};
   Image next(out_w, out_h);
   std::vector<float> next_weight(static_cast<std::size_t>(out_w) * out_h, 0.0f);
-  const int fw = frame.width, fh = frame.height;
   tbb::parallel_for(tbb::blocked_range<int>(0, out_h), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
-      for (int x = 0; x < out_w; ++x) {
-        const glm::dvec3 dir = centre_ray(now, x, y);
-        // This pixel's centre on the small frame's grid (its samples at whole + offset): the
-        // same view, whose height may be rounded to another aspect.
-        const double nx = 2.0 * (x + 0.5) / out_w - 1.0, ny = 1.0 - 2.0 * (y + 0.5) / out_h;
-        const glm::dvec2 at{(nx + 1.0) * 0.5 * fw - 0.5, (1.0 - ny * aspect) * 0.5 * fh - 0.5};
-        const int si = std::clamp(static_cast<int>(std::lround(at.x - small.offset.x)), 0, fw - 1);
-        const int sj = std::clamp(static_cast<int>(std::lround(at.y - small.offset.y)), 0, fh - 1);
-        // The nearest sample and how near it fell (in output pixels).
-        const float* nearest = frame.pixel(si, sj);
-        const double dx = (si + small.offset.x - at.x) * spacing_x, dy = (sj + small.offset.y - at.y) * spacing_y;
-        const double k = bump(dx * dx + dy * dy, 1.5);  // near Karis 2014's exp(-2.29 d^2), without the exp
-        // The range the history is clamped to: the samples' mean and spread around the pixel,
-        // read bilinearly from the small frame's 3x3 statistics (so the range changes smoothly
-        // from pixel to pixel, Salvi 2016's variance clipping), within the nearest sample's
-        // neighbourhood's extremes; and the nearest sample's distance, for the reprojection.
-        const Neighbourhood& n = stats[static_cast<std::size_t>(sj) * fw + si];
-        const Neighbourhood m = blend_stats(stats, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
-        Rgba lo, hi;
-        for (int c = 0; c < 4; ++c) {
-          const double spread = std::sqrt(std::max(0.0f, m.meansq[c] - m.mean[c] * m.mean[c]));
-          lo.c[c] = static_cast<float>(std::max<double>(n.lo[c], m.mean[c] - kClipSpread * spread));
-          hi.c[c] = static_cast<float>(std::min<double>(n.hi[c], m.mean[c] + kClipSpread * spread));
-          if (lo.c[c] > hi.c[c]) lo.c[c] = hi.c[c] = 0.5f * (lo.c[c] + hi.c[c]);
-        }
-        const double distance = n.distance;
-        const Rgba upsampled = bilinear(frame.rgba, fw, fh, at.x - small.offset.x, at.y - small.offset.y);
-        Rgba carried = upsampled;
-        double h = 1.0;  // the upsampled frame stands in for a history worth one sample
-        glm::dvec2 from;
-        if (history) {
-          // Where this pixel's surface was in the last frame: the clouds carried by the wind.
-          glm::dvec3 rel = dir;
-          if (distance > 0.0) rel = camera.eye + distance * dir - (n.clouds ? cloud_shift_m : glm::dvec3(0.0)) - before.eye;
-          if (project(before, rel, from) && from.x >= -0.5 && from.y >= -0.5 && from.x <= out_w - 0.5 &&
-              from.y <= out_h - 0.5) {
-            carried = bicubic(output_.rgba, out_w, out_h, from.x, from.y);
-            double moved = 0.0;  // how far the clip moved the history, in the samples' spreads
-            for (int c = 0; c < 3; ++c) {
-              const float clipped = std::clamp(carried.c[c], lo.c[c], hi.c[c]);
-              moved = std::max(moved, std::abs(clipped - carried.c[c]) / (1e-6 + hi.c[c] - lo.c[c]));
-              carried.c[c] = clipped;
-            }
-            carried.c[3] = std::clamp(carried.c[3], lo.c[3], hi.c[3]);
-            h = bilinear_weight(weight_, out_w, out_h, from.x, from.y) * std::exp(-kTrust * moved);
-          }
-        }
-        float* o = next.pixel(x, y);
-        const double total = h + k + kUpsampled;
-        for (int c = 0; c < 4; ++c) {
-          const double v = (h * carried.c[c] + k * nearest[c] + kUpsampled * upsampled.c[c]) / total;
-          o[c] = std::isfinite(v) ? static_cast<float>(std::max(v, 0.0)) : nearest[c];
-        }
-        next_weight[static_cast<std::size_t>(y) * out_w + x] = static_cast<float>(std::min(total, settings_.max_history));
-      }
+      for (int x = 0; x < out_w; ++x)
+        next_weight[static_cast<std::size_t>(y) * out_w + x] = resolve_pixel(r, x, y, next.pixel(x, y));
   });
   next.metadata = frame.metadata;
   frames_ = history ? frames_ + 1 : 1;
   next.metadata["temporal_frames"] = std::to_string(frames_);
-  next.metadata["temporal_from"] = std::to_string(fw) + "x" + std::to_string(fh);
+  next.metadata["temporal_from"] = std::to_string(frame.width) + "x" + std::to_string(frame.height);
   output_ = std::move(next);
   weight_ = std::move(next_weight);
   camera_ = out_camera;

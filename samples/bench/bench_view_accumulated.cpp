@@ -10,6 +10,7 @@
 #include "nimbus/render/core/temporal_frame.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
+#include "viewer/camera_control.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -76,11 +77,9 @@ void print_accumulated_motion(const render::ViewState& start, const std::vector<
       render::TemporalFrame accumulated;
       render::Image small;
       for (unsigned i = 1; i <= kFrames; ++i) {
-        if (i > 1) {  // the eye turned about the vertical through the target, as the orbit's tumble
-          const double a = deg * M_PI / 180.0;
-          const glm::dvec3 r = s.camera.eye - s.camera.look_at;
-          s.camera.eye = s.camera.look_at + glm::dvec3(std::cos(a) * r.x + std::sin(a) * r.z, r.y,
-                                                       -std::sin(a) * r.x + std::cos(a) * r.z);
+        if (i > 1) {  // the orbit path's move: a left drag, 0.3 degrees of tumble per pixel
+          const viewer::CameraPose p = viewer::tumble({s.camera.eye, s.camera.look_at}, deg / 0.3, 0.0);
+          s.camera.eye = p.eye;
         }
         render::FrameQuality q;
         q.render_scale = level.render_scale;

@@ -2,6 +2,7 @@
 #include "nimbus/render/core/temporal_frame.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -73,23 +74,19 @@ struct Rgba {
   float c[4] = {0, 0, 0, 0};
 };
 
-const float* texel(const std::vector<float>& img, int w, int h, int x, int y) {
-  x = std::clamp(x, 0, w - 1);
-  y = std::clamp(y, 0, h - 1);
-  return img.data() + (static_cast<std::size_t>(y) * w + x) * 4;
-}
-
-Rgba bilinear(const std::vector<float>& img, int w, int h, double x, double y) {
+// Bilinear interpolation of an N-channel plane at (x, y) in pixel-centre coordinates, clamped
+// at the edges: the new frame (N = 4) and the history's weights (N = 1).
+template <int N>
+std::array<float, N> bilinear(const std::vector<float>& plane, int w, int h, double x, double y) {
   const double fx = std::floor(x), fy = std::floor(y);
   const float tx = static_cast<float>(x - fx), ty = static_cast<float>(y - fy);
-  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-  const float* a = texel(img, w, h, x0, y0);
-  const float* b = texel(img, w, h, x0 + 1, y0);
-  const float* c = texel(img, w, h, x0, y0 + 1);
-  const float* d = texel(img, w, h, x0 + 1, y0 + 1);
-  Rgba out;
-  for (int k = 0; k < 4; ++k)
-    out.c[k] = (1 - ty) * ((1 - tx) * a[k] + tx * b[k]) + ty * ((1 - tx) * c[k] + tx * d[k]);
+  const int x0 = std::clamp(static_cast<int>(fx), 0, w - 1), x1 = std::clamp(static_cast<int>(fx) + 1, 0, w - 1);
+  const int y0 = std::clamp(static_cast<int>(fy), 0, h - 1), y1 = std::clamp(static_cast<int>(fy) + 1, 0, h - 1);
+  const auto at = [&](int i, int j) { return plane.data() + (static_cast<std::size_t>(j) * w + i) * N; };
+  const float *a = at(x0, y0), *b = at(x1, y0), *c = at(x0, y1), *d = at(x1, y1);
+  std::array<float, N> out;
+  for (int k = 0; k < N; ++k)
+    out[k] = (1 - ty) * ((1 - tx) * a[k] + tx * b[k]) + ty * ((1 - tx) * c[k] + tx * d[k]);
   return out;
 }
 
@@ -126,15 +123,6 @@ Rgba bicubic(const std::vector<float>& img, int w, int h, double x, double y) {
     for (int k = 0; k < 4; ++k) out.c[k] += wy[j] * r[k];
   }
   return out;
-}
-
-double bilinear_weight(const std::vector<float>& weight, int w, int h, double x, double y) {
-  const double fx = std::floor(x), fy = std::floor(y), tx = x - fx, ty = y - fy;
-  auto at = [&](int i, int j) {
-    return static_cast<double>(weight[static_cast<std::size_t>(std::clamp(j, 0, h - 1)) * w + std::clamp(i, 0, w - 1)]);
-  };
-  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 // A small-frame pixel's 3x3 neighbourhood: its samples' mean, mean square and extremes per
@@ -253,7 +241,7 @@ double carry_history(const Resolve& r, const glm::dvec3& dir, const Neighbourhoo
     if (c < 3) moved = std::max(moved, std::abs(clipped - carried.c[c]) / (1e-6 + hi.c[c] - lo.c[c]));
     carried.c[c] = clipped;
   }
-  return bilinear_weight(r.weight, w, h, from.x, from.y) * std::exp(-kTrust * moved);
+  return bilinear<1>(r.weight, w, h, from.x, from.y)[0] * std::exp(-kTrust * moved);
 }
 
 // One output pixel: the carried history, the nearest new sample and the new frame upsampled,
@@ -274,7 +262,9 @@ float resolve_pixel(const Resolve& r, int x, int y, float* out) {
   const Neighbourhood& n = r.stats[static_cast<std::size_t>(sj) * fw + si];
   Rgba lo, hi;
   clip_range(r, n, at_sample, lo, hi);
-  const Rgba upsampled = bilinear(r.frame.rgba, fw, fh, at_sample.x, at_sample.y);
+  Rgba upsampled;
+  const std::array<float, 4> up = bilinear<4>(r.frame.rgba, fw, fh, at_sample.x, at_sample.y);
+  std::copy(up.begin(), up.end(), upsampled.c);
   Rgba carried;
   const double h = carry_history(r, dir, n, lo, hi, upsampled, carried);
   const double total = h + k + kUpsampled;
@@ -337,12 +327,13 @@ const Image& TemporalFrame::add(const Image& frame, const Camera& camera, const 
   small_centred.pixel_offset = glm::dvec2(0.0);
   const bool history = frames_ > 0 && output_.width == out_w && output_.height == out_h;
   const std::vector<Neighbourhood> stats = neighbourhoods(frame, depths);
+  const View now = view_of(out_camera);
   const Resolve r{frame,
                   stats,
-                  view_of(out_camera),
+                  now,
                   view_of(camera),
                   view_of(camera_),
-                  view_of(out_camera).half_y / view_of(small_centred).half_y,
+                  now.half_y / view_of(small_centred).half_y,
                   {static_cast<double>(out_w) / frame.width, static_cast<double>(out_h) / frame.height},
                   cloud_shift_m,
                   history ? &output_ : nullptr,

@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "nimbus/base/validate.hpp"
 #include "frame_range.hpp"
+#include "generate_plan.hpp"
 #include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/volume/brick.hpp"
@@ -62,10 +63,6 @@ std::string mib(double bytes) {
 int run_generate(const GenerateArgs& a) {
   if (a.output.empty()) throw UsageError("-o: an output file is required");
   if (a.up != "y" && a.up != "z") throw UsageError("--up: '" + a.up + "' must be y or z");
-  if (a.voxel_size && a.res) throw UsageError("--voxel-size and --res: give one, not both");
-  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
-    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
-  if (a.res && (*a.res < 1 || *a.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
   const FrameRange range = parse_frames(a.frame);
   const int first = range.first, last = range.last;
   const bool sequence = range.sequence;
@@ -78,35 +75,11 @@ int run_generate(const GenerateArgs& a) {
     brick = parse_brick(a.brick);
   }
 
-  nlohmann::json doc;
-  try {
-    doc = volume::load_preset(a.preset);
-    if (!a.params.empty()) volume::merge_params_file(doc, a.params);
-    for (const std::string& s : a.sets) volume::set_key(doc["cloud"], s);
-    if (a.seed) doc["cloud"]["seed"] = *a.seed;
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  volume::CloudParams params;
-  try {
-    params = volume::cloud_from_json(doc.at("cloud"), a.preset);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-
+  GenerateRequest request{a.preset, a.seed, a.voxel_size, a.res, a.sets, a.params};
+  const GeneratePlan plan = plan_generate(request);
+  const volume::CloudParams& params = plan.params;
   volume::GenerateOptions opt;
-  try {
-    opt.voxel_size = volume::preset_voxel_size(doc, a.preset);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  if (a.voxel_size) opt.voxel_size = *a.voxel_size;
-  // The model itself refuses what its parameters cannot give (densities beyond the float range).
-  const volume::Aabb bounds = volume::CloudModel(params, opt.voxel_size, 0.0).bounds();
-  if (a.res) {  // the largest extent of the cloud at time 0 spans `res` voxels
-    const glm::dvec3 e = bounds.hi - bounds.lo;
-    opt.voxel_size = std::max({e.x, e.y, e.z}) / *a.res;
-  }
+  opt.voxel_size = plan.voxel_size_m;
   // A brick: the field's index box at this time, cut as --brick asks.
   std::optional<volume::BrickTag> tag;
   if (brick) {
@@ -130,13 +103,7 @@ int run_generate(const GenerateArgs& a) {
   }
   // The model at the first and the last frame's time, so that a time it cannot take is refused
   // before any file is written (as generate_density would refuse it at that frame).
-  for (const int frame : {first, last}) {
-    try {
-      (void)volume::CloudModel(params, opt.voxel_size, range.time(frame)).bounds();
-    } catch (const std::invalid_argument& e) {
-      throw UsageError("at " + time_text(range.time(frame)) + " (--time, --frames/--fps): " + e.what());
-    }
-  }
+  for (const int frame : {first, last}) check_generate_time(plan, range.time(frame));
   std::vector<PathArg> outputs;
   for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
   check_outputs(outputs, {{"--params", a.params}});

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "noise_request.hpp"
 #include "outputs.hpp"
 #include "nimbus/noise/noise.hpp"
 #include "nimbus/volume/vdb_io.hpp"
@@ -13,55 +14,10 @@
 namespace nimbus::cli {
 namespace {
 
-struct NoiseOptions {
-  std::string kind = "gradient";
-  std::string fractal = "none";
-  bool projected = false;
-  int octaves = 1;
-  double frequency = 4.0;
-  double lacunarity = 2.0;
-  double gain = 0.5;
-  int64_t res = 64;
-  uint32_t seed = 0;
-  std::optional<double> time;
-  int32_t period = 0;
-  bool auto_octaves = false;
-  std::string simd;
-  std::string output;
-};
-
 int run_noise(const NoiseOptions& o) {
-  noise::NoiseParams p;
-  const auto kind = noise::parse_kind(o.kind);
-  if (!kind) throw UsageError("--kind: unknown noise kind '" + o.kind + "' (value, gradient, wavelet, worley)");
-  const auto fractal = noise::parse_fractal(o.fractal);
-  if (!fractal)
-    throw UsageError("--fractal: unknown fractal '" + o.fractal + "' (none, fbm, turbulence, ridged)");
   if (o.res < 1 || o.res > 4096) throw UsageError("--res: " + std::to_string(o.res) + " must be in [1, 4096]");
-  if (!std::isfinite(o.frequency) || o.frequency <= 0.0)
-    throw UsageError("--frequency: must be finite and > 0");
-  if (o.octaves < 1 || o.octaves > noise::kMaxOctaves)
-    throw UsageError("--octaves: " + std::to_string(o.octaves) + " must be in [1, " +
-                     std::to_string(noise::kMaxOctaves) + "]");
-  if (*fractal == noise::Fractal::None && o.octaves != 1)
-    throw UsageError("--octaves: more than one octave needs --fractal fbm, turbulence or ridged");
-  if (o.projected && *kind != noise::Kind::Wavelet) throw UsageError("--projected: only for --kind wavelet");
   if (o.output.empty()) throw UsageError("-o: an output file is required");
-  p.kind = *kind;
-  p.fractal = *fractal;
-  p.octaves = o.octaves;
-  p.frequency = o.frequency;
-  p.lacunarity = o.lacunarity;
-  p.gain = o.gain;
-  p.seed = o.seed;
-  p.time = o.time;
-  p.projected = o.projected;
-  p.period = {o.period, o.period, o.period};
-  try {
-    noise::validate(p);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  noise::NoiseParams p = plan_noise(o);
   noise::BatchOptions batch;
   if (!o.simd.empty()) {
     batch.simd = noise::parse_simd_level(o.simd);

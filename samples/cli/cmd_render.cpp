@@ -156,19 +156,25 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
 
 }  // namespace
 
-void add_render_command(CLI::App& app, Action& action) {
-  auto a = std::make_shared<RenderArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "render", "Render clouds (FILE.vdb or --preset) over a scene, or a light-shaft scene alone, to a linear half-float EXR");
-  cmd->add_option("--scene", a->scene, "Scene: " + [] {
+void add_scene_options(CLI::App* cmd, std::string& scene, std::string& method, bool& no_surface_airlight) {
+  cmd->add_option("--scene", scene, "Scene: " + [] {
     std::string names;
     for (const std::string& n : render::scene_names()) names += (names.empty() ? "" : ", ") + n;
     return names + "; with clouds also none (default with clouds: sky)";
   }())->capture_default_str();
-  cmd->add_option("--method", a->method,
+  cmd->add_option("--method", method,
                   "Scene alone: raymarch:N | analytic | analytic:table:N | shadowvolume:N | reference. "
                   "With clouds: slices | reference | pathtrace (the CPU methods: --scene none only)")
       ->capture_default_str();
+  cmd->add_flag("--no-surface-airlight", no_surface_airlight,
+                "Surfaces do not reflect the fog's airlight (Sun et al. eq. 13's L_p,a; on by default)");
+}
+
+void add_render_command(CLI::App& app, Action& action) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render clouds (FILE.vdb or --preset) over a scene, or a light-shaft scene alone, to a linear half-float EXR");
+  add_scene_options(cmd, a->scene, a->method, a->no_surface_airlight);
   add_cloud_render_options(cmd, a->clouds);
   add_camera_options(cmd, a->camera);
   cmd->add_option("--jitter", a->jitter, "Ray-march jitter: blue, white or none")->capture_default_str();
@@ -178,8 +184,6 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--albedo", a->albedo, "Override the fog's single-scattering albedo, [0, 1]");
   cmd->add_option("--phase", a->phase, "Override the phase function: isotropic, hg:G, schlick:G, rayleigh");
   cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
-  cmd->add_flag("--no-surface-airlight", a->no_surface_airlight,
-                "Surfaces do not reflect the fog's airlight (Sun et al. eq. 13's L_p,a; on by default)");
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
   cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
   cmd->add_option("--view-state", a->view_state,

@@ -168,7 +168,7 @@ void check_cloud_render_files(const CloudRenderArgs& a, const FrameRange& range,
                               const std::string& preview) {
   std::vector<PathArg> outputs, inputs;
   for (int frame = range.first; frame <= range.last; ++frame) {
-    outputs.push_back({"-o", frame_path(output, frame, range.sequence)});
+    if (!output.empty()) outputs.push_back({"-o", frame_path(output, frame, range.sequence)});
     if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, range.sequence)});
     for (const std::string& pattern : a.files)
       inputs.push_back({"FILE", frame_path(pattern, frame, range.sequence && has_frame_field(pattern))});
@@ -227,7 +227,8 @@ void write_cloud_frame(render::Image& image, const CloudRenderPlan& plan, const 
 
 int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
                       const std::string& method_text, bool method_given, const CameraArgs& camera_args,
-                      const std::string& output, const std::string& preview, std::optional<double> exposure) {
+                      const std::string& output, const std::string& preview, std::optional<double> exposure,
+                      const FrameSink& sink) {
   // Flags first, then every file: every usage error before any work (render_clouds_plan.cpp).
   CloudRenderPlan plan =
       plan_cloud_render(a, scene_name, scene_given, method_text, method_given, output, preview, exposure);
@@ -271,7 +272,10 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     }
     reference_progress.reset();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_cloud_frame(image, plan, camera, stats, renderer.clouds().size(), seconds, frame, output, preview, exposure);
+    if (sink)
+      sink(image, frame);
+    else
+      write_cloud_frame(image, plan, camera, stats, renderer.clouds().size(), seconds, frame, output, preview, exposure);
   }
   return 0;
 }

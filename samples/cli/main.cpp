@@ -5,24 +5,32 @@
 #include <string>
 
 #include "cli.hpp"
+#include "error_text.hpp"
 #include "flag_checks.hpp"
 #include "nimbus/base/memory.hpp"
 
+namespace nimbus::cli {
+
+// A command this build left out (-DNIMBUS_VIEWER_AND_BENCH=OFF, README command 1): it takes any
+// arguments and says how to get it, as a usage error.
+void add_absent_command(CLI::App& app, Action& action, const std::string& name, const std::string& what) {
+  CLI::App* cmd = app.add_subcommand(name, "Not in this build: " + what + " (build with -DNIMBUS_VIEWER_AND_BENCH=ON)");
+  cmd->allow_extras();
+  cmd->set_help_flag();
+  cmd->callback([&action, name, what] {
+    action = [name, what]() -> int {
+      throw UsageError(name + ": this build has no " + what.substr(4) + " (it was configured with "
+                       "-DNIMBUS_VIEWER_AND_BENCH=OFF, as the README's main command does); build with README command 2, "
+                       "or configure without that flag");
+    };
+  });
+}
+
+}  // namespace nimbus::cli
+
 namespace {
 
-// Every error is one line on stderr, whatever it quotes: a line break becomes a space, any other
-// control character (an escape sequence from a file's key or name) '?', and a message longer
-// than kMaxErrorChars is cut in its middle, so that both what failed and why stay readable.
-constexpr std::size_t kMaxErrorChars = 1000;
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r') c = ' ';
-    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  if (text.size() > kMaxErrorChars)
-    text = text.substr(0, kMaxErrorChars / 2) + " [...] " + text.substr(text.size() - kMaxErrorChars / 2);
-  return text;
-}
+using nimbus::cli::one_line;
 
 // The commands whose checks end in checks_done(): the ones that write files.
 bool supports_check_only(const std::string& command) {
@@ -41,14 +49,22 @@ int main(int argc, char** argv) {
                "then exit 0 without doing its work");
   nimbus::cli::Action action;
   nimbus::cli::add_noise_command(app, action);
+#ifdef NIMBUS_VIEWER_AND_BENCH
   nimbus::cli::add_bench_command(app, action);
+#else
+  nimbus::cli::add_absent_command(app, action, "bench", "the benchmarks");
+#endif
   nimbus::cli::add_info_command(app, action);
   nimbus::cli::add_generate_command(app, action);
   nimbus::cli::add_presets_command(app, action);
   nimbus::cli::add_render_command(app, action);
   nimbus::cli::add_compare_command(app, action);
   nimbus::cli::add_airlight_command(app, action);
+#ifdef NIMBUS_VIEWER_AND_BENCH
   nimbus::cli::add_view_command(app, action);
+#else
+  nimbus::cli::add_absent_command(app, action, "view", "the interactive viewer");
+#endif
   nimbus::cli::add_merge_command(app, action);
   nimbus::cli::add_farm_command(app, action);
   for (int i = 1; i < argc && argv[i][0] == '-'; ++i)  // the command after the program's own flags

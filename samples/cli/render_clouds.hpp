@@ -2,6 +2,7 @@
 // over the sky scene, another scene or nothing, one frame or a sequence.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -10,6 +11,7 @@
 #include "cli.hpp"
 #include "frame_range.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/image.hpp"
 #include "render_args.hpp"
 
 namespace nimbus::cli {
@@ -55,10 +57,17 @@ struct CloudRenderArgs {
 };
 
 void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& args);
+// --scene, --method and --no-surface-airlight, as `nimbus render` spells them.
+void add_scene_options(CLI::App* cmd, std::string& scene, std::string& method, bool& no_surface_airlight);
+
+// Where each rendered frame goes instead of files (the Python module): called once per frame.
+using FrameSink = std::function<void(render::Image& image, int frame)>;
 
 // Runs when files or presets were given. `scene`, `method`, camera, outputs as `nimbus render`.
+// With a sink, `output` and `preview` are empty: nothing is written, the sink takes each frame.
 int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
                       const std::string& method, bool method_given, const CameraArgs& camera_args,
-                      const std::string& output, const std::string& preview, std::optional<double> exposure);
+                      const std::string& output, const std::string& preview, std::optional<double> exposure,
+                      const FrameSink& sink = {});
 
 }  // namespace nimbus::cli

@@ -121,7 +121,7 @@ void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const s
       std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
     throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
                      "name.%04d.vdb, or --preset (generated at each frame's time)");
-  check_sequence_pattern("-o", output);
+  if (!output.empty()) check_sequence_pattern("-o", output);  // empty: frames go to a sink (render_clouds.hpp)
   if (!preview.empty()) check_sequence_pattern("--preview", preview);
   for (const std::string& f : a.files) check_sequence_pattern("file", f);
   if (!p.range.sequence)  // a frame field is filled only in a sequence; alone it would name a file "%04d"

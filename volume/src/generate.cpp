@@ -8,9 +8,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 
+#include "nimbus/base/cancel.hpp"
 #include "nimbus/base/memory.hpp"
 
 namespace nimbus::volume {
@@ -71,12 +73,14 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     bn[a] = floor_div(hi[a], kLeaf) - blo[a] + 1;
   }
 
-  tbb::enumerable_thread_specific<std::vector<Leaf*>> leaves;
+  // Owned until the tree takes them: a stop (cancel.hpp) or an error part-way frees what was made.
+  tbb::enumerable_thread_specific<std::vector<std::unique_ptr<Leaf>>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
   const int64_t blocks = voxels > 0 ? bn[0] * bn[1] * bn[2] : 0;
   std::atomic<int64_t> done{0};
   const int64_t report_every = std::max<int64_t>(1, blocks / 100);
   tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
+    throw_if_cancelled();
     if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(blocks));
     const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
     const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
@@ -113,7 +117,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
                        d[i]);
       ++c.active_voxels;
     }
-    if (leaf) leaves.local().push_back(leaf);
+    if (leaf) leaves.local().emplace_back(leaf);
   });
 
   auto grid = openvdb::FloatGrid::create(0.0f);
@@ -121,7 +125,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   grid->setGridClass(openvdb::GRID_FOG_VOLUME);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(vs));
   for (auto& list : leaves)
-    for (Leaf* leaf : list) grid->tree().addLeaf(leaf);
+    for (std::unique_ptr<Leaf>& leaf : list) grid->tree().addLeaf(leaf.release());
 
   if (stats) {
     GenerateStats s;

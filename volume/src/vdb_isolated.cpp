@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <mutex>
 #include <stdexcept>
 #include <system_error>
 
@@ -35,11 +36,18 @@ bool is_program(const std::filesystem::path& p) {
 
 }  // namespace
 
+static std::mutex g_program_mutex;
+static std::filesystem::path g_program;  // set_vdb_reader_program
+
 std::filesystem::path vdb_reader_program() {
   if (const char* set = std::getenv("NIMBUS_VDB_READER")) {
     if (!is_program(set))
       throw std::invalid_argument(std::string("NIMBUS_VDB_READER: '") + set + "' is not an executable file");
     return set;
+  }
+  {
+    const std::lock_guard<std::mutex> lock(g_program_mutex);
+    if (!g_program.empty() && is_program(g_program)) return g_program;
   }
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -105,3 +113,12 @@ GridsRead read_grids(const std::filesystem::path& path, const GridRequest& reque
 }
 
 }  // namespace nimbus::volume::detail
+
+namespace nimbus::volume {
+
+void set_vdb_reader_program(const std::filesystem::path& program) {
+  const std::lock_guard<std::mutex> lock(detail::g_program_mutex);
+  detail::g_program = program;
+}
+
+}  // namespace nimbus::volume

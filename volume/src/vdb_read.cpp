@@ -117,4 +117,31 @@ DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbo
   return box;
 }
 
+openvdb::FloatGrid::Ptr grid_from_dense_box(const DenseBox& box, const openvdb::math::Transform& transform,
+                                            const std::string& name) {
+  uint64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (box.size[a] < 0 || box.size[a] > std::numeric_limits<int32_t>::max())
+      throw std::invalid_argument("grid " + name + ": size along " + std::string(1, char('x' + a)) + " out of range");
+    count *= uint64_t(box.size[a]);
+  }
+  if (box.values.size() != count)
+    throw std::invalid_argument("grid " + name + ": " + std::to_string(box.values.size()) + " values for " +
+                                std::to_string(count) + " voxels");
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName(name);
+  grid->setTransform(transform.copy());
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  if (count == 0) return grid;
+  const openvdb::Coord lo(box.origin[0], box.origin[1], box.origin[2]);
+  const openvdb::Coord hi(int32_t(box.origin[0] + box.size[0] - 1), int32_t(box.origin[1] + box.size[1] - 1),
+                          int32_t(box.origin[2] + box.size[2] - 1));
+  // LayoutXYZ is OpenVDB's x-fastest layout; the view only reads the values. Tolerance 0: a voxel
+  // equal to the background (0) stays inactive, as a fog volume's empty space is.
+  openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(openvdb::CoordBBox(lo, hi),
+                                                               const_cast<float*>(box.values.data()));
+  openvdb::tools::copyFromDense(dense, *grid, 0.0f);
+  return grid;
+}
+
 }  // namespace nimbus::volume

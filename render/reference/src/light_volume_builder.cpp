@@ -16,6 +16,7 @@
 #include "nimbus/render/reference/light_volume_diffusion.hpp"
 #include "nimbus/render/reference/light_volume_stages.hpp"
 #include "traced_media.hpp"
+#include "nimbus/base/cancel.hpp"
 
 namespace nimbus::render {
 
@@ -375,6 +376,7 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
+                        throw_if_cancelled();  // a block of photons at a time (cancel.hpp)
                         TallySink sink{tallies.sum.data(), tallies.source.data(), true, tallies.quantum};
                         if (!shared) {
                           Own& mine = own.local();

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/base/cancel.hpp"
 
 namespace nimbus::render::light_volume {
 
@@ -195,6 +196,7 @@ int conjugate_gradients(const System& A, const std::vector<double>& b, std::vect
   double rz = dot(r, z);
   int it = 0;
   for (; it < max_iterations; ++it) {
+    throw_if_cancelled();  // an iteration at a time (cancel.hpp)
     multiply(A, p, Ap);
     const double pAp = dot(p, Ap);
     if (!(pAp > 0.0) || !std::isfinite(pAp)) break;  // converged to rounding (A is positive definite)

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/base/cancel.hpp"
 
 namespace nimbus::render::detail {
 
@@ -25,6 +26,7 @@ inline void render_pixels(Image& image, int threads, const std::function<void(do
   std::mutex progress_mutex;
   const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
+      throw_if_cancelled();  // a row at a time (cancel.hpp)
       for (int x = 0; x < image.width; ++x) {
         const glm::dvec4 v = pixel(x, y);
         float* out = image.pixel(x, y);

@@ -99,4 +99,14 @@ DenseBox dense_active_box(const openvdb::FloatGrid& grid);
 // result. Same memory errors.
 DenseBox dense_box(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox);
 
+// The inverse: a fog grid named `name` with `transform` whose voxels are the box's; voxels equal
+// to 0 stay inactive. std::invalid_argument when the sizes and the values do not agree.
+openvdb::FloatGrid::Ptr grid_from_dense_box(const DenseBox& box, const openvdb::math::Transform& transform,
+                                            const std::string& name = "density");
+
+// Where the isolated reader program (nimbus-vdb-reader) is, for a caller that is not the nimbus
+// program (the Python module keeps it in its package). Order of search: $NIMBUS_VDB_READER, this
+// path, beside the running program, the build tree.
+void set_vdb_reader_program(const std::filesystem::path& program);
+
 }  // namespace nimbus::volume

@@ -1,0 +1,59 @@
+# Type stubs of the package nimbus (python/nimbus/__init__.py): what each call takes and returns.
+import os
+from typing import Any, Callable, Iterable, Literal, Mapping, Optional, Sequence, Union
+
+import numpy
+import numpy.typing
+
+__version__: str
+
+_Path = Union[str, os.PathLike[str]]
+_Vec3 = Sequence[float]
+
+class Volume:
+    """A density volume: voxels, their place in the world (metres) and the file's metadata."""
+
+    @property
+    def density(self) -> numpy.typing.NDArray[numpy.float32]:
+        """float32 [x, y, z], a writable view of the volume's voxels (Fortran order, no copy)."""
+    @property
+    def origin(self) -> tuple[int, int, int]:
+        """Index of density[0, 0, 0]; its centre is at origin * voxel_size metres."""
+    @property
+    def voxel_size(self) -> Union[float, tuple[float, float, float]]:
+        """Metres per voxel edge (a 3-tuple when the voxels are not cubes)."""
+    @property
+    def index_to_world(self) -> Optional[list[tuple[float, float, float, float]]]:
+        """4x4 rows taking (i, j, k, 1) to world metres; None for a frustum transform."""
+    @property
+    def linear(self) -> bool: ...
+    @property
+    def up_axis(self) -> Literal["z", "y"]: ...
+    @property
+    def metadata(self) -> dict[str, Union[str, float, int]]: ...
+    @property
+    def extra_grids(self) -> list[str]: ...
+    def write(self, path: _Path, *, half_float: bool = ...) -> None:
+        """Write an OpenVDB fog volume atomically, as `nimbus generate` does."""
+    @staticmethod
+    def from_array(array: numpy.typing.ArrayLike, voxel_size: float, origin: Sequence[int] = ..., *,
+                   up_axis: Literal["z", "y"] = ...) -> "Volume":
+        """A volume from user densities indexed [x, y, z] (finite, >= 0)."""
+
+def presets() -> list[str]: ...
+def preset(name: str) -> dict[str, Any]: ...
+def plan(preset: str, *, seed: Optional[int] = ..., voxel_size: Optional[float] = ..., res: Optional[int] = ...,
+         time: float = ..., overrides: Optional[Mapping[str, Any]] = ..., params_file: Optional[_Path] = ...) -> dict[str, Any]: ...
+def generate(preset: str, *, seed: Optional[int] = ..., voxel_size: Optional[float] = ..., res: Optional[int] = ...,
+             time: float = ..., overrides: Optional[Mapping[str, Any]] = ..., params_file: Optional[_Path] = ...,
+             progress: Optional[Callable[[float], Any]] = ...) -> Volume: ...
+def read(path: _Path, *, grid: Optional[str] = ...) -> Volume: ...
+def render(volumes_or_paths: Union[Volume, _Path, Iterable[Union[Volume, _Path]]], *, scene: str = ...,
+           eye: Optional[_Vec3] = ..., look_at: Optional[_Vec3] = ..., up: Optional[_Vec3] = ...,
+           fov: Optional[float] = ..., res: Optional[Sequence[int]] = ..., sun: Optional[_Vec3] = ...,
+           **options: Any) -> numpy.typing.NDArray[numpy.float32]:
+    """(height, width, 4) float32: linear, premultiplied RGBA, row 0 at the top."""
+def noise(kind: Literal["value", "gradient", "wavelet", "worley"], shape: Sequence[int], *, frequency: float = ...,
+          fractal: Literal["none", "fbm", "turbulence", "ridged"] = ..., octaves: int = ..., seed: int = ...,
+          time: Optional[float] = ..., lacunarity: float = ..., gain: float = ..., period: int = ...,
+          projected: bool = ..., spacing: Optional[float] = ...) -> numpy.typing.NDArray[numpy.float32]: ...

@@ -1,0 +1,109 @@
+// nimbus.presets, preset, plan and generate: `nimbus generate`'s request and model, in memory.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <optional>
+
+#include "calls.hpp"
+#include "generate_plan.hpp"
+#include "nimbus/app/usage_error.hpp"
+#include "nimbus/base/memory.hpp"
+#include "nimbus/base/validate.hpp"
+#include "nimbus/volume/generate.hpp"
+#include "nimbus/volume/preset.hpp"
+#include "py_volume.hpp"
+
+namespace nimbus::python {
+namespace {
+
+namespace py = pybind11;
+
+cli::GenerateRequest request_of(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
+                                std::optional<int> res, std::vector<std::string> sets, const std::string& params_file) {
+  return cli::GenerateRequest{preset, seed, voxel_size, res, std::move(sets), params_file};
+}
+
+void check_time(double time_s) {
+  if (!std::isfinite(time_s)) throw app::UsageError("time: must be a finite number of seconds");
+}
+
+py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
+              std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file) {
+  check_time(time_s);
+  const cli::GeneratePlan p = cli::plan_generate(request_of(preset, seed, voxel_size, res, std::move(sets), params_file));
+  cli::check_generate_time(p, time_s);
+  const openvdb::CoordBBox box = volume::density_index_box(p.params, p.voxel_size_m, time_s);
+  py::dict d;
+  d["voxel_size"] = p.voxel_size_m;
+  if (box.empty()) {
+    d["dims"] = py::make_tuple(0, 0, 0);
+    d["dense_bytes"] = 0;
+    d["bounds_m"] = py::none();
+    return d;
+  }
+  const openvdb::Coord n = box.dim();
+  // As generate_density refuses it, before any voxel.
+  ensure_fits_in_memory(uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()), sizeof(float),
+                        "the cloud's bounding box at this voxel size");
+  d["dims"] = py::make_tuple(n.x(), n.y(), n.z());
+  d["dense_bytes"] = double(n.x()) * double(n.y()) * double(n.z()) * sizeof(float);
+  const double vs = p.voxel_size_m;  // voxel (i, j, k) is centred at (i, j, k) * voxel size
+  d["bounds_m"] = py::make_tuple(py::make_tuple(box.min().x() * vs, box.min().y() * vs, box.min().z() * vs),
+                                 py::make_tuple(box.max().x() * vs, box.max().y() * vs, box.max().z() * vs));
+  return d;
+}
+
+Volume generate(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
+                std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
+                const py::object& progress) {
+  check_time(time_s);
+  const cli::GenerateRequest request = request_of(preset, seed, voxel_size, res, std::move(sets), params_file);
+  Volume v;
+  std::atomic<double> fraction{0.0};
+  run_interruptible(
+      [&] {
+        const cli::GeneratePlan p = cli::plan_generate(request);
+        cli::check_generate_time(p, time_s);
+        volume::GenerateOptions opt;
+        opt.voxel_size = p.voxel_size_m;
+        opt.time = time_s;
+        opt.progress = [&](double f) { fraction.store(f); };
+        volume::GenerateStats stats;
+        const openvdb::FloatGrid::Ptr density = volume::generate_density(p.params, opt, &stats);
+        if (stats.active_voxels == 0)  // as nimbus generate says it
+          throw std::runtime_error("the cloud has no voxel of density >= 1e-6 at voxel size " + number_text(opt.voxel_size) +
+                                   " m (shapes smaller than a voxel, or coverage, weight or density leave nothing)");
+        volume::ExportInfo info;
+        info.preset = preset;
+        info.seed = p.params.seed;
+        info.time = time_s;
+        info.up_axis = 'z';
+        v = volume_from_grid(*density, 'z', volume::export_metadata(info));
+        if (auto temperature = volume::generate_temperature(p.params, *density)) v.extra.push_back(temperature);
+      },
+      progress, &fraction);
+  return v;
+}
+
+}  // namespace
+
+void bind_generate(py::module_& m) {
+  m.def("_presets", [] {
+    py::list out;
+    for (const volume::PresetInfo& p : volume::list_presets()) out.append(py::make_tuple(p.name, p.genus, p.description));
+    return out;
+  });
+  m.def("_preset_json", [](const std::string& name) {
+    try {
+      return volume::load_preset(name).dump();
+    } catch (const std::invalid_argument& e) {
+      throw app::UsageError(e.what());
+    }
+  });
+  m.def("_plan", &plan);
+  m.def("_generate", &generate);
+}
+
+}  // namespace nimbus::python

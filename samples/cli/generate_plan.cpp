@@ -1,0 +1,48 @@
+// The parameters and voxel size of a generate request (generate_plan.hpp).
+#include "generate_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cli.hpp"
+#include "frame_range.hpp"
+#include "nimbus/volume/preset.hpp"
+
+namespace nimbus::cli {
+
+GeneratePlan plan_generate(const GenerateRequest& r) {
+  if (r.voxel_size && r.res) throw UsageError("--voxel-size and --res: give one, not both");
+  if (r.voxel_size && !(std::isfinite(*r.voxel_size) && *r.voxel_size > 0))
+    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  if (r.res && (*r.res < 1 || *r.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
+  GeneratePlan plan;
+  try {
+    plan.doc = volume::load_preset(r.preset);
+    if (!r.params_file.empty()) volume::merge_params_file(plan.doc, r.params_file);
+    for (const std::string& s : r.sets) volume::set_key(plan.doc["cloud"], s);
+    if (r.seed) plan.doc["cloud"]["seed"] = *r.seed;
+    plan.params = volume::cloud_from_json(plan.doc.at("cloud"), r.preset);
+    plan.voxel_size_m = volume::preset_voxel_size(plan.doc, r.preset);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (r.voxel_size) plan.voxel_size_m = *r.voxel_size;
+  // The model itself refuses what its parameters cannot give (densities beyond the float range):
+  // std::invalid_argument.
+  const volume::Aabb bounds = volume::CloudModel(plan.params, plan.voxel_size_m, 0.0).bounds();
+  if (r.res) {  // the largest extent of the cloud at time 0 spans `res` voxels
+    const glm::dvec3 e = bounds.hi - bounds.lo;
+    plan.voxel_size_m = std::max({e.x, e.y, e.z}) / *r.res;
+  }
+  return plan;
+}
+
+void check_generate_time(const GeneratePlan& plan, double time_s) {
+  try {
+    (void)volume::CloudModel(plan.params, plan.voxel_size_m, time_s).bounds();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("at " + time_text(time_s) + " (--time, --frames/--fps): " + e.what());
+  }
+}
+
+}  // namespace nimbus::cli

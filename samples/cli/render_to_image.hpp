@@ -1,0 +1,20 @@
+// `nimbus render`'s clouds as a function that returns the image (the Python module): the same
+// flags, parsed and checked as the program does, without the ones that name files or frames.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "nimbus/render/core/image.hpp"
+
+namespace nimbus::cli {
+
+// `args`: what would follow `nimbus render` (files, --preset, --scene, --eye...), without -o,
+// --preview, --exposure, --view-state and the frame flags other than --time. UsageError for a bad
+// or unknown flag (as the program words it), runtime errors as the program's; the image is the
+// one `nimbus render` would write to its EXR, in float (row 0 at the top, premultiplied).
+render::Image render_clouds_image(const std::vector<std::string>& args);
+
+// The flags it takes, as spelled on the command line ("--slices", "--eye", ...).
+std::vector<std::string> render_image_flags();
+
+}  // namespace nimbus::cli

@@ -1,0 +1,57 @@
+# The nimbus Python module as the backend (nimbus.presets, preset, plan, generate, Volume.write).
+import os
+
+
+def import_module():
+    """The nimbus module, or None when it does not import."""
+    try:
+        import nimbus  # noqa: the pybind11 module (build/python/nimbus)
+    except ImportError:
+        return None
+    return nimbus if hasattr(nimbus, "generate") and hasattr(nimbus, "plan") else None
+
+
+def _write_atomic(volume, path):
+    """Volume.write to a temporary name beside path, then a rename: readers never see a partial file."""
+    folder, name = os.path.split(path)
+    tmp = os.path.join(folder, f".{name}.{os.getpid()}.partial.vdb")
+    try:
+        volume.write(tmp, half_float=True)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+class ModuleBackend:
+    name = "module"
+
+    def __init__(self, module):
+        self.nimbus = module
+        self._presets = {}
+
+    def describe(self):
+        return f"module {getattr(self.nimbus, '__file__', 'nimbus')}"
+
+    def presets(self):
+        return list(self.nimbus.presets())
+
+    def preset(self, name):
+        if name not in self._presets:
+            self._presets[name] = self.nimbus.preset(name)
+        return self._presets[name]
+
+    def plan(self, preset, *, seed=None, voxel_size=None, res=None, time=0.0, overrides=None):
+        return self.nimbus.plan(preset, seed=seed, voxel_size=voxel_size, res=res, time=time,
+                                overrides=overrides or None)
+
+    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides):
+        volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size, time=time, overrides=overrides or None)
+        _write_atomic(volume, path)
+
+    def generate_sequence(self, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
+        """Writes pattern % frame for frames first..last; frame n at time (n - start_frame) / fps."""
+        for frame in range(first, last + 1):
+            volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size,
+                                          time=(frame - start_frame) / fps, overrides=overrides or None)
+            _write_atomic(volume, pattern % frame)

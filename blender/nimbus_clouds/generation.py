@@ -1,0 +1,68 @@
+# A cloud's generation: inputs checked, the plan checked against the memory limit, then the VDB(s) written.
+import hashlib
+import json
+import os
+from dataclasses import dataclass, field
+
+from . import checks, overrides
+
+
+@dataclass
+class Job:
+    params: object
+    backend: object
+    voxel_size: object          # metres, or None for the preset's
+    overrides: dict
+    plan: dict
+    paths: list = field(default_factory=list)  # one file, or one per frame
+    pattern: str = ""           # sequences: the printf pattern of the paths
+
+
+def _file_stem(params, voxel_size, over):
+    """preset-<hash of everything that shapes the file>: the same inputs give the same name."""
+    key = {"preset": params.preset, "seed": params.seed, "voxel_size": voxel_size, "overrides": over,
+           "time": params.time,
+           "frames": [params.frame_first, params.frame_last, params.fps] if params.animated else None}
+    digest = hashlib.sha1(json.dumps(key, sort_keys=True).encode()).hexdigest()[:12]
+    safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in params.preset)
+    return f"{safe}-{digest}"
+
+
+def prepare(params, backend, limit_gib, folder):
+    """Checks everything and returns the Job; ValueError (bad input) or RuntimeError/OSError otherwise.
+
+    Nothing is generated here: the plan is nimbus.plan (or the program's probe)."""
+    checks.check_inputs(params)
+    try:
+        doc = backend.preset(params.preset)
+    except (ValueError, KeyError) as e:
+        raise ValueError(f"preset '{params.preset}': {e}") from None
+    over = overrides.build(doc, params)
+    voxel_size = overrides.voxel_size(doc, params)
+    time = params.frame_time(params.frame_first) if params.animated else params.time
+    plan = backend.plan(params.preset, seed=params.seed, voxel_size=voxel_size, time=time, overrides=over)
+    text = f"{voxel_size:g} m" if voxel_size else f"{float(plan['voxel_size']):g} m (the preset's)"
+    checks.check_plan(plan, limit_gib, text)
+    job = Job(params, backend, voxel_size, over, plan)
+    stem = os.path.join(folder, _file_stem(params, voxel_size, over))
+    if params.animated:
+        job.pattern = stem + ".%04d.vdb"
+        job.paths = [job.pattern % f for f in params.frames()]
+    else:
+        job.paths = [stem + ".vdb"]
+    return job
+
+
+def run(job):
+    """Writes the job's file(s) with its backend."""
+    p = job.params
+    if p.animated:
+        job.backend.generate_sequence(job.pattern, p.preset, seed=p.seed, voxel_size=job.voxel_size,
+                                      overrides=job.overrides, first=p.frame_first, last=p.frame_last,
+                                      fps=p.fps, start_frame=p.start_frame())
+    else:
+        job.backend.generate_still(job.paths[0], p.preset, seed=p.seed, voxel_size=job.voxel_size,
+                                   time=p.time, overrides=job.overrides)
+    missing = [path for path in job.paths if not os.path.isfile(path)]
+    if missing:
+        raise RuntimeError(f"nimbus did not write {missing[0]}")

@@ -11,6 +11,7 @@
 
 #include "per_pixel.hpp"
 #include "traced_media.hpp"
+#include "nimbus/base/cancel.hpp"
 
 namespace nimbus::render {
 
@@ -97,6 +98,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
     glm::dvec3 sum(0.0), sum_sq(0.0);
     double view_T = 0.0;
     for (int s = 0; s < n; ++s) {
+      if ((s & 63) == 63) throw_if_cancelled();  // a stop (cancel.hpp) between 64 paths, not only between rows
       view_T += transmittance(media, camera.eye, ray, rng);
       glm::dvec3 L(0.0), beta(1.0);
       glm::dvec3 o = camera.eye, d = ray;

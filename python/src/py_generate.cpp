@@ -9,7 +9,6 @@
 #include "calls.hpp"
 #include "generate_plan.hpp"
 #include "nimbus/app/usage_error.hpp"
-#include "nimbus/base/memory.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -43,10 +42,8 @@ py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::opti
     d["bounds_m"] = py::none();
     return d;
   }
+  cli::check_generate_memory(p, time_s);  // as generate refuses it, before any voxel
   const openvdb::Coord n = box.dim();
-  // As generate_density refuses it, before any voxel.
-  ensure_fits_in_memory(uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()), sizeof(float),
-                        "the cloud's bounding box at this voxel size");
   d["dims"] = py::make_tuple(n.x(), n.y(), n.z());
   d["dense_bytes"] = double(n.x()) * double(n.y()) * double(n.z()) * sizeof(float);
   const double vs = p.voxel_size_m;  // voxel (i, j, k) is centred at (i, j, k) * voxel size

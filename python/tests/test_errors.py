@@ -40,6 +40,15 @@ def test_generate_refuses_bad_python_arguments(kwargs, message):
         nimbus.generate("cumulus-humilis", **kwargs)
 
 
+def test_the_programs_check_only_refuses_the_box_plan_refuses(run, tmp_path):
+    code, _, stderr = run("--check-only", "generate", "--preset", "cumulus-humilis", "--voxel-size", "0.001",
+                          "-o", tmp_path / "x.vdb", check=False)
+    assert code == 2
+    with pytest.raises(ValueError) as e:
+        nimbus.plan("cumulus-humilis", voxel_size=0.001)
+    assert cli_error(stderr).startswith(str(e.value)) and "memory" in str(e.value)
+
+
 def test_a_cloud_with_no_voxel_is_a_runtime_error(run, tmp_path):
     code, _, stderr = run("generate", "--preset", "cumulus-humilis", "--voxel-size", "5000", "-o", tmp_path / "x.vdb",
                           check=False)

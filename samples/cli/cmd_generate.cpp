@@ -104,6 +104,15 @@ int run_generate(const GenerateArgs& a) {
   // The model at the first and the last frame's time, so that a time it cannot take is refused
   // before any file is written (as generate_density would refuse it at that frame).
   for (const int frame : {first, last}) check_generate_time(plan, range.time(frame));
+  if (!tag) {  // a box too large for memory is refused now (and by --check-only), not at its frame
+    for (const int frame : {first, last}) {
+      try {
+        check_generate_memory(plan, range.time(frame));
+      } catch (const OutOfMemoryRequest& e) {
+        throw OutOfMemoryRequest(std::string(e.what()) + "; cut the field into bricks with --brick I/N (docs/farm.md)");
+      }
+    }
+  }
   std::vector<PathArg> outputs;
   for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
   check_outputs(outputs, {{"--params", a.params}});

@@ -6,6 +6,8 @@
 
 #include "cli.hpp"
 #include "frame_range.hpp"
+#include "nimbus/base/memory.hpp"
+#include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 
 namespace nimbus::cli {
@@ -43,6 +45,19 @@ void check_generate_time(const GeneratePlan& plan, double time_s) {
   } catch (const std::invalid_argument& e) {
     throw UsageError("at " + time_text(time_s) + " (--time, --frames/--fps): " + e.what());
   }
+}
+
+void check_generate_memory(const GeneratePlan& plan, double time_s) {
+  openvdb::CoordBBox box;
+  try {
+    box = volume::density_index_box(plan.params, plan.voxel_size_m, time_s);
+  } catch (const std::invalid_argument& e) {  // a cloud the time moved beyond the index range
+    throw UsageError("at " + time_text(time_s) + " (--time, --frames/--fps): " + e.what());
+  }
+  if (box.empty()) return;
+  const openvdb::Coord n = box.dim();
+  ensure_fits_in_memory(uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()), sizeof(float),
+                        "the cloud's bounding box at this voxel size");
 }
 
 }  // namespace nimbus::cli

@@ -19,11 +19,6 @@ namespace {
 
 namespace py = pybind11;
 
-cli::GenerateRequest request_of(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
-                                std::optional<int> res, std::vector<std::string> sets, const std::string& params_file) {
-  return cli::GenerateRequest{preset, seed, voxel_size, res, std::move(sets), params_file};
-}
-
 void check_time(double time_s) {
   if (!std::isfinite(time_s)) throw app::UsageError("time: must be a finite number of seconds");
 }
@@ -31,9 +26,9 @@ void check_time(double time_s) {
 py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
               std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file) {
   check_time(time_s);
-  const cli::GeneratePlan p = cli::plan_generate(request_of(preset, seed, voxel_size, res, std::move(sets), params_file));
+  const cli::GeneratePlan p = cli::plan_generate({preset, seed, voxel_size, res, std::move(sets), params_file});
   cli::check_generate_time(p, time_s);
-  const openvdb::CoordBBox box = volume::density_index_box(p.params, p.voxel_size_m, time_s);
+  const openvdb::CoordBBox box = cli::check_generate_memory(p, time_s);  // as generate refuses it, before any voxel
   py::dict d;
   d["voxel_size"] = p.voxel_size_m;
   if (box.empty()) {
@@ -42,10 +37,9 @@ py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::opti
     d["bounds_m"] = py::none();
     return d;
   }
-  cli::check_generate_memory(p, time_s);  // as generate refuses it, before any voxel
   const openvdb::Coord n = box.dim();
   d["dims"] = py::make_tuple(n.x(), n.y(), n.z());
-  d["dense_bytes"] = double(n.x()) * double(n.y()) * double(n.z()) * sizeof(float);
+  d["dense_bytes"] = uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()) * sizeof(float);
   const double vs = p.voxel_size_m;  // voxel (i, j, k) is centred at (i, j, k) * voxel size
   d["bounds_m"] = py::make_tuple(py::make_tuple(box.min().x() * vs, box.min().y() * vs, box.min().z() * vs),
                                  py::make_tuple(box.max().x() * vs, box.max().y() * vs, box.max().z() * vs));
@@ -56,7 +50,7 @@ Volume generate(const std::string& preset, std::optional<uint32_t> seed, std::op
                 std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
                 const py::object& progress) {
   check_time(time_s);
-  const cli::GenerateRequest request = request_of(preset, seed, voxel_size, res, std::move(sets), params_file);
+  const cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file};
   Volume v;
   std::atomic<double> fraction{0.0};
   run_interruptible(

@@ -107,7 +107,7 @@ int run_generate(const GenerateArgs& a) {
   if (!tag) {  // a box too large for memory is refused now (and by --check-only), not at its frame
     for (const int frame : {first, last}) {
       try {
-        check_generate_memory(plan, range.time(frame));
+        (void)check_generate_memory(plan, range.time(frame));
       } catch (const OutOfMemoryRequest& e) {
         throw OutOfMemoryRequest(std::string(e.what()) + "; cut the field into bricks with --brick I/N (docs/farm.md)");
       }

@@ -47,17 +47,18 @@ void check_generate_time(const GeneratePlan& plan, double time_s) {
   }
 }
 
-void check_generate_memory(const GeneratePlan& plan, double time_s) {
+openvdb::CoordBBox check_generate_memory(const GeneratePlan& plan, double time_s) {
   openvdb::CoordBBox box;
   try {
     box = volume::density_index_box(plan.params, plan.voxel_size_m, time_s);
   } catch (const std::invalid_argument& e) {  // a cloud the time moved beyond the index range
     throw UsageError("at " + time_text(time_s) + " (--time, --frames/--fps): " + e.what());
   }
-  if (box.empty()) return;
+  if (box.empty()) return box;
   const openvdb::Coord n = box.dim();
   ensure_fits_in_memory(uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()), sizeof(float),
                         "the cloud's bounding box at this voxel size");
+  return box;
 }
 
 }  // namespace nimbus::cli

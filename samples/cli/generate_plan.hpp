@@ -3,6 +3,7 @@
 // by the command and the Python module, so that both make the same voxels from the same request.
 #pragma once
 #include <nlohmann/json.hpp>
+#include <openvdb/openvdb.h>
 
 #include <cstdint>
 #include <optional>
@@ -36,9 +37,10 @@ GeneratePlan plan_generate(const GenerateRequest& request);
 // the noise's range): UsageError "at t = ... s (--time, --frames/--fps): ...".
 void check_generate_time(const GeneratePlan& plan, double time_s);
 
-// The cloud's index box at `time_s`, as dense floats, must fit in memory (generate_density's own
-// check, made before any work): nimbus::OutOfMemoryRequest naming the box otherwise; UsageError
-// "at t = ..." when the time moves the cloud beyond the index range.
-void check_generate_memory(const GeneratePlan& plan, double time_s);
+// The cloud's index box at `time_s` (what generate_density fills), which as dense floats must fit
+// in memory (generate_density's own check, made before any work): nimbus::OutOfMemoryRequest
+// naming the box otherwise; UsageError "at t = ..." when the time moves the cloud beyond the index
+// range.
+openvdb::CoordBBox check_generate_memory(const GeneratePlan& plan, double time_s);
 
 }  // namespace nimbus::cli

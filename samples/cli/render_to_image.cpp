@@ -1,7 +1,6 @@
 // `nimbus render`'s clouds, returned as an image (render_to_image.hpp).
 #include "render_to_image.hpp"
 
-#include <algorithm>
 #include <memory>
 
 #include "cli.hpp"

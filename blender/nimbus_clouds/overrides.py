@@ -4,7 +4,7 @@
 FREQUENCY_KEYS = ("frequency", "erosion_frequency", "cauliflower_frequency",
                   "displacement_frequency", "furrow_frequency")
 # Lengths (metres): multiplied by the size factor.
-LENGTH_KEYS = ("displacement", "base_softness", "temperature_height")
+LENGTH_KEYS = ("displacement", "base_softness", "ceiling_softness", "flat_layer", "temperature_height")
 # Below this an altitude means "none" (stretch_altitude -1e30: fibres everywhere).
 NO_ALTITUDE = 1e29
 
@@ -52,9 +52,10 @@ def size_overrides(cloud, f):
     for key in LENGTH_KEYS:
         if key in cloud:
             out[key] = cloud[key] * f
-    alt = cloud.get("stretch_altitude")
-    if isinstance(alt, (int, float)) and abs(alt) < NO_ALTITUDE:
-        out["stretch_altitude"] = base[2] + f * (alt - base[2])
+    for key in ("stretch_altitude", "ceiling_altitude"):
+        alt = cloud.get(key)
+        if isinstance(alt, (int, float)) and abs(alt) < NO_ALTITUDE:
+            out[key] = base[2] + f * (alt - base[2])
     field = cloud.get("field")
     if isinstance(field, dict):
         if "size" in field:

@@ -174,6 +174,8 @@ std::vector<Shape> cloud_shapes(const FieldCloud& c, double base) {
     s.falloff = falloff;
     s.roughness = c.roughness;
     s.roughness_seed = c.seed + static_cast<uint32_t>(out.size()) * 0x9e3779b9u;
+    s.rooted = true;  // every part stands on the field's base
+    s.root_z = base;
     out.push_back(s);
   };
   // The body: an ellipsoid whose lower part lies below the base, which the model cuts flat.

@@ -45,6 +45,9 @@ void validate(const CloudParams& p) {
   for (size_t i = 0; i < p.shapes.size(); ++i) validate(p.shapes[i], "shapes[" + std::to_string(i) + "]");
   need(std::isfinite(p.base_altitude), "base_altitude must be finite (metres)");
   need(std::isfinite(p.base_softness) && p.base_softness > 0, "base_softness must be finite and > 0 (metres)");
+  need(!std::isnan(p.ceiling_altitude) && p.ceiling_altitude > -1e29, "ceiling_altitude must be a number (metres)");
+  need(std::isfinite(p.ceiling_softness) && p.ceiling_softness > 0, "ceiling_softness must be finite and > 0 (metres)");
+  need(std::isfinite(p.flat_layer) && p.flat_layer >= 0, "flat_layer must be finite and >= 0 (metres)");
   need(std::isfinite(p.frequency) && p.frequency > 0, "frequency must be finite and > 0 (cycles per metre)");
   need(p.octaves >= 1 && p.octaves <= noise::kMaxOctaves, "octaves must be in [1, 24]");
   need(std::isfinite(p.lacunarity) && p.lacunarity > 1 && p.lacunarity <= 16, "lacunarity must be in (1, 16]");
@@ -87,8 +90,10 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
     const std::vector<Shape> f = field_shapes(*p.field, p.base_altitude > -1e29 ? p.base_altitude : 0.0);
     shapes_.insert(shapes_.end(), f.begin(), f.end());
   }
-  index_ = std::make_unique<ShapeIndex>(shapes_);
   shear_base_ = p.base_altitude > -1e29 ? p.base_altitude : 0.0;
+  for (Shape& s : shapes_)
+    if (s.rooted) s.root_z = shear_base_;  // turrets stand on the base
+  index_ = std::make_unique<ShapeIndex>(shapes_);
   fibre_dir_ = p.stretch_direction / std::hypot(p.stretch_direction.x, p.stretch_direction.y);
   if (p.cauliflower > 0) {
     noise::PerlinWorleyParams pw;
@@ -114,7 +119,7 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   threshold_ = 1.0 - p.coverage;
   mean_ = billow_->expected_mean();  // Worley noise is not centred
   inv_sd_ = 1.0 / billow_->expected_sd();
-  min_useful_coverage_ = threshold_ / (1.0 + p.billow * (1.0 - mean_) * inv_sd_);
+  min_useful_coverage_ = threshold_ / (1.0 + p.billow * std::max((1.0 - mean_) * inv_sd_, kBaseBillow));
   // The largest density the parameters can give, where coverage is 1 and the billow noise at the
   // top of its range (erosion, furrows and cauliflower only take away), must be a float: voxels
   // beyond it would overflow. The stored grids are floats, so refuse rather than saturate.
@@ -137,7 +142,8 @@ glm::dvec3 CloudModel::sheared(const glm::dvec3& p) const {
   return q;
 }
 
-glm::dvec3 CloudModel::noise_point(const glm::dvec3& q) const {
+glm::dvec3 CloudModel::noise_point(const glm::dvec3& point) const {
+  const glm::dvec3& q = point;
   if (params_.stretch == 1.0) return q;
   const double x = std::clamp((q.z - params_.stretch_altitude) / 200.0, 0.0, 1.0);
   const double w = x * x * (3.0 - 2.0 * x);
@@ -154,33 +160,55 @@ glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
   return q;
 }
 
-double CloudModel::coverage_at(const glm::dvec3& q) const {
+namespace {
+
+double smoothstep01(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+}  // namespace
+
+double CloudModel::coverage_at(const glm::dvec3& q, double z0) const {
+  const CloudParams& p = params_;
+  const bool under_ceiling = z0 > p.ceiling_altitude - p.ceiling_softness;
+  const double ceiling = under_ceiling ? smoothstep01((p.ceiling_altitude - z0) / p.ceiling_softness) : 1.0;
   double s = 0.0;
-  index_->visit(q, [&](uint32_t i) { s = std::max(s, shape_coverage(shapes_[i], q)); });
-  if (s > 0.0 && q.z < params_.base_altitude + params_.base_softness) {
-    const double x = std::clamp((q.z - params_.base_altitude) / params_.base_softness, 0.0, 1.0);
-    s *= x * x * (3.0 - 2.0 * x);
-  }
+  index_->visit(q, [&](uint32_t i) {
+    const double c = shape_coverage(shapes_[i], q);
+    s = std::max(s, shapes_[i].overshoot ? c : c * ceiling);
+  });
+  if (s > 0.0 && z0 < p.base_altitude + p.base_softness) s *= smoothstep01((z0 - p.base_altitude) / p.base_softness);
   return s;
 }
 
-float CloudModel::finish(double s, float billow_noise, float detail, float furrow, float cauli) const {
-  const double z = (double(billow_noise) - mean_) * inv_sd_;
-  const double f = s * (1.0 + params_.billow * z) - threshold_ - params_.erosion * double(detail) -
-                   params_.furrows * double(furrow) - params_.cauliflower * (1.0 - double(cauli));
+double CloudModel::calm(double z0) const {
+  const CloudParams& p = params_;
+  if (!(p.flat_layer > 0.0)) return 1.0;
+  const double above_base = p.base_altitude > -1e29 ? (z0 - p.base_altitude) / p.flat_layer : 1.0;
+  const double below_ceiling = p.ceiling_altitude < 1e29 ? (p.ceiling_altitude - z0) / p.flat_layer : 1.0;
+  return smoothstep01(std::min(above_base, below_ceiling));
+}
+
+float CloudModel::finish(double s, double w, float billow_noise, float detail, float furrow, float cauli) const {
+  const double z = w * (double(billow_noise) - mean_) * inv_sd_ + (1.0 - w) * kBaseBillow;
+  const double eaten = params_.erosion * double(detail) + params_.furrows * double(furrow) +
+                       params_.cauliflower * (1.0 - double(cauli));
+  const double f = s * (1.0 + params_.billow * z) - threshold_ - w * eaten;
   return gas_density(static_cast<float>(f), params_.gas);
 }
 
 float CloudModel::density(const glm::dvec3& p) const {
+  const double z0 = sheared(p).z;
   const glm::dvec3 q = moved(p);
-  const double s = coverage_at(q);
+  const double s = coverage_at(q, z0);
   if (!(s > min_useful_coverage_)) return 0.0f;
   const glm::dvec3 m = noise_point(q);
   const float n = billow_->eval(m.x, m.y, m.z);
   const float d = detail_ ? detail_->eval(m.x, m.y, m.z) : 0.0f;
   const float r = furrow_ ? furrow_->eval(m.x, m.y, m.z) : 0.0f;
   const float c = cauli_ ? cauli_->eval(m.x, m.y, m.z) : 1.0f;
-  return finish(s, n, d, r, c);
+  return finish(s, calm(z0), n, d, r, c);
 }
 
 Aabb CloudModel::lean(double z_lo, double z_hi) const {
@@ -212,9 +240,11 @@ bool CloudModel::may_touch(const Aabb& w) const {
 int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
   const noise::BatchOptions serial{std::nullopt, false};  // callers parallelise over blocks
   std::vector<std::array<double, 3>> q(n);
+  std::vector<double> z0(n);  // the undisplaced altitude, where the base and the ceiling are level
   for (size_t i = 0; i < n; ++i) {
     const glm::dvec3 m = sheared(points[i]);
     q[i] = {m.x, m.y, m.z};
+    z0[i] = m.z;
   }
   // A point farther than `displacement` from every shape cannot be displaced into one: its
   // density is 0, so it needs no displacement noise (and no other noise).
@@ -251,7 +281,7 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
   for (size_t i = 0; i < n; ++i) {
     out[i] = 0.0f;
     if (far[i]) continue;
-    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]});
+    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]}, z0[i]);
     if (s[i] > min_useful_coverage_) {
       const glm::dvec3 m = noise_point({q[i][0], q[i][1], q[i][2]});
       busy.push_back({m.x, m.y, m.z});
@@ -264,7 +294,10 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
   if (detail_) noise::evaluate_points(*detail_, busy, nd, serial);
   if (furrow_) noise::evaluate_points(*furrow_, busy, nr, serial);
   if (cauli_) cauli_->evaluate_points(busy, nc, serial);
-  for (size_t k = 0; k < busy.size(); ++k) out[where[k]] = finish(s[where[k]], nb[k], nd[k], nr[k], nc[k]);
+  for (size_t k = 0; k < busy.size(); ++k) {
+    const uint32_t i = where[k];
+    out[i] = finish(s[i], calm(z0[i]), nb[k], nd[k], nr[k], nc[k]);
+  }
   return static_cast<int64_t>(busy.size());
 }
 

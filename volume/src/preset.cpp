@@ -78,9 +78,13 @@ Shape shape_from_json(const json& j, const std::string& where) {
     else if (k == "weight") s.weight = number(v, key);
     else if (k == "fade_up") s.fade_up = number(v, key);
     else if (k == "roughness") s.roughness = number(v, key);
+    else if (k == "root_taper") s.root_taper = number(v, key);
     else if (k == "roughness_seed") {
       if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       s.roughness_seed = v.get<uint32_t>();
+    } else if (k == "rooted" || k == "overshoot") {
+      if (!v.is_boolean()) expected(key, "true or false", v);
+      (k == "rooted" ? s.rooted : s.overshoot) = v.get<bool>();
     }
     else bad(key + ": unknown key");
   }
@@ -96,6 +100,9 @@ json shape_to_json(const Shape& s) {
             {"weight", s.weight}};
   if (s.kind == ShapeKind::Capsule) j["end"] = {s.end.x, s.end.y, s.end.z};
   if (s.fade_up > 0) j["fade_up"] = s.fade_up;
+  if (s.rooted) j["rooted"] = true;
+  if (s.root_taper > 0) j["root_taper"] = s.root_taper;
+  if (s.overshoot) j["overshoot"] = true;
   if (s.roughness > 0) {
     j["roughness"] = s.roughness;
     j["roughness_seed"] = s.roughness_seed;
@@ -210,6 +217,9 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "frequency") p.frequency = number(v, key);
     else if (k == "base_altitude") p.base_altitude = number(v, key);
     else if (k == "base_softness") p.base_softness = number(v, key);
+    else if (k == "ceiling_altitude") p.ceiling_altitude = number(v, key);
+    else if (k == "ceiling_softness") p.ceiling_softness = number(v, key);
+    else if (k == "flat_layer") p.flat_layer = number(v, key);
     else if (k == "lacunarity") p.lacunarity = number(v, key);
     else if (k == "gain") p.gain = number(v, key);
     else if (k == "coverage") p.coverage = number(v, key);
@@ -240,6 +250,9 @@ json cloud_to_json(const CloudParams& p) {
   for (const Shape& s : p.shapes) shapes.push_back(shape_to_json(s));
   json j = {{"base_altitude", p.base_altitude},
           {"base_softness", p.base_softness},
+          {"ceiling_altitude", p.ceiling_altitude},
+          {"ceiling_softness", p.ceiling_softness},
+          {"flat_layer", p.flat_layer},
           {"noise", std::string(noise::to_string(p.noise))},
           {"frequency", p.frequency},
           {"octaves", p.octaves},

@@ -21,7 +21,35 @@ bool Aabb::overlaps(const Aabb& o) const {
          o.lo.z < hi.z;
 }
 
-double shape_distance(const Shape& s, const glm::dvec3& p) {
+namespace {
+
+// A rooted shape's lower pivot: where its column starts going down.
+double pivot_z(const Shape& s) {
+  return s.kind == ShapeKind::Capsule ? std::min(s.center.z, s.end.z) : s.center.z;
+}
+
+}  // namespace
+
+double rooted_z(const Shape& s, double z) {
+  if (!s.rooted) return z;
+  const double pivot = pivot_z(s);
+  if (z >= pivot || s.root_z >= pivot) return z;
+  if (z >= s.root_z) return pivot;     // the column
+  return z + (pivot - s.root_z);       // the underside, moved down to the root
+}
+
+double root_taper(const Shape& s, double z) {
+  if (!s.rooted) return 1.0;
+  const double pivot = pivot_z(s);
+  if (z >= pivot || s.root_z >= pivot) return 1.0;
+  return 1.0 - s.root_taper * std::min((pivot - z) / (pivot - s.root_z), 1.0);
+}
+
+double shape_distance(const Shape& s, const glm::dvec3& point) {
+  // A rooted column narrows towards its root: the pivot's section, scaled about the axis.
+  const double k = root_taper(s, point.z);
+  const glm::dvec3 axis = s.kind == ShapeKind::Capsule && s.end.z < s.center.z ? s.end : s.center;
+  const glm::dvec3 p(axis.x + (point.x - axis.x) / k, axis.y + (point.y - axis.y) / k, rooted_z(s, point.z));
   const glm::dvec3 d = p - s.center;
   switch (s.kind) {
     case ShapeKind::Ellipsoid: return glm::length(d / s.size);
@@ -76,12 +104,15 @@ double shape_distance_bound(const Shape& shape, const glm::dvec3& p) {
   s.roughness = 0.0;
   const double u = shape_distance(s, p);
   if (!(u > 1.0)) return 0.0;
+  // A rooted column's taper divides horizontal offsets by up to 1 / (1 - root_taper): u changes
+  // that much faster per metre, so the bound shrinks by that factor.
+  const double taper = s.rooted ? 1.0 - s.root_taper : 1.0;
   switch (s.kind) {
     // u scales the offset by 1/size per axis, so a Euclidean step of length l changes u by at
     // most l / min(size): the boundary u = 1 is at least (u - 1) min(size) away.
     case ShapeKind::Ellipsoid:
-    case ShapeKind::Slab: return (u - 1.0) * std::min({s.size.x, s.size.y, s.size.z});
-    case ShapeKind::Capsule: return (u - 1.0) * s.size.x;  // u is distance / radius
+    case ShapeKind::Slab: return taper * (u - 1.0) * std::min({s.size.x, s.size.y, s.size.z});
+    case ShapeKind::Capsule: return taper * (u - 1.0) * s.size.x;  // u is distance / radius
     case ShapeKind::Lens: {
       // Outside the rim cylinder the horizontal distance bounds it; above or below the lens
       // no cheap bound is used.
@@ -96,7 +127,8 @@ double shape_coverage(const Shape& s, const glm::dvec3& p) {
   double u = shape_distance(s, p);
   if (s.roughness > 0.0) {
     if (!(u < 1.0 + s.roughness)) return 0.0;
-    if (u > 1.0 - s.falloff - s.roughness) u += s.roughness * roughness_at(s, p);  // only near the outline
+    // Only near the outline; a rooted shape's column has the outline of its pivot's section.
+    if (u > 1.0 - s.falloff - s.roughness) u += s.roughness * roughness_at(s, {p.x, p.y, rooted_z(s, p.z)});
   }
   if (!(u < 1.0)) return 0.0;
   const double x = std::clamp((1.0 - u) / s.falloff, 0.0, 1.0);  // 0 at the boundary
@@ -109,7 +141,10 @@ double shape_coverage(const Shape& s, const glm::dvec3& p) {
   return c;
 }
 
-Aabb shape_bounds(const Shape& shape) {
+namespace {
+
+// The bounds without the column of a rooted shape.
+Aabb own_bounds(const Shape& shape) {
   Shape s = shape;  // a rough outline reaches u = 1 + roughness: the shape grown by that factor
   s.size *= 1.0 + s.roughness;
   switch (s.kind) {
@@ -127,6 +162,14 @@ Aabb shape_bounds(const Shape& shape) {
   return {};
 }
 
+}  // namespace
+
+Aabb shape_bounds(const Shape& shape) {
+  Aabb b = own_bounds(shape);
+  if (shape.rooted) b.lo.z -= std::max(0.0, pivot_z(shape) - shape.root_z);  // the column
+  return b;
+}
+
 void validate(const Shape& s, const std::string& where) {
   auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite(s.center)) throw std::invalid_argument(where + ".center must be finite");
@@ -137,6 +180,8 @@ void validate(const Shape& s, const std::string& where) {
   if (!(s.weight >= 0.0 && s.weight <= 1.0)) throw std::invalid_argument(where + ".weight must be in [0, 1]");
   if (!(s.fade_up >= 0.0 && s.fade_up <= 16.0)) throw std::invalid_argument(where + ".fade_up must be in [0, 16]");
   if (!(s.roughness >= 0.0 && s.roughness <= 1.0)) throw std::invalid_argument(where + ".roughness must be in [0, 1]");
+  if (!std::isfinite(s.root_z)) throw std::invalid_argument(where + ".root_z must be finite (metres)");
+  if (!(s.root_taper >= 0.0 && s.root_taper <= 0.5)) throw std::invalid_argument(where + ".root_taper must be in [0, 0.5]");
 }
 
 }  // namespace nimbus::volume

@@ -5,11 +5,18 @@
 //   q0     = p - wind t - (shear_x, shear_y, 0) (z - base)          leaning with height
 //   q      = q0 + displacement * (fbm_x, fbm_y, fbm_z)(q0)
 //   n      = q squeezed by 1/stretch along stretch_direction above stretch_altitude (noise)
-//   s      = max over shapes of coverage(q) * base(q.z)             in [0, 1]
+//   s      = max over shapes of coverage(q) * ceiling(q0.z) * base(q0.z)   in [0, 1]
+//   w      = calm(q0.z): 0 at the base and the ceiling, 1 flat_layer metres from them
 //   z      = (fbm(q) - mean(fbm)) / sd(fbm)                        zero mean, unit variance
-//   f      = s (1 + billow z) - (1 - coverage) - erosion * turbulence_detail(n)
-//            - furrows * ridged(n) - cauliflower * (1 - perlin_worley(n))
+//   z'     = w z + (1 - w) kBaseBillow                              the noise, calmed
+//   f      = s (1 + billow z') - (1 - coverage) - w (erosion * turbulence_detail(n)
+//            + furrows * ridged(n) + cauliflower * (1 - perlin_worley(n)))
 //   density = gas(f) = pow(f * max_density, exponent)  (0 where f <= 0)
+// The base and the ceiling are level in q0 (not moved by the displacement), and the noise is
+// calmed next to them: a cumulus base is the condensation level and an anvil's top the
+// tropopause, both flat; the turbulence shapes the walls and the top (docs/volume.md). At the
+// base the cloud fills what the billows reach one standard deviation up (kBaseBillow), so
+// every column that holds cloud above holds it at the base too, short of the rarest billows.
 // The noise modulates the coverage, so the density is exactly 0 outside the shapes and
 // continuous at their boundary; since fbm <= 1, f can be positive only where
 // s > (1 - coverage) / (1 + billow (1 - mean) / sd(fbm)), and the noise is evaluated only there.
@@ -35,6 +42,9 @@
 
 namespace nimbus::volume {
 
+// The calmed billow noise at the base and the ceiling, in standard deviations (see above).
+inline constexpr double kBaseBillow = 1.5;
+
 struct CloudParams {
   std::vector<Shape> shapes;
   // Many clouds (cloud_field.hpp): the field's shapes join `shapes`, on base_altitude.
@@ -43,6 +53,14 @@ struct CloudParams {
   // base_softness (metres, along z), which flattens the base as convection does.
   double base_altitude = -1e30;
   double base_softness = 50.0;
+  // Ceiling (the tropopause, where a cumulonimbus spreads into its anvil): coverage falls from
+  // full at ceiling_altitude - ceiling_softness to 0 at ceiling_altitude (metres), except in
+  // shapes marked `overshoot`. Default: none.
+  double ceiling_altitude = 1e30;
+  double ceiling_softness = 100.0;
+  // Metres above the base (and below the ceiling) over which the noise grows from calm (w = 0)
+  // to its full amplitude, so the base (and the ceiling) stay flat. 0: full noise everywhere.
+  double flat_layer = 0.0;
   noise::Kind noise = noise::Kind::Gradient;  // billow noise kind
   double frequency = 1.0 / 400.0;    // billow noise, cycles per metre (first octave)
   int octaves = 6;                   // at most; fewer where the voxel cannot resolve them
@@ -121,8 +139,10 @@ class CloudModel {
   glm::dvec3 noise_point(const glm::dvec3& q) const;  // n: stretched
   Aabb world_box(const Aabb& q0_box) const;
   Aabb lean(double z_lo, double z_hi) const;  // the shear's horizontal offsets over that height
-  double coverage_at(const glm::dvec3& q) const;
-  float finish(double s, float billow_noise, float detail, float furrow, float cauli) const;
+  // s: the shapes' coverage at q, with the base and the ceiling at the undisplaced altitude z0.
+  double coverage_at(const glm::dvec3& q, double z0) const;
+  double calm(double z0) const;  // w: the noise's share near the base and the ceiling
+  float finish(double s, double w, float billow_noise, float detail, float furrow, float cauli) const;
 
   CloudParams params_;
   std::vector<Shape> shapes_;

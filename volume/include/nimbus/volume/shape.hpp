@@ -38,7 +38,26 @@ struct Shape {
   // outline is fractal from the cloud's size down (research-viewer.md 5.2). [0, 1]; 0: smooth.
   double roughness = 0.0;
   uint32_t roughness_seed = 0;  // offsets the noise, so shapes differ
+  // Convective: the shape rises from the cloud base. Below its lower pivot (an ellipsoid's or
+  // lens's centre, a capsule's lower end) it continues straight down, at its widest section, to
+  // root_z, and only below root_z does its own underside follow; so a turret is a column
+  // standing on the base, and the model's cut at the condensation level (CloudModel) finds the
+  // same full coverage in every column: the base is flat, as observed cumulus bases are
+  // (Stull, Practical Meteorology 2017, ch. 6: the base is the lifting condensation level).
+  bool rooted = false;
+  double root_z = 0.0;  // metres; the cloud model sets it to its base altitude
+  // The column narrows towards the root, to (1 - root_taper) of the pivot's section at root_z:
+  // cumulus are widest a little above their base, whose edge curves in. [0, 0.5]
+  double root_taper = 0.0;
+  // Pierces the model's ceiling (the tropopause): the overshooting dome of a cumulonimbus.
+  bool overshoot = false;
 };
+
+// The altitude a rooted shape's distance is measured at (z itself for other shapes): a
+// 1-Lipschitz map of z, so distance bounds hold.
+double rooted_z(const Shape& s, double z);
+// The horizontal scale of a rooted shape's section at altitude z (1 for other shapes).
+double root_taper(const Shape& s, double z);
 
 inline constexpr double kRoughnessFrequency = 1.5;
 inline constexpr double kRoughnessGain = 0.7;

@@ -7,7 +7,8 @@
 // (spots among them, lib/lamp_airlight.glsl) take A * A_fog(0, D) at the alpha-weighted mean
 // distance D. With a physical sky the air's aerial perspective (lib/aerial_perspective.glsl)
 // hazes the clouds at D and the surfaces at their distance: x -> x T_air + S_air (weighted by
-// alpha for the clouds). Output alpha 1. Second output, for carrying the frame into the next
+// alpha for the clouds), and beyond the table's reach tends to the horizon sky
+// (lib/far_ground_haze.glsl), so the ground meets the sky at the horizon. Output alpha 1. Second output, for carrying the frame into the next
 // (temporal_frame.hpp, pixel_depths.hpp): the distance to what carries the pixel's detail (D
 // where A >= 1/2 or where clouds are over the sky, else the surface's, else 0 for the sky) and
 // 1 when that is the clouds'.
@@ -16,6 +17,7 @@ in vec2 uv;
 #include "lib/light_list.glsl"
 #include "lib/lamp_airlight.glsl"
 #include "lib/aerial_perspective.glsl"
+#include "lib/sky.glsl"
 layout(binding = UNIT_SCENE_COLOR) uniform sampler2D u_scene_color;  // RGBA32F premultiplied scene radiance
 layout(binding = UNIT_CLOUD_COLOR) uniform sampler2D u_cloud_color;  // premultiplied cloud radiance, alpha
 layout(binding = UNIT_SCENE_DISTANCE) uniform sampler2D u_scene_distance;  // R32F metres to the visible surface, 0 = none
@@ -24,6 +26,7 @@ uniform float u_sigma_t;             // fog extinction, per metre
 uniform float u_sigma_s;             // fog scattering, per metre
 uniform int u_phase_kind;            // PHASE_* code
 uniform float u_phase_g;
+#include "lib/far_ground_haze.glsl"
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec2 o_depth;
 
@@ -50,7 +53,7 @@ void main() {
     }
     float surface = texelFetch(u_scene_distance, px, 0).r;
     if (surface > 0.0) {
-      aerial_perspective(dir, surface, S, T);
+      surface_haze(dir, surface, S, T);
       scene = scene * T + S;
     }
   }

@@ -136,20 +136,22 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec3 Ls = texelFetch(u_surface_radiance, px, 0).rgb;
   float t = texelFetch(u_surface_distance, px, 0).r;
-  bool hit = t > 0.0 && (u_has_sky == 0 || t < u_sky_distance);  // the world ends at the sky
+  bool hit = t > 0.0;
   bool sky = !hit && u_has_sky != 0;
-  float t_end = hit ? t : (sky ? u_sky_distance : INF_M);
+  // The fog ends at the sky (scene.hpp Sky): a surface beyond it, the ground toward the
+  // horizon, is seen through the sky's distance of fog.
+  float t_end = hit ? (u_has_sky != 0 ? min(t, u_sky_distance) : t) : (sky ? u_sky_distance : INF_M);
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
-  vec3 L = hit ? Ls * exp(-u_sigma_t * t) : (sky ? sky_radiance(dir) * exp(-u_sigma_t * t_end) : vec3(0.0));
+  vec3 L = hit ? Ls * exp(-u_sigma_t * t_end) : (sky ? sky_radiance(dir) * exp(-u_sigma_t * t_end) : vec3(0.0));
   float jitter = pixel_jitter(px);
-  float t_march = hit ? t : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
+  float t_march = hit ? t_end : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
 
   for (int i = 0; i < lights.point_count; ++i) {
 #if METHOD == SHAFT_METHOD_RAYMARCH
     float a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
 #elif METHOD == SHAFT_METHOD_ANALYTIC
 #if AIRLIGHT_TABLE
-    float a = table_point(i, dir, t_end, hit ? t : INF_M);
+    float a = table_point(i, dir, t_end, hit ? t_end : INF_M);
 #else
     float a = closed_point(i, dir, 0.0, t_end);
 #endif

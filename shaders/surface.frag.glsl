@@ -19,8 +19,15 @@ uniform vec3 u_emissive_radiance;  // > 0 for light bulbs: their radiance, no sh
 uniform int u_emissive;
 uniform float u_normal_offset_texels;  // shadow lookups move this many texels along the normal
 uniform vec3 u_sky_irradiance_up;  // the sky's light on an upward surface, pi (zenith + horizon) / 2; 0 without a sky
+// The ground plane (u_is_ground 1) is shaded at its exact point on the pixel's ray (its quad
+// reaches the horizon, where interpolated positions lose their metres), and with
+// u_ground_textured its albedo is the texture's (lib/ground_albedo.glsl), not the vertices'.
+uniform int u_is_ground;
+uniform float u_ground_height_m;
+uniform int u_ground_textured;
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
+#include "lib/ground_albedo.glsl"
 #if SURFACE_AIRLIGHT
 #include "lib/surface_airlight_texture.glsl"
 #endif
@@ -28,33 +35,42 @@ layout(location = 0) out vec4 o_radiance;
 layout(location = 1) out float o_distance;
 void main() {
   vec3 n = normalize(v_normal);
-  vec3 to_eye = camera.eye - v_world;
+  vec3 world = v_world;
+  vec3 albedo = v_albedo;
+  if (u_is_ground != 0) {
+    vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
+    float t = (u_ground_height_m - camera.eye.y) / (abs(dir.y) > 1.0e-9 ? dir.y : -1.0e-9);
+    if (t > 0.0) world = camera.eye + t * dir;
+    if (u_ground_textured != 0)
+      albedo = ground_albedo(world, dir, length(world - camera.eye), 2.0 * length(camera.right_scaled) / camera.viewport.x);
+  }
+  vec3 to_eye = camera.eye - world;
   if (dot(n, to_eye) < 0.0) n = -n;  // two-sided
   vec3 L = vec3(0.0);
   if (u_emissive != 0) {
     L = u_emissive_radiance;
   } else {
     for (int i = 0; i < lights.point_count; ++i) {
-      vec3 l = lights.point_position[i].xyz - v_world;
+      vec3 l = lights.point_position[i].xyz - world;
       float d = length(l);
       vec3 I = lights.point_intensity[i].rgb * lamp_spot_weight(i, -l / d);
 #if SURFACE_AIRLIGHT
       if (!lamp_is_spot(i))
-        L += v_albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
+        L += albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
 #endif
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.
-      float v = point_visibility(i, v_world + n * (u_normal_offset_texels * d * u_point_texel_angle));
-      L += v_albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
+      float v = point_visibility(i, world + n * (u_normal_offset_texels * d * u_point_texel_angle));
+      L += albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
       float cos_s = max(dot(n, lights.to_sun), 0.0);
       if (cos_s > 0.0)
-        L += v_albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_light_visibility(v_world + n * (u_normal_offset_texels * u_sun_texel_m));
+        L += albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * u_sun_texel_m));
     }
     // The sky, uniform at its mean, seen by the share (1 + n.y) / 2 (render::sky_irradiance).
-    L += v_albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));
+    L += albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));
   }
   o_radiance = vec4(L, 1.0);
   o_distance = length(to_eye);

@@ -62,6 +62,7 @@ const int UNIT_AERIAL_TRANSMITTANCE = 18; // sampler3D: the air's transmittance 
 const int UNIT_LIGHT_VOLUME = 19;        // sampler3D: scattered light's fluence and flux (lib/cloud_light_volume.glsl)
 const int UNIT_SURFACE_AIRLIGHT = 20;    // sampler2D: the surface airlight's g(ln Tsp, theta_s) (lib/surface_airlight_texture.glsl)
 const int UNIT_LIGHT_RADIANCE = 21;      // sampler3D: the light volume's in-scattered radiance toward this frame's eye
+const int UNIT_GROUND_ALBEDO = 22;       // sampler2D: the ground's albedo texture, mipmapped, repeating (lib/ground_albedo.glsl)
 
 // --- Image units (layout(binding = ...) of images; glBindImageTexture) --------------------
 const int IMAGE_CLOUD_TAU = 0;         // image2D r32f: the cloud shadow map being built

@@ -33,3 +33,9 @@ float sun_visibility(vec3 p) {
 float sun_light_visibility(vec3 p) {
   return sun_visibility(p) * cloud_transmittance(p);
 }
+
+// The same on a surface, with the penumbra of the sun's disc in the clouds' shadow
+// (cloud_transmittance_soft): the fog's samples keep the one-tap form.
+float sun_surface_visibility(vec3 p) {
+  return sun_visibility(p) * cloud_transmittance_soft(p);
+}

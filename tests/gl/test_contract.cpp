@@ -141,6 +141,7 @@ const std::map<std::string, int>& expected_units() {
       {"u_aerial_scattering", contract::UNIT_AERIAL_SCATTERING}, {"u_aerial_transmittance", contract::UNIT_AERIAL_TRANSMITTANCE},
       {"u_light_volume", contract::UNIT_LIGHT_VOLUME},  {"u_surface_airlight_table", contract::UNIT_SURFACE_AIRLIGHT},
       {"u_light_radiance", contract::UNIT_LIGHT_RADIANCE}, {"u_radiance", contract::IMAGE_LIGHT_RADIANCE},
+      {"u_ground_albedo", contract::UNIT_GROUND_ALBEDO},
   };
   return units;
 }

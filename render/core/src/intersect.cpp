@@ -141,7 +141,7 @@ std::optional<Hit> intersect_plane(const GroundPlane& g, const glm::dvec3& o, co
   if (d.y == 0.0) return std::nullopt;
   const double t = (g.height_m - o.y) / d.y;
   if (!(t > tmin && t < tmax)) return std::nullopt;
-  return Hit{t, {0.0, 1.0, 0.0}, g.material.albedo};
+  return Hit{t, {0.0, 1.0, 0.0}, g.material.albedo, true};
 }
 
 std::optional<Hit> intersect_box(const Box& b, const glm::dvec3& o, const glm::dvec3& d, double tmin,

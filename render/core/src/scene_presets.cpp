@@ -168,7 +168,8 @@ Scene open_scene() {
   return s;
 }
 
-// An afternoon sky for clouds (issue 5): flat ground, the sun 33 degrees up to the right of the
+// An afternoon sky for clouds (issue 5): flat ground of fields, meadows and woods (its albedo
+// texture, ground_albedo.hpp) reaching the horizon, the sun 33 degrees up to the right of the
 // camera and a little ahead (clouds lit from the side, with bright edges and shafts below them),
 // a thin forward-scattering haze (visibility about 400 km; the air itself adds the aerial
 // perspective) for the shafts, and the physical sky
@@ -180,6 +181,7 @@ Scene sky() {
   s.name = "sky";
   s.medium = medium(1.0e-5, 0.9, Phase{PhaseKind::HenyeyGreenstein, 0.5});
   s.ground = GroundPlane{0.0, Material{{0.28, 0.3, 0.22}}};
+  s.ground->albedo_texture = sky_ground_albedo();
   s.camera = camera({0.0, 2.0, 7000.0}, {0.0, 1500.0, 0.0}, 60.0);
   const Daylight d = daylight(glm::normalize(glm::dvec3{0.8, 0.55, -0.25}), s.camera.eye.y);
   s.sun = sun_light(d.sun.direction_to_sun, d.cloud_sun_irradiance_w_m2);

@@ -170,13 +170,18 @@ glm::dvec3 surface_radiance(const Prepared& prepared, const glm::dvec3& P, glm::
   return albedo / M_PI * irradiance + albedo * airlight;
 }
 
+// pixel_angle_rad: the angle one pixel subtends (the ground texture's footprint; 0 for a lone ray).
 ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm::dvec3& dir,
-                      const ReferenceSettings& settings) {
+                      const ReferenceSettings& settings, double pixel_angle_rad) {
   const SceneTracer& tracer = prepared.tracer;
   const Scene& s = tracer.scene();
   const double sigma_t = s.medium.extinction_per_m;
   std::optional<Hit> hit = tracer.intersect(eye, dir);
-  if (hit && s.sky && hit->t > s.sky->distance_m) hit.reset();  // the world ends at the sky
+  if (hit && hit->ground && s.ground->albedo_texture)
+    hit->albedo = ground_albedo(*s.ground->albedo_texture, eye.x + hit->t * dir.x, eye.z + hit->t * dir.z, dir, hit->t,
+                                pixel_angle_rad);
+  // The fog ends at the sky: surfaces beyond it are seen through the sky's distance of fog.
+  const double fog_end = s.sky ? s.sky->distance_m : kInf;
   const std::optional<BulbHit> bulb = tracer.intersect_bulbs(eye, dir, hit ? hit->t : kInf);
   ReferenceSample out;
   double t_end = kInf;
@@ -186,8 +191,8 @@ ReferenceSample trace(const Prepared& prepared, const glm::dvec3& eye, const glm
     out.radiance = l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m) * std::exp(-sigma_t * t_end);
     out.alpha = 1.0;
   } else if (hit) {
-    t_end = hit->t;
-    out.radiance = surface_radiance(prepared, eye + t_end * dir, hit->normal, dir, hit->albedo) *
+    t_end = std::min(hit->t, fog_end);
+    out.radiance = surface_radiance(prepared, eye + hit->t * dir, hit->normal, dir, hit->albedo) *
                    std::exp(-sigma_t * t_end);
     out.alpha = 1.0;
   } else if (s.sky) {
@@ -236,7 +241,7 @@ ReferenceSample reference_ray(const Scene& scene, const glm::dvec3& eye, const g
   validate(scene);
   validate(settings);
   const Prepared prepared(scene, settings.surface_airlight);
-  return trace(prepared, eye, glm::normalize(dir), settings);
+  return trace(prepared, eye, glm::normalize(dir), settings, 0.0);
 }
 
 Image render_reference(const Scene& scene, const Camera& camera, const ReferenceSettings& settings) {
@@ -246,8 +251,9 @@ Image render_reference(const Scene& scene, const Camera& camera, const Reference
   const Prepared prepared(scene, settings.surface_airlight);
   Image image(camera.width, camera.height);
   describe(image, scene, camera, settings);
+  const double pixel_angle = 2.0 * std::tan(0.5 * camera.fov_deg * M_PI / 180.0) / camera.width;  // at the centre
   detail::render_pixels(image, settings.threads, settings.progress, "reference", [&](int x, int y) {
-    const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings);
+    const auto px = trace(prepared, camera.eye, pixel_ray(camera, x, y), settings, pixel_angle);
     return glm::dvec4(px.radiance, px.alpha);
   });
   return image;

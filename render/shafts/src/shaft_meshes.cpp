@@ -46,10 +46,19 @@ void ShaftRenderer::Impl::build_meshes() {
   if (scene.ground) {
     Scene g;
     g.ground = scene.ground;
-    // Under a sky the ground reaches the sky's distance from wherever the camera stands.
-    const double extent = scene.sky ? std::max(settings.ground_extent_m, 3.0 * scene.sky->distance_m)
-                                    : settings.ground_extent_m;
+    // Under a sky the ground reaches the horizon: kHorizonGroundM from wherever the camera
+    // stands, so an eye 400 m up sees its edge 0.011 degrees below the horizon (a quarter of a
+    // pixel of a 1280-wide frame at 60 degrees). The surface pass draws it unclipped by the far
+    // plane, at its exact point on each pixel's ray.
+    const double extent = scene.sky ? std::max(settings.ground_extent_m, kHorizonGroundM) : settings.ground_extent_m;
     ground = upload(build_scene_mesh(g, extent));
+    if (const auto& tex = scene.ground->albedo_texture) {
+      const int n = tex->params.size;
+      ground_albedo = make_texture_2d(GL_RGB32F, n, n, TextureParams{GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT, tex->level_count()});
+      for (int l = 0; l < tex->level_count(); ++l)
+        glTextureSubImage2D(ground_albedo.id(), l, 0, 0, tex->size(l), tex->size(l), GL_RGB, GL_FLOAT, tex->levels[l].data());
+      check_gl("uploading the ground's albedo texture");
+    }
   }
   for (const Light& l : scene.lamps) {
     bulbs.push_back(upload(build_bulb_mesh(l)));

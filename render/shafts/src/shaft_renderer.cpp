@@ -166,7 +166,28 @@ void ShaftRenderer::Impl::draw_surfaces(const CameraBlock& camera, int w, int h)
   p.set("u_emissive", 0);
   p.set("u_sky_irradiance_up", scene.sky ? to_float(sky_irradiance(*scene.sky, glm::dvec3(0, 1, 0))) : glm::vec3(0.0f));
   p.set("u_normal_offset_texels", 0.0f);  // the ground is in no shadow map: no acne to avoid
+  // The ground: its point on each pixel's ray (exact at any distance, where the huge quad's
+  // interpolated position is not), and its albedo texture when it has one.
+  p.set("u_is_ground", 1);
+  p.set("u_ground_height_m", static_cast<float>(scene.ground ? scene.ground->height_m : 0.0));
+  const GroundAlbedoTexture* tex = scene.ground ? scene.ground->albedo_texture.get() : nullptr;
+  p.set("u_ground_textured", tex ? 1 : 0);
+  if (tex) {
+    glBindTextureUnit(contract::UNIT_GROUND_ALBEDO, ground_albedo.id());
+    p.set("u_ground_period_m", glm::vec2(static_cast<float>(tex->params.period_m), static_cast<float>(tex->params.detail_period_m)));
+    p.set("u_ground_texels", static_cast<float>(tex->params.size));
+    p.set("u_ground_mean_luminance", static_cast<float>(tex->mean_luminance));
+  }
+  // Under a sky the ground is drawn first with depth clamping: beyond the far plane (toward the
+  // horizon) it lies at depth 1 instead of being clipped, and LEQUAL lets it pass the cleared depth.
+  if (scene.sky) {
+    glEnable(GL_DEPTH_CLAMP);
+    glDepthFunc(GL_LEQUAL);
+  }
   draw(ground);
+  glDisable(GL_DEPTH_CLAMP);
+  glDepthFunc(GL_LESS);
+  p.set("u_is_ground", 0);
   p.set("u_normal_offset_texels", 1.5f);
   draw(occluders);
   p.set("u_emissive", 1);

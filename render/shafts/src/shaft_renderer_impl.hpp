@@ -21,6 +21,7 @@ namespace nimbus::render {
 namespace shaft_detail {
 
 constexpr float kFarDistanceM = 1.0e5f;  // what a shadow map stores where nothing occludes
+constexpr double kHorizonGroundM = 2.0e6;  // half-size of the ground quad under a sky
 
 // A mesh uploaded for drawing with shaders/lib/scene_vertex.glsl.
 struct GpuMesh {
@@ -45,6 +46,7 @@ struct ShaftRenderer::Impl {
   ShaftSettings settings;
   unsigned jitter_frame = 0;  // set_jitter_frame
   shaft_detail::GpuMesh occluders, ground;
+  GlTexture ground_albedo;  // the ground's albedo texture (ground_albedo.hpp), when it has one
   std::vector<shaft_detail::GpuMesh> bulbs;
   GlVertexArray empty_vao;
   UniformBuffer<CameraBlock> camera_block;

@@ -19,6 +19,7 @@ struct Hit {
   double t = 0.0;  // same unit as dir's length (metres for a unit dir)
   glm::dvec3 normal{0.0, 1.0, 0.0};
   glm::dvec3 albedo{0.0};
+  bool ground = false;  // the ground plane (whose albedo may be a texture: ground_albedo.hpp)
 };
 
 // Nearest scene hit with tmin < t < tmax (tmax may be +inf). dir need not be unit; t is in

@@ -11,6 +11,7 @@
 
 #include "nimbus/render/core/atmosphere_tables.hpp"
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/ground_albedo.hpp"
 #include "nimbus/render/core/light.hpp"
 #include "nimbus/render/core/medium.hpp"
 
@@ -21,10 +22,13 @@ struct Material {
   glm::dvec3 albedo{0.6, 0.6, 0.6};
 };
 
-// Infinite horizontal plane y = height_m.
+// Infinite horizontal plane y = height_m. With an albedo texture (ground_albedo.hpp) its albedo
+// varies over the plane, filtered by each pixel's footprint, and `material` is unused; both
+// renderers read the same texels.
 struct GroundPlane {
   double height_m = 0.0;
   Material material;
+  std::shared_ptr<const GroundAlbedoTexture> albedo_texture = nullptr;
 };
 
 // Heightfield terrain over [x0, x0 + (nx-1) dx] x [z0, z0 + (nz-1) dx], heights row-major
@@ -49,7 +53,8 @@ struct Sphere {
 };
 
 // The sky behind everything: rays that meet no surface end at distance_m, where the sky's
-// radiance shines through the fog. Its radiance is a gradient from the horizon to the zenith,
+// radiance shines through the fog. The fog ends there too: a surface beyond it (the ground
+// toward the horizon) is seen through distance_m of fog, not hidden. Its radiance is a gradient from the horizon to the zenith,
 // or, with an atmosphere, the physical sky's table (atmosphere_tables.hpp, Hillaire 2020).
 struct Sky {
   glm::dvec3 zenith_radiance_w_sr_m2{0.04, 0.08, 0.2};

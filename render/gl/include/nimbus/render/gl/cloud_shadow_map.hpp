@@ -7,6 +7,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include "nimbus/render/core/atmosphere.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 
@@ -20,6 +21,9 @@ struct CloudShadowMap {
   // propagation direction from the map's plane (which lies on the light's side of every cloud).
   glm::dmat4 world_to_map{1.0};
   double top_y_m = -1e300;  // highest point of the clouds' support (world y): no cloud shadow above it
+  // The sun's angular radius: the penumbra on surfaces is the distance to the occluding matter
+  // times its tangent (lib/cloud_shadow.glsl, cloud_transmittance_soft). The physical sky's sun.
+  double sun_angular_radius_rad = Atmosphere{}.sun_angular_radius_rad;
 };
 
 // Binds `map` for a program built with lib/cloud_shadow.glsl and CLOUD_SHADOW 1 (its matrix, and

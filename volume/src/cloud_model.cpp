@@ -226,7 +226,10 @@ Aabb CloudModel::world_box(const Aabb& b) const {
 }
 
 Aabb CloudModel::bounds() const {
-  return world_box(index_->bounds().expanded(params_.displacement));
+  Aabb b = index_->bounds().expanded(params_.displacement);
+  // Nothing below the base (coverage is 0 there, in q0): rooted shapes' undersides reach below it.
+  if (params_.base_altitude > -1e29) b.lo.z = std::min(std::max(b.lo.z, params_.base_altitude), b.hi.z);
+  return world_box(b);
 }
 
 bool CloudModel::may_touch(const Aabb& w) const {

@@ -43,7 +43,7 @@ struct Shape {
   // root_z, and only below root_z does its own underside follow; so a turret is a column
   // standing on the base, and the model's cut at the condensation level (CloudModel) finds the
   // same full coverage in every column: the base is flat, as observed cumulus bases are
-  // (Stull, Practical Meteorology 2017, ch. 6: the base is the lifting condensation level).
+  // (Stull 2017, ch. 6: the base is the lifting condensation level).
   bool rooted = false;
   double root_z = 0.0;  // metres; the cloud model sets it to its base altitude
   // The column narrows towards the root, to (1 - root_taper) of the pivot's section at root_z:

@@ -178,7 +178,7 @@ std::vector<Shape> cloud_shapes(const FieldCloud& c, double base) {
     s.root_z = base;
     out.push_back(s);
   };
-  // The body: an ellipsoid whose lower part lies below the base, which the model cuts flat.
+  // The body: an ellipsoid standing on the base (rooted), which the model cuts flat.
   const double aspect = rng.uniform(0.75, 1.0), turn = rng.uniform(0.0, std::numbers::pi);
   const glm::dvec2 ax(std::cos(turn), std::sin(turn));
   const double rx = R * std::sqrt(aspect * 0.5 + 0.5), ry = R / std::sqrt(aspect * 0.5 + 0.5);

@@ -142,8 +142,7 @@ glm::dvec3 CloudModel::sheared(const glm::dvec3& p) const {
   return q;
 }
 
-glm::dvec3 CloudModel::noise_point(const glm::dvec3& point) const {
-  const glm::dvec3& q = point;
+glm::dvec3 CloudModel::noise_point(const glm::dvec3& q) const {
   if (params_.stretch == 1.0) return q;
   const double x = std::clamp((q.z - params_.stretch_altitude) / 200.0, 0.0, 1.0);
   const double w = x * x * (3.0 - 2.0 * x);

@@ -15,8 +15,8 @@
 // The base and the ceiling are level in q0 (not moved by the displacement), and the noise is
 // calmed next to them: a cumulus base is the condensation level and an anvil's top the
 // tropopause, both flat; the turbulence shapes the walls and the top (docs/volume.md). At the
-// base the cloud fills what the billows reach one standard deviation up (kBaseBillow), so
-// every column that holds cloud above holds it at the base too, short of the rarest billows.
+// base the cloud fills what the billows reach 1.5 standard deviations up (kBaseBillow), so
+// nearly every column that holds cloud above holds it at the base too.
 // The noise modulates the coverage, so the density is exactly 0 outside the shapes and
 // continuous at their boundary; since fbm <= 1, f can be positive only where
 // s > (1 - coverage) / (1 + billow (1 - mean) / sd(fbm)), and the noise is evaluated only there.

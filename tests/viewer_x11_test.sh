@@ -38,11 +38,11 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 assert s["time"]["paused"] is True, "Space did not pause: %r" % s["time"]
 eye = s["camera"]["eye"]
-home = [-600.0, 250.0, 5200.0]  # the default view state's eye (render/core/view_state.hpp)
+home = [-600.0, -5200.0, 250.0]  # the default view state's eye, z up (render/sky/view_state.hpp)
 moved = max(abs(a - b) for a, b in zip(eye, home))
 assert moved > 1.0, "the drag did not orbit: eye %r" % eye
 look = s["camera"]["look_at"]
-assert max(abs(a - b) for a, b in zip(look, [400.0, 1500.0, -1500.0])) < 1e-6, "a tumble keeps the target: %r" % look
+assert max(abs(a - b) for a, b in zip(look, [400.0, 1500.0, 1500.0])) < 1e-6, "a tumble keeps the target: %r" % look
 print("viewer_x11_test: paused, orbited by %.0f m, saved, exited 0" % moved)
 PY
 

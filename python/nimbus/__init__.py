@@ -9,11 +9,10 @@ ValueError, failures at run time RuntimeError or OSError, each with the program'
     >>> cloud = nimbus.generate("cumulus-humilis", seed=3)
     >>> cloud.density.shape, cloud.voxel_size          # NumPy float32 [x, y, z], metres
     >>> cloud.write("humilis.vdb")                    # what `nimbus generate -o` writes
-    >>> image = nimbus.render([cloud], eye=(1500, 400, 2500), look_at=(0, 1000, 0))
+    >>> image = nimbus.render([cloud], eye=(1500, -2500, 400), look_at=(0, 0, 1000), time_of_day=15)
 
-World positions are in metres. Volumes are Z-up (Blender's convention: files say so in their
-``up_axis`` metadata); ``render``'s camera and sun, as the program's flags, are Y-up: a point
-(x, y, z) of a volume is at (x, z, -y) in the render's world.
+World positions are in metres, in nimbus's one world: Z up, x east, y north (Blender's
+convention). Volumes, ``render``'s camera, lamps and sun, and the program's flags all use it.
 """
 from __future__ import annotations
 
@@ -237,7 +236,7 @@ def _render_args(paths: list[str], scene: str, eye, look_at, up, fov, res, sun, 
 
 def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volume, str, os.PathLike]]], *,
            scene: str = "sky", eye: Optional[Sequence[float]] = None, look_at: Optional[Sequence[float]] = None,
-           up: Optional[Sequence[float]] = (0, 1, 0), fov: Optional[float] = 45, res: Optional[Sequence[int]] = (640, 360),
+           up: Optional[Sequence[float]] = (0, 0, 1), fov: Optional[float] = 45, res: Optional[Sequence[int]] = (640, 360),
            sun: Optional[Sequence[float]] = None, **options: Any):
     """Render clouds as ``nimbus render`` does, headless (EGL; Mesa's llvmpipe where there is no GPU):
     the same pixels as the program's EXR for the same flags, as a NumPy float32 array (height,
@@ -246,9 +245,10 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
     volumes_or_paths: Volumes and VDB file paths (one, or a list). ``preset="name"`` (or a list)
     in options generates presets as ``--preset`` does.
     scene: "sky" (ground, sun, haze, physical sky), "none" (clouds alone) or another scene
-    (``nimbus render --help``). eye, look_at, up, sun: Y-up world, metres (a volume's Z-up point
-    (x, y, z) is at (x, z, -y)); without eye and look_at the camera frames the clouds. fov: degrees
-    (vertical). res: (width, height).
+    (``nimbus render --help``). eye, look_at, up: metres, Z up (x east, y north), as the volumes;
+    without eye and look_at the camera frames the clouds. sun: the direction towards the sun, Z up
+    (or ``sun_elevation=35, sun_azimuth=135`` in degrees, or ``time_of_day=15`` with ``latitude``
+    and ``day_of_year``, as the program's flags). fov: degrees (horizontal). res: (width, height).
     options: the program's other flags by name, dashes as underscores: method="pathtrace",
     slices=256, spp=64, cloud_extinction=0.04, no_jitter=True, ms_photons=1 << 20, time=12.0 ...
 

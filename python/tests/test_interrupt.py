@@ -49,9 +49,9 @@ def test_ctrl_c_stops_a_long_render(tmp_path):
     # A row of 512 pixels at 2^20 paths each is about half an hour of work: a stop polled only
     # between rows would run past the test's time limit. The path tracer polls every 64 paths.
     with pytest.raises(KeyboardInterrupt):
-        nimbus.render(path, scene="none", method="pathtrace", spp=1 << 20, res=(512, 2), sun=(0, 1, 0))
+        nimbus.render(path, scene="none", method="pathtrace", spp=1 << 20, res=(512, 2), sun=(0, 0, 1))
     timer.cancel()
-    image = nimbus.render(path, scene="none", method="pathtrace", spp=1, res=(8, 6), sun=(0, 1, 0))
+    image = nimbus.render(path, scene="none", method="pathtrace", spp=1, res=(8, 6), sun=(0, 0, 1))
     assert image.shape == (6, 8, 4)
 
 

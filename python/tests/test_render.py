@@ -28,37 +28,37 @@ def assert_same_pixels(ours, exr):
 
 def test_render_over_the_sky_equals_the_program(run, tmp_path, humilis):
     v, path = humilis
-    ours = nimbus.render([v], eye=(900, 300, 1800), look_at=(0, 1000, 0), res=(96, 54), ms_photons=1 << 18)
-    theirs = program_image(run, tmp_path, path, "--scene", "sky", "--eye", "900,300,1800", "--look-at", "0,1000,0",
-                           "--up", "0,1,0", "--fov", "45", "--res", "96x54", "--ms-photons", "262144")
+    ours = nimbus.render([v], eye=(900, -1800, 300), look_at=(0, 0, 1000), res=(96, 54), ms_photons=1 << 18)
+    theirs = program_image(run, tmp_path, path, "--scene", "sky", "--eye", "900,-1800,300", "--look-at", "0,0,1000",
+                           "--up", "0,0,1", "--fov", "45", "--res", "96x54", "--ms-photons", "262144")
     assert_same_pixels(ours, theirs)
 
 
 def test_render_of_a_path_equals_the_render_of_its_volume(humilis):
     v, path = humilis
-    options = dict(scene="none", res=(48, 27), sun=(0.3, 0.8, 0.5), ms_photons=1 << 17, slices=64)
+    options = dict(scene="none", res=(48, 27), sun=(0.3, -0.5, 0.8), ms_photons=1 << 17, slices=64)
     np.testing.assert_array_equal(nimbus.render(v, **options), nimbus.render(str(path), **options))
 
 
 def test_path_tracer_options_pass_as_flags(run, tmp_path, humilis):
     v, path = humilis
-    ours = nimbus.render(path, scene="none", method="pathtrace", spp=2, res=(32, 18), sun=(0, 1, 0), seed=5,
+    ours = nimbus.render(path, scene="none", method="pathtrace", spp=2, res=(32, 18), sun=(0, 0, 1), seed=5,
                          cloud_phase="hg:0.6", no_jitter=False)
     theirs = program_image(run, tmp_path, path, "--scene", "none", "--method", "pathtrace", "--spp", "2", "--res", "32x18",
-                           "--sun", "0,1,0", "--seed", "5", "--cloud-phase", "hg:0.6", "--up", "0,1,0", "--fov", "45")
+                           "--sun", "0,0,1", "--seed", "5", "--cloud-phase", "hg:0.6", "--up", "0,0,1", "--fov", "45")
     assert_same_pixels(ours, theirs)
 
 
 def test_render_generates_presets_as_the_program_does(run, tmp_path):
-    ours = nimbus.render([], preset="smoke", voxel_size=0.5, res=(40, 30), scene="none", sun=(0, 1, 0))
+    ours = nimbus.render([], preset="smoke", voxel_size=0.5, res=(40, 30), scene="none", sun=(0, 0, 1))
     theirs = program_image(run, tmp_path, "--preset", "smoke", "--voxel-size", "0.5", "--res", "40x30", "--scene", "none",
-                           "--sun", "0,1,0", "--up", "0,1,0", "--fov", "45")
+                           "--sun", "0,0,1", "--up", "0,0,1", "--fov", "45")
     assert_same_pixels(ours, theirs)
 
 
 def test_write_image_writes_what_read_image_reads(tmp_path, humilis):
     v, _ = humilis
-    image = nimbus.render(v, scene="none", res=(32, 18), sun=(0, 1, 0), ms_photons=1 << 16)
+    image = nimbus.render(v, scene="none", res=(32, 18), sun=(0, 0, 1), ms_photons=1 << 16)
     nimbus.write_image(tmp_path / "a.exr", image, preview=tmp_path / "a.png", metadata={"note": "test"})
     back, meta = nimbus.read_image(tmp_path / "a.exr")
     np.testing.assert_array_equal(back, image.astype(np.float16).astype(np.float32))

@@ -103,13 +103,13 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("file", a.files, "VDB file(s) of clouds (a %04d pattern with --frames)");
   cmd->add_option("--preset", a.presets, "Cloud preset(s) to generate (nimbus presets)");
   cmd->add_option("--grid", a.grid, "Grid name in the files (default: density, else the first float grid)");
-  cmd->add_option("--up-axis", a.up, "Up axis of the files: auto (their up_axis metadata, else y), y or z")
+  cmd->add_option("--up-axis", a.up, "Up axis of the files: auto (their up_axis metadata, else y), y or z (flags are always Z up)")
       ->capture_default_str();
   cmd->add_flag("--level-set-to-fog", a.level_set_to_fog,
                 "A level set (signed distance) in a file becomes a fog volume: 1 inside, 0 outside (else it is refused)");
   cmd->add_option("--voxel-size", a.voxel_size, "Voxel size of generated presets, metres (default: the preset's)");
   add_frame_options(cmd, a.frame, "name.%04d.exr (presets generated at each frame's time)");
-  cmd->add_option("--sun", a.sun, "Direction towards the sun X,Y,Z (replaces the scene's; adds one if it has none)");
+  add_sun_options(cmd, a.sun);
   cmd->add_option("--lamp", a.lamps,
                   "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which light "
                   "the clouds too)");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "nimbus/base/validate.hpp"
+#include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "progress.hpp"
 
@@ -34,6 +35,10 @@ glm::dvec3 parse_vec3(const std::string& flag, const std::string& text) {
   return v;
 }
 
+glm::dvec3 parse_world_vec3(const std::string& flag, const std::string& text) {
+  return render::world_to_render(parse_vec3(flag, text));
+}
+
 void check_exposure(const std::optional<double>& stops) {
   if (stops && !(std::abs(*stops) <= 64.0)) throw UsageError("--exposure: must be in [-64, 64] stops");
 }
@@ -49,17 +54,17 @@ std::pair<int, int> parse_resolution(const std::string& flag, const std::string&
 }
 
 void add_camera_options(CLI::App* cmd, CameraArgs& a) {
-  cmd->add_option("--eye", a.eye, "Camera position X,Y,Z (metres)");
-  cmd->add_option("--look-at", a.look_at, "Point the camera looks at, X,Y,Z (metres)");
-  cmd->add_option("--up", a.up, "Camera up vector X,Y,Z");
+  cmd->add_option("--eye", a.eye, "Camera position X,Y,Z, metres (Z up: x east, y north)");
+  cmd->add_option("--look-at", a.look_at, "Point the camera looks at, X,Y,Z, metres (Z up: x east, y north)");
+  cmd->add_option("--up", a.up, "Camera up vector X,Y,Z (Z up; default 0,0,1)");
   cmd->add_option("--fov", a.fov_deg, "Horizontal field of view, degrees");
   cmd->add_option("--res", a.res, "Image size WIDTHxHEIGHT");
 }
 
 render::Camera apply_camera_args(const CameraArgs& a, render::Camera c) {
-  if (!a.eye.empty()) c.eye = parse_vec3("--eye", a.eye);
-  if (!a.look_at.empty()) c.look_at = parse_vec3("--look-at", a.look_at);
-  if (!a.up.empty()) c.up = parse_vec3("--up", a.up);
+  if (!a.eye.empty()) c.eye = parse_world_vec3("--eye", a.eye);
+  if (!a.look_at.empty()) c.look_at = parse_world_vec3("--look-at", a.look_at);
+  if (!a.up.empty()) c.up = parse_world_vec3("--up", a.up);
   if (a.fov_deg) {
     if (!(*a.fov_deg >= kMinFovDeg && *a.fov_deg <= kMaxFovDeg))
       throw UsageError("--fov: must be in [1, 179] degrees, got " + number_text(*a.fov_deg));

@@ -1,5 +1,6 @@
 // Camera and image-size flags shared by `nimbus render` and `nimbus bench shafts`, spelled as
-// OpenVDB's vdb_render spells them: --eye X,Y,Z --look-at X,Y,Z --up X,Y,Z --fov DEG --res WxH.
+// OpenVDB's vdb_render spells them: --eye X,Y,Z --look-at X,Y,Z --up X,Y,Z --fov DEG --res WxH,
+// in nimbus's Z-up world (x east, y north, z up).
 #pragma once
 #include <optional>
 #include <string>
@@ -31,6 +32,9 @@ inline constexpr double kMaxFlagMagnitude = 1e12;
 // "X,Y,Z" -> vector; UsageError naming `flag` when malformed, not finite, or beyond
 // +-kMaxFlagMagnitude.
 glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
+// A point or direction of nimbus's Z-up world given on the command line (x east, y north, z up),
+// in the renderer's frame (world_axes.hpp). Every position and direction flag goes through it.
+glm::dvec3 parse_world_vec3(const std::string& flag, const std::string& text);
 
 // --exposure: UsageError unless within [-64, 64] stops (2^64 already overflows a half float).
 void check_exposure(const std::optional<double>& stops);

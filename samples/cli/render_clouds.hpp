@@ -13,6 +13,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/image.hpp"
 #include "render_args.hpp"
+#include "sun_flags.hpp"
 
 namespace nimbus::cli {
 
@@ -24,7 +25,7 @@ struct CloudRenderArgs {
   bool level_set_to_fog = false;     // a level set in a file becomes a fog volume (else refused)
   std::optional<double> voxel_size;  // metres, presets
   FrameArgs frame;                   // --time or --frames (presets at each frame's time)
-  std::string sun;                   // direction towards the sun X,Y,Z
+  SunArgs sun;                       // --sun, --sun-elevation/--sun-azimuth or --time-of-day
   std::vector<std::string> lamps;    // X,Y,Z of each lamp on the clouds (joins a scene's point lights)
   std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp
   std::string spot;                  // DX,DY,DZ: every --lamp is a spot shining that way (no scene only)

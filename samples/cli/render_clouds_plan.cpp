@@ -160,7 +160,7 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
 // Stage 4a: the lamps (--lamp, shaped by --spot), each validated.
 void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
   for (const std::string& text : a.lamps) {
-    const glm::dvec3 at = parse_vec3("--lamp", text);
+    const glm::dvec3 at = parse_world_vec3("--lamp", text);
     // In a scene its bulb shows (a 5 cm sphere); clouds never see bulbs.
     p.frame.lights.push_back(render::bulb_light(at, parse_colour("--lamp-intensity", a.lamp_intensity), kLampBulbRadiusM));
   }
@@ -170,7 +170,7 @@ void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
     refuse_if_given_without(a, flag, p.cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
   if (!a.spot.empty()) {
     if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
-    const glm::dvec3 axis = parse_vec3("--spot", a.spot);
+    const glm::dvec3 axis = parse_world_vec3("--spot", a.spot);
     if (!(glm::length(axis) > 0.0)) throw UsageError("--spot: '" + a.spot + "' must be a non-zero direction");
     const std::size_t comma = a.spot_cone.find(',');
     const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
@@ -199,13 +199,11 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
   std::vector<render::Light>& lights = p.frame.lights;
   std::optional<render::Light> sun;
   std::optional<glm::dvec3> ambient = scene ? render::sky_ambient(*scene) : std::nullopt;
-  if (!a.sun.empty()) {
-    const glm::dvec3 to_sun = parse_vec3("--sun", a.sun);
-    if (glm::length(to_sun) == 0.0) throw UsageError("--sun: the direction must not be zero");
+  if (const std::optional<glm::dvec3> to_sun = sun_direction_of(a.sun)) {
     try {
       // The one set-up of the sun (sun_setup.hpp): under the physical sky its colour, the sky
       // behind and the light on the clouds follow it.
-      const render::SunSetup setup = render::set_up_sun(scene, to_sun, render::SunColour::Scene);
+      const render::SunSetup setup = render::set_up_sun(scene, *to_sun, render::SunColour::Scene);
       if (scene) render::place_sun(*scene, setup);
       sun = setup.sun;
       ambient = setup.ambient_w_sr_m2;
@@ -215,7 +213,7 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
   } else if (scene && scene->sun) {
     sun = scene->sun;
   } else if (scene && scene->lamps.empty() && lights.empty()) {
-    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene->name + "' has neither; give --sun X,Y,Z or --lamp X,Y,Z");
+    throw UsageError("--sun: the clouds need the sun or a lamp, and scene '" + scene->name + "' has neither; give --sun X,Y,Z (or --sun-elevation, --time-of-day) or --lamp X,Y,Z");
   } else if (!scene && lights.empty()) {
     sun = render::Light{};  // clouds alone: the default sun
   }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 
 #include "cli.hpp"
 #include "outputs.hpp"
@@ -28,7 +29,9 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   for (const auto& [flag, p] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
     if (p.find('%') != std::string::npos)
       throw UsageError(flag + ": '" + echo(p) + "' holds a %: a view state renders one picture, not a sequence");
-  const render::ViewState state = render::load_view_state(path);
+  int version = 0;
+  const render::ViewState state = render::load_view_state(path, &version);
+  if (const std::string note = render::view_state_version_note(path, version); !note.empty()) std::cerr << "note: " << note << "\n";
   // The frame is rendered at the state's render scale, as the viewer draws it.
   const auto [frame_w, frame_h] = render::scaled_frame_size(width, height, state.render_scale);
   if (frame_w < 1 || frame_h < 1)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,7 +69,9 @@ int run_view(const ViewArgs& a) {
       throw UsageError(std::string("--preset: ") + e.what());
     }
   }
-  render::ViewState state = a.state.empty() ? render::default_view_state() : render::load_view_state(a.state);
+  int version = render::kViewStateVersion;
+  render::ViewState state = a.state.empty() ? render::default_view_state() : render::load_view_state(a.state, &version);
+  if (const std::string note = render::view_state_version_note(a.state, version); !note.empty()) std::cerr << "note: " << note << "\n";
   if (!a.sky.empty()) state.sky = volume::load_sky_file(a.sky);
   if (!a.files.empty()) {
     // Fog volumes from any tool, where their files put them; no wind (a simulation moves itself).

@@ -54,9 +54,13 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     double el = s.sky.sun_elevation_deg, az = s.sky.sun_azimuth_deg;
     bool moved = slider("elevation (deg)", el, -10.0, 90.0, "%.1f");
     moved |= slider("azimuth (deg)", az, 0.0, 359.9, "%.1f");
-    if (slider("time of day (h)", panel.hour, 5.0, 19.0, "%.2f")) {
-      const app::SunPosition sun = app::sun_at_hour(panel.hour);
-      el = sun.elevation_deg;
+    bool day_moved = slider("time of day (h)", panel.hour, 0.0, 24.0, "%.2f");
+    day_moved |= slider("latitude (deg)", panel.latitude_deg, -90.0, 90.0, "%.1f");
+    day_moved |= slider("day of year", panel.day_of_year, 1.0, 366.0, "%.0f");
+    if (day_moved) {
+      // The renderer's suns end 10 degrees below the horizon: night holds the sun there.
+      const app::SunPosition sun = app::sun_at(panel.hour, panel.latitude_deg, panel.day_of_year);
+      el = std::max(sun.elevation_deg, -10.0);
       az = sun.azimuth_deg;
       moved = true;
     }

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "nimbus/base/input_limits.hpp"
+#include "nimbus/render/core/world_axes.hpp"
+#include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/volume/json_io.hpp"
 
 namespace nimbus::viewer {
@@ -38,9 +40,13 @@ Script load_script(const std::string& path) {
   const std::string where = "script '" + path + "'";
   if (!doc.is_object()) bad(where + " must be a JSON object");
   Script s;
+  // No "version": a script from before it, whose camera keys were Y-up (view_state.hpp).
+  const int version = doc.contains("version") ? integer(doc["version"], where + ".version", 1, render::kViewStateVersion) : 1;
   for (const auto& [k, v] : doc.items()) {
     const std::string key = where + "." + echo(k);
-    if (k == "size") {
+    if (k == "version") {
+      continue;
+    } else if (k == "size") {
       if (!v.is_array() || v.size() != 2) bad(key + " must be [width, height]");
       s.width = integer(v[0], key + "[0]", 16, 8192);
       s.height = integer(v[1], key + "[1]", 16, 8192);
@@ -69,6 +75,10 @@ Script load_script(const std::string& path) {
         c.frame = integer(v[i]["frame"], ck + ".frame", 0, 100000);
         c.eye = vec3(v[i]["eye"], ck + ".eye");
         c.look_at = vec3(v[i]["look_at"], ck + ".look_at");
+        if (version >= 2) {
+          c.eye = render::world_to_render(c.eye);
+          c.look_at = render::world_to_render(c.look_at);
+        }
         if (!s.camera.empty() && c.frame <= s.camera.back().frame) bad(ck + ".frame must increase");
         s.camera.push_back(c);
       }
@@ -120,7 +130,7 @@ Script load_script(const std::string& path) {
         s.events.push_back(ev);
       }
     } else {
-      bad(key + ": unknown key (known: size, frames, dt, screenshot_every, adaptive, samples, temporal, record, camera, events)");
+      bad(key + ": unknown key (known: version, size, frames, dt, screenshot_every, adaptive, samples, temporal, record, camera, events)");
     }
   }
   // An event after the last frame would never happen: say so rather than skip it.

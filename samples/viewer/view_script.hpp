@@ -15,7 +15,7 @@ namespace nimbus::viewer {
 
 struct ScriptCameraKey {
   int frame = 0;
-  glm::dvec3 eye{0.0}, look_at{0.0};
+  glm::dvec3 eye{0.0}, look_at{0.0};  // the renderer's frame; the file holds them Z-up ("version": 2)
 };
 
 struct ScriptEvent {

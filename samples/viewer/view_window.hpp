@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "nimbus/app/sun_path.hpp"
 #include "nimbus/volume/sky.hpp"
 #include "viewer.hpp"
 
@@ -37,7 +38,9 @@ void present_in_window(Window& window, Viewer& viewer);
 // What the panel remembers between frames, beside the viewer's state: the time-of-day slider and
 // a cloud edit in progress (applied when its control is released).
 struct PanelState {
-  double hour = 15.0;
+  double hour = 15.0;  // the time-of-day control (app/sun_path.hpp), local solar time
+  double latitude_deg = app::kDefaultLatitudeDeg;
+  double day_of_year = app::kDefaultDayOfYear;
   volume::Sky edit;
   bool editing = false;
 };

@@ -318,10 +318,12 @@ void Viewer::save_sky(const std::string& path) {
 
 void Viewer::load_state() {
   try {
-    state_ = render::load_view_state(options_.state_path);
+    int version = render::kViewStateVersion;
+    state_ = render::load_view_state(options_.state_path, &version);
     moved_ = true;
     reset_temporal_ = true;
-    message_ = "loaded " + options_.state_path;
+    const std::string note = render::view_state_version_note(options_.state_path, version);
+    message_ = note.empty() ? "loaded " + options_.state_path : note;
   } catch (const std::exception& e) {
     message_ = std::string("load failed: ") + e.what();
     ++failures_;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 #include "nimbus/app/bench_clouds_scene.hpp"
@@ -148,30 +149,47 @@ TEST(AppBenchScene, TheNoisySphereIsABoundedBallFilledAtItsCentre) {
   EXPECT_NEAR(c.x(), 0.5 * voxel, 1e-12);
 }
 
-// The time-of-day sun: east at sunrise, south and highest at noon, west at sunset, symmetric about
-// noon, continuous, and always a finite bearing in [0, 360).
-TEST(AppSunPath, RisesEastCulminatesSouthSetsWest) {
-  EXPECT_NEAR(app::sun_at_hour(6.0).elevation_deg, 0.0, 1e-12);
-  EXPECT_NEAR(app::sun_at_hour(6.0).azimuth_deg, 90.0, 1e-12);
-  EXPECT_NEAR(app::sun_at_hour(12.0).elevation_deg, 60.0, 1e-12);
-  EXPECT_NEAR(app::sun_at_hour(12.0).azimuth_deg, 180.0, 1e-12);
-  EXPECT_NEAR(app::sun_at_hour(18.0).elevation_deg, 0.0, 1e-12);
-  EXPECT_NEAR(app::sun_at_hour(18.0).azimuth_deg, 270.0, 1e-12);
+// The sun's geometry (sun_path.hpp) against what any almanac says: on an equinox (declination 0)
+// the sun rises due east at 6 h and sets due west at 18 h at every latitude; at solar noon it
+// stands 90 - |latitude - declination| high, due south north of the subsolar point; the path is
+// symmetric about noon and continuous; there is polar night and midnight sun.
+TEST(AppSunPath, AgreesWithTheAlmanac) {
+  EXPECT_NEAR(app::solar_declination_deg(81.0), 0.0, 1e-9);  // the March equinox of Cooper's formula
+  EXPECT_NEAR(app::solar_declination_deg(172.0), 23.45, 0.01);
+  EXPECT_NEAR(app::solar_declination_deg(355.0), -23.45, 0.01);
+  for (double lat : {-60.0, -10.0, 0.0, 30.0, 52.0, 70.0}) {
+    const app::SunPosition rise = app::sun_at(6.0, lat, 81.0), set = app::sun_at(18.0, lat, 81.0);
+    EXPECT_NEAR(rise.elevation_deg, 0.0, 1e-9) << lat;
+    EXPECT_NEAR(rise.azimuth_deg, 90.0, 1e-9) << lat;
+    EXPECT_NEAR(set.elevation_deg, 0.0, 1e-9) << lat;
+    EXPECT_NEAR(set.azimuth_deg, 270.0, 1e-9) << lat;
+    for (double day : {1.0, 81.0, 172.0, 266.0, 355.0}) {
+      const double d = app::solar_declination_deg(day);
+      const app::SunPosition noon = app::sun_at(12.0, lat, day);
+      EXPECT_NEAR(noon.elevation_deg, 90.0 - std::abs(lat - d), 1e-9) << lat << " " << day;
+      EXPECT_NEAR(noon.azimuth_deg, lat > d ? 180.0 : 0.0, 1e-9) << lat << " " << day;
+    }
+  }
+  EXPECT_LT(app::sun_at(12.0, 80.0, 355.0).elevation_deg, -13.0);  // polar night
+  EXPECT_GT(app::sun_at(0.0, 80.0, 172.0).elevation_deg, 3.0);     // midnight sun, due north
+  EXPECT_NEAR(app::sun_at(0.0, 80.0, 172.0).azimuth_deg, 0.0, 1e-9);
   for (double h = -30.0; h <= 54.0; h += 0.25) {
-    const app::SunPosition s = app::sun_at_hour(h), next = app::sun_at_hour(h + 1e-6);
-    EXPECT_GE(s.elevation_deg, -10.0);
-    EXPECT_LE(s.elevation_deg, 60.0);
+    const app::SunPosition s = app::sun_at(h, 45.0, 172.0), next = app::sun_at(h + 1e-6, 45.0, 172.0);
+    const app::SunPosition mirror = app::sun_at(24.0 - h, 45.0, 172.0);
     EXPECT_GE(s.azimuth_deg, 0.0);
     EXPECT_LT(s.azimuth_deg, 360.0);
     EXPECT_NEAR(next.elevation_deg, s.elevation_deg, 1e-3) << h;
-    if (h > 6.0 && h < 18.0) {
-      EXPECT_GT(s.elevation_deg, 0.0) << h;
-      EXPECT_NEAR(app::sun_at_hour(24.0 - h).elevation_deg, s.elevation_deg, 1e-9) << h;
-      EXPECT_NEAR(app::sun_at_hour(24.0 - h).azimuth_deg, 360.0 - s.azimuth_deg, 1e-9) << h;
-    }
+    EXPECT_NEAR(mirror.elevation_deg, s.elevation_deg, 1e-9) << h;
+    EXPECT_NEAR(std::remainder(mirror.azimuth_deg + s.azimuth_deg, 360.0), 0.0, 1e-9) << h;
   }
-  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL})
-    EXPECT_EQ(app::sun_at_hour(bad).elevation_deg, 60.0);
+  // Straight overhead at the subsolar point: elevation 90 without rounding trouble.
+  EXPECT_NEAR(app::sun_at(12.0, app::solar_declination_deg(172.0), 172.0).elevation_deg, 90.0, 1e-9);
+  for (const double bad : {std::nan(""), HUGE_VAL}) {
+    EXPECT_THROW(app::sun_at(bad), std::invalid_argument);
+    EXPECT_THROW(app::sun_at(12.0, bad), std::invalid_argument);
+    EXPECT_THROW(app::sun_at(12.0, 45.0, bad), std::invalid_argument);
+  }
+  EXPECT_THROW(app::sun_at(12.0, 91.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -192,7 +192,7 @@ TEST_F(HostileCli, ExtremeValuesAreRefusedBeforeTheyBecomeNaN) {
   expect_refused({
       {with(kTinyClouds, {"--cloud-extinction", "1e300", "-o", "{d}/c.exr"}), 2, "--cloud-extinction: must be at most 1e12"},
       {with(kTinyClouds, {"--ambient", "1e300,1,1", "-o", "{d}/c.exr"}), 2, "--ambient: '1e300,1,1' must be three numbers within +-1e12"},
-      {with(kTinyClouds, {"--lamp", "0,0.1,0", "--lamp-intensity", "1e38", "-o", "{d}/c.exr"}), 2,
+      {with(kTinyClouds, {"--lamp", "0,0,0.1", "--lamp-intensity", "1e38", "-o", "{d}/c.exr"}), 2,
        "--lamp-intensity: '1e38' must be within +-1e12"},
       {with(kTinyClouds, {"--sun", "1e300,1,1", "-o", "{d}/c.exr"}), 2, "--sun: '1e300,1,1' must be three numbers within +-1e12"},
       {with(kTinyClouds, {"--eye", "1e300,0,0", "-o", "{d}/c.exr"}), 2, "--eye: '1e300,0,0' must be three numbers within +-1e12"},

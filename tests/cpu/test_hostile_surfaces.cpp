@@ -308,7 +308,7 @@ TEST(HostileRender, ClippedHalfFloatsAreReportedNamingTheLight) {
   fs::remove_all(d);
   fs::create_directories(d);
   const SplitResult r = run_nimbus_split({"render", "--preset", "steam", "--voxel-size", "0.05", "--scene", "none", "--res",
-                                          "16x16", "--eye", "0,0.15,0.6", "--look-at", "0,0.15,0", "--lamp", "0,0.15,0.3",
+                                          "16x16", "--eye", "0,-0.6,0.15", "--look-at", "0,0,0.15", "--lamp", "0,-0.3,0.15",
                                           "--lamp-intensity", "1e12", "--ms-method", "octaves", "-o", (d / "o.exr").string()});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: " + (d / "o.exr").string() + ": "), std::string::npos) << r.err;

@@ -21,14 +21,14 @@ fs::path temp_dir(const std::string& name) {
 
 TEST(RenderCli, WritesExrWithMetadataAndPreview) {
   const fs::path d = temp_dir("ok");
-  const auto r = run_nimbus("render --scene lamps --method shadowvolume:8 --res 64x36 --eye 0,2,12 --fov 70 -o " +
+  const auto r = run_nimbus("render --scene lamps --method shadowvolume:8 --res 64x36 --eye 0,-12,2 --fov 70 -o " +
                             (d / "a.exr").string() + " --preview " + (d / "a.png").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const render::Image img = render::read_exr(d / "a.exr");
   EXPECT_EQ(img.width, 64);
   EXPECT_EQ(img.height, 36);
   EXPECT_EQ(img.metadata.at("method"), "shadowvolume:8");
-  EXPECT_NE(img.metadata.at("camera").find("eye 0,2,12"), std::string::npos) << img.metadata.at("camera");
+  EXPECT_NE(img.metadata.at("camera").find("eye 0,-12,2"), std::string::npos) << img.metadata.at("camera");
   EXPECT_NE(img.metadata.at("camera").find("fov_deg 70"), std::string::npos);
   EXPECT_NE(img.metadata.at("medium").find("extinction_per_m"), std::string::npos);
   EXPECT_TRUE(fs::exists(d / "a.png"));
@@ -59,7 +59,7 @@ TEST(RenderCli, BadInputIsAUsageError) {
       {"--albedo 2", "albedo"},
       {"--phase hg:1.5", "--phase"},
       {"--eye 1,2", "--eye"},
-      {"--eye 0,2,12 --look-at 0,2,12", "look_at"},
+      {"--eye 0,-12,2 --look-at 0,-12,2", "look_at"},
       {"--fov 180", "fov"},
       {"--scene colonnade --method analytic:table:64", "isotropic"},
   };

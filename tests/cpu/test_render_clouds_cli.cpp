@@ -33,14 +33,14 @@ bool finite_non_negative(const render::Image& img) {
 
 TEST(RenderCloudsCli, PresetOverTheSkySceneWritesAFinishedFrame) {
   const fs::path d = temp_dir("sky");
-  const auto r = run_nimbus("render" + kSteam + "--scene sky --sun 0.5,0.6,0.3 --multiple 2 -o " +
+  const auto r = run_nimbus("render" + kSteam + "--scene sky --sun 0.5,-0.3,0.6 --multiple 2 -o " +
                             (d / "a.exr").string() + " --preview " + (d / "a.png").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const render::Image img = render::read_exr(d / "a.exr");
   EXPECT_EQ(img.width, 48);
   EXPECT_TRUE(finite_non_negative(img));
   EXPECT_EQ(img.metadata.at("scene"), "sky");
-  EXPECT_NE(img.metadata.at("lights").find("sun towards 0.5,0.6,0.3"), std::string::npos) << img.metadata.at("lights");
+  EXPECT_NE(img.metadata.at("lights").find("sun towards 0.5,-0.3,0.6 (z up)"), std::string::npos) << img.metadata.at("lights");
   for (std::size_t i = 3; i < img.rgba.size(); i += 4) ASSERT_EQ(img.rgba[i], 1.0f);  // sky everywhere behind
   EXPECT_TRUE(fs::exists(d / "a.png"));
   fs::remove_all(d);
@@ -51,7 +51,7 @@ TEST(RenderCloudsCli, GeneratedFileAndPresetGiveTheSameImage) {
   // nimbus writes z-up files with up_axis metadata; render turns them to y-up as it does presets.
   auto g = run_nimbus("generate --preset steam --voxel-size 0.012 --float -o " + (d / "steam.vdb").string());
   ASSERT_EQ(g.code, 0) << g.output;
-  const std::string common = " --scene none --sun 0.3,0.8,-0.5 --cloud-extinction 40 --res 40x40 --slices 24 --light-res 64 --no-jitter ";
+  const std::string common = " --scene none --sun 0.3,0.5,0.8 --cloud-extinction 40 --res 40x40 --slices 24 --light-res 64 --no-jitter ";
   auto a = run_nimbus("render " + (d / "steam.vdb").string() + common + "-o " + (d / "f.exr").string());
   ASSERT_EQ(a.code, 0) << a.output;
   auto b = run_nimbus("render --preset steam --voxel-size 0.012" + common + "-o " + (d / "p.exr").string());
@@ -109,10 +109,10 @@ TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
   ASSERT_EQ(r.code, 0) << r.output;
   const render::Image img = render::read_exr(d / "a.exr");
   EXPECT_TRUE(finite_non_negative(img));
-  EXPECT_NE(img.metadata.at("light").find("point 0.6,3.25,-3"), std::string::npos) << img.metadata.at("light");
+  EXPECT_NE(img.metadata.at("light").find("point 0.6,3,3.25 (z up)"), std::string::npos) << img.metadata.at("light");
   EXPECT_EQ(img.metadata.at("light").find("sun"), std::string::npos) << img.metadata.at("light");
   EXPECT_NE(img.metadata.at("cloud_optics").find("extinction_per_m 40"), std::string::npos);
-  const std::string alone = kSteam + "--scene none --eye 0.3,0.15,0.4 --look-at 0,0.12,0 --lamp 0.1,0.6,-0.1 ";
+  const std::string alone = kSteam + "--scene none --eye 0.3,-0.4,0.15 --look-at 0,0,0.12 --lamp 0.1,0.1,0.6 ";
   const auto s = run_nimbus("render" + alone + "--cloud-extinction 30 -o " + (d / "s.exr").string());
   ASSERT_EQ(s.code, 0) << s.output;
   const auto c = run_nimbus("render" + alone + "--cloud-extinction 30 --method reference -o " + (d / "c.exr").string());
@@ -125,7 +125,7 @@ TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
   }
   EXPECT_GT(sum_c, 0.0);
   EXPECT_NEAR(sum_s / sum_c, 1.0, 0.05);  // 24 slices: the image's total radiance within 5 %
-  const auto p = run_nimbus("render" + alone + "--cloud-extinction 30 --spot 0,-1,0 --spot-cone 2,4 -o " +
+  const auto p = run_nimbus("render" + alone + "--cloud-extinction 30 --spot 0,0,-1 --spot-cone 2,4 -o " +
                             (d / "p.exr").string());
   ASSERT_EQ(p.code, 0) << p.output;
   const render::Image spot = render::read_exr(d / "p.exr");
@@ -134,12 +134,12 @@ TEST(RenderCloudsCli, LampsLightSteamInTheirSceneAndAlone) {
   EXPECT_LT(sum_p, 0.9 * sum_s);  // a narrow cone lights less of the steam
   EXPECT_NE(spot.metadata.at("light").find("spot axis"), std::string::npos);
   // A spot joins a scene's lamps: the street lamp and the spot both light the frame.
-  const auto q = run_nimbus("render" + kSteam + "--scene steam-lamp --lamp 0.1,0.6,-0.1 --spot 0,-1,0 --spot-cone 10,20 -o " +
+  const auto q = run_nimbus("render" + kSteam + "--scene steam-lamp --lamp 0.1,0.1,0.6 --spot 0,0,-1 --spot-cone 10,20 -o " +
                             (d / "q.exr").string());
   ASSERT_EQ(q.code, 0) << q.output;
   const render::Image both = render::read_exr(d / "q.exr");
   EXPECT_TRUE(finite_non_negative(both));
-  EXPECT_NE(both.metadata.at("light").find("point 0.6,3.25,-3"), std::string::npos) << both.metadata.at("light");
+  EXPECT_NE(both.metadata.at("light").find("point 0.6,3,3.25 (z up)"), std::string::npos) << both.metadata.at("light");
   EXPECT_NE(both.metadata.at("light").find("spot axis"), std::string::npos) << both.metadata.at("light");
   fs::remove_all(d);
 }
@@ -167,14 +167,14 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
   const Case cases[] = {
       {kSteam + "--method reference", "--scene none"},
       {kSteam + "--method raymarch:8", "--method"},
-      {kSteam + "--spot 0,-1,0", "--spot"},
-      {kSteam + "--lamp 0,1,0 --spot 0,0,0", "--spot"},
-      {kSteam + "--scene none --lamp 0,1,0 --spot 0,-1,0 --spot-cone 30,20", "--spot-cone"},
+      {kSteam + "--spot 0,0,-1", "--spot"},
+      {kSteam + "--lamp 0,0,1 --spot 0,0,0", "--spot"},
+      {kSteam + "--scene none --lamp 0,0,1 --spot 0,0,-1 --spot-cone 30,20", "--spot-cone"},
       {kSteam + "--scene none --lamp 0,1", "--lamp"},
-      {kSteam + "--scene none --lamp 0,1,0 --lamp-intensity -5", "--lamp"},
+      {kSteam + "--scene none --lamp 0,0,1 --lamp-intensity -5", "--lamp"},
       {kSteam + "--scene steam-lamp --ms-method light-volume", "--ms-method"},
       {kSteam + "--max-lights 0", "--max-lights"},
-      {kSteam + "--scene none --lamp 0,1,0 --method pathtrace", "--lamp"},
+      {kSteam + "--scene none --lamp 0,0,1 --method pathtrace", "--lamp"},
       {kSteam + "--scene nowhere", "--scene"},
       {kSteam + "--cloud-phase hg:1.5", "--cloud-phase"},
       {kSteam + "--cloud-albedo 2", "albedo"},
@@ -213,7 +213,7 @@ double radiance_sum(const render::Image& img) {
 // --multiple 0 is single scattering; --multiple N alone keeps meaning N octaves.
 TEST(RenderCloudsCli, LightVolumeIsTheDefaultAndMultipleZeroIsSingleScattering) {
   const fs::path d = temp_dir("ms");
-  const std::string common = kSteam + "--scene none --cloud-extinction 60 --sun 0.3,0.8,-0.5 --no-jitter ";
+  const std::string common = kSteam + "--scene none --cloud-extinction 60 --sun 0.3,0.5,0.8 --no-jitter ";
   auto lv = run_nimbus("render" + common + "--ms-photons 20000 --ms-grid 16 -o " + (d / "lv.exr").string());
   ASSERT_EQ(lv.code, 0) << lv.output;
   EXPECT_NE(lv.output.find("light volume built in"), std::string::npos) << lv.output;

@@ -69,6 +69,33 @@ TEST(ViewState, FileRoundTripAndErrors) {
   std::filesystem::remove_all(dir);
 }
 
+// Version 2 files hold the camera in the Z-up world; a file with no version (written before
+// it) held it Y-up and still loads, converted, to the same view; saving writes version 2.
+TEST(ViewState, OldYUpFilesLoadConvertedAndNewOnesAreZUp) {
+  json current = view_state_to_json(default_view_state());
+  ASSERT_EQ(current.at("version"), kViewStateVersion);
+  current["camera"]["eye"] = {300.0, -1500.0, 250.0};  // x east, y north, z up: 250 m up
+  current["camera"]["look_at"] = {-900.0, 5200.0, 2150.0};
+  json old = current;
+  old.erase("version");
+  old["camera"]["eye"] = {300.0, 250.0, 1500.0};  // the same point, y up and -z north
+  old["camera"]["look_at"] = {-900.0, 2150.0, -5200.0};
+  int v_current = 0, v_old = 0;
+  const ViewState a = view_state_from_json(current, "current", &v_current);
+  const ViewState b = view_state_from_json(old, "old", &v_old);
+  EXPECT_EQ(v_current, 2);
+  EXPECT_EQ(v_old, 1);
+  EXPECT_EQ(a.camera.eye, b.camera.eye);
+  EXPECT_EQ(a.camera.look_at, b.camera.look_at);
+  EXPECT_EQ(a.camera.eye.y, 250.0);  // the renderer's frame is y-up: the height is its y
+  EXPECT_EQ(view_state_to_json(b), current);  // saving the old file writes the current one
+  EXPECT_TRUE(view_state_version_note("old.json", 1).find("version 1") != std::string::npos);
+  EXPECT_TRUE(view_state_version_note("new.json", 2).empty());
+  json future = current;
+  future["version"] = 3;
+  EXPECT_NE(error_of(future).find("version"), std::string::npos) << error_of(future);
+}
+
 TEST(ViewState, BadContentsNameTheKey) {
   const json good = view_state_to_json(default_view_state());
   json j = good;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "support/run_nimbus.hpp"
@@ -71,10 +72,10 @@ TEST_P(ViewStateFrame, SavedLoadedAndRenderedEqualsTheCliFlagsToTheBit) {
   const auto a = run_nimbus("render --view-state " + (d / "state.json").string() + " --res 96x54 -o " +
                             (d / "state.exr").string());
   ASSERT_EQ(a.code, 0) << a.output;
-  // The same frame as flags: the sky's sun as a direction, to the last bit.
-  const std::string sun = exact(render::sun_direction(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg));
+  // The same frame as flags: the sky's sun as a direction (Z up), to the last bit.
+  const std::string sun = exact(render::render_to_world(render::sun_direction(s.sky.sun_elevation_deg, s.sky.sun_azimuth_deg)));
   const auto b = run_nimbus("render " + cloud.string() + " --scene sky --sun=" + sun +
-                            " --eye 0,300,3000 --look-at 0,900,0 --fov 50 --res 96x54 --cloud-extinction 0.04"
+                            " --eye 0,-3000,300 --look-at 0,0,900 --fov 50 --res 96x54 --cloud-extinction 0.04"
                             " --cloud-albedo 0.99,0.99,0.99 --cloud-phase dual:0.7,-0.25,0.8 " + c.cli_method +
                             " --slices 96 --light-res 256 --cloud-shadow-res 256 --shafts raymarch:24 -o " +
                             (d / "flags.exr").string());

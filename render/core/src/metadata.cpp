@@ -3,6 +3,8 @@
 
 #include <sstream>
 
+#include "nimbus/render/core/world_axes.hpp"
+
 namespace nimbus::render {
 
 std::string fmt3(const glm::dvec3& v) {
@@ -12,19 +14,20 @@ std::string fmt3(const glm::dvec3& v) {
   return s.str();
 }
 
+// Positions and directions are written in nimbus's Z-up world (world_axes.hpp), as the flags take them.
 std::string describe_camera(const Camera& camera) {
-  return "eye " + fmt3(camera.eye) + " look_at " + fmt3(camera.look_at) + " up " + fmt3(camera.up) + " fov_deg " +
-         std::to_string(camera.fov_deg);
+  return "eye " + fmt3(render_to_world(camera.eye)) + " look_at " + fmt3(render_to_world(camera.look_at)) + " up " +
+         fmt3(render_to_world(camera.up)) + " fov_deg " + std::to_string(camera.fov_deg) + " (z up)";
 }
 
 std::string describe_light(const Light& light) {
   if (light.kind == LightKind::Sun)
-    return "sun towards " + fmt3(light.direction_to_sun) + " E_w_m2 " + fmt3(light.irradiance_w_m2);
+    return "sun towards " + fmt3(render_to_world(light.direction_to_sun)) + " (z up) E_w_m2 " + fmt3(light.irradiance_w_m2);
   std::ostringstream s;
   s.precision(9);
-  s << "point " << fmt3(light.position_m) << " I_w_sr " << fmt3(light.intensity_w_sr);
+  s << "point " << fmt3(render_to_world(light.position_m)) << " (z up) I_w_sr " << fmt3(light.intensity_w_sr);
   if (is_spot(light))
-    s << " spot axis " << fmt3(light.spot_axis) << " inner_rad " << light.spot_inner_rad << " outer_rad "
+    s << " spot axis " << fmt3(render_to_world(light.spot_axis)) << " inner_rad " << light.spot_inner_rad << " outer_rad "
       << light.spot_outer_rad;
   return s.str();
 }

@@ -11,6 +11,7 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/core/world_axes.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -24,6 +25,10 @@ int integer(const json& v, const std::string& key) { return volume::json_integer
 glm::dvec3 vec3(const json& v, const std::string& key) { return volume::json_vec3(v, key); }
 
 json to_json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+// A camera point of a file of `version` in the renderer's frame: version 2 is Z-up (the world's),
+// version 1 was the renderer's own Y-up frame.
+glm::dvec3 camera_point(const glm::dvec3& p, int version) { return version >= 2 ? world_to_render(p) : p; }
 
 // A string value read through its parser (parse_cloud_phase, parse_shaft_method...): the key is
 // named when it is not a string (`expected` says what it should be) or the parser refuses it.
@@ -96,9 +101,11 @@ void validate(const ViewState& s) {
     bad("view state renderer.shafts: the scene under GPU clouds needs a GPU method, not reference");
 }
 
-ViewState view_state_from_json(const json& doc, const std::string& where) {
+ViewState view_state_from_json(const json& doc, const std::string& where, int* version_read) {
   ViewState s;
   bool has_sky = false;
+  int version = 1;  // no "version": a file from before it, whose camera was Y-up
+  if (doc.is_object() && doc.contains("version")) version = volume::json_integer(doc["version"], where + ".version", 1, kViewStateVersion);
   members(doc, where, [&](const std::string& k, const json& v, const std::string& key) {
     if (k == "sky") {
       s.sky = volume::sky_from_json(v, key);
@@ -108,8 +115,8 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
       s.scene = v.get<std::string>();
     } else if (k == "camera") {
       members(v, key, [&](const std::string& ck, const json& cv, const std::string& ckey) {
-        if (ck == "eye") s.camera.eye = vec3(cv, ckey);
-        else if (ck == "look_at") s.camera.look_at = vec3(cv, ckey);
+        if (ck == "eye") s.camera.eye = camera_point(vec3(cv, ckey), version);
+        else if (ck == "look_at") s.camera.look_at = camera_point(vec3(cv, ckey), version);
         else if (ck == "fov") s.camera.fov_deg = number(cv, ckey);
         else bad(ckey + ": unknown key (known: eye, look_at, fov)");
       });
@@ -146,11 +153,12 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
         else if (rk == "shafts") s.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
         else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
       });
-    } else if (k != "nimbus") {
-      bad(key + ": unknown key (known: sky, scene, camera, time, optics, renderer)");
+    } else if (k != "nimbus" && k != "version") {
+      bad(key + ": unknown key (known: version, sky, scene, camera, time, optics, renderer)");
     }
   });
   if (!has_sky) bad(where + ".sky is missing");
+  if (version_read) *version_read = version;
   try {
     validate(s);
   } catch (const std::invalid_argument& e) {
@@ -161,9 +169,13 @@ ViewState view_state_from_json(const json& doc, const std::string& where) {
 
 json view_state_to_json(const ViewState& s) {
   return {{"nimbus", "view state"},
+          {"version", kViewStateVersion},
           {"sky", volume::sky_to_json(s.sky)},
           {"scene", s.scene},
-          {"camera", {{"eye", to_json(s.camera.eye)}, {"look_at", to_json(s.camera.look_at)}, {"fov", s.camera.fov_deg}}},
+          {"camera",
+           {{"eye", to_json(render_to_world(s.camera.eye))},
+            {"look_at", to_json(render_to_world(s.camera.look_at))},
+            {"fov", s.camera.fov_deg}}},
           {"time", {{"sky", s.sky_time_s}, {"evolution", s.evolution_time_s}, {"speed", s.speed}, {"paused", s.paused}}},
           {"optics",
            {{"extinction", s.optics.extinction_per_m},
@@ -183,13 +195,19 @@ json view_state_to_json(const ViewState& s) {
             {"shafts", to_string(s.shafts)}}}};
 }
 
-ViewState load_view_state(const std::string& path) {
-  return view_state_from_json(volume::read_json_file(path, "view state"), "view state '" + path + "'");
+ViewState load_view_state(const std::string& path, int* version_read) {
+  return view_state_from_json(volume::read_json_file(path, "view state"), "view state '" + path + "'", version_read);
 }
 
 void save_view_state(const ViewState& state, const std::string& path) {
   validate(state);
   volume::write_json_file(path, view_state_to_json(state), "view state");
+}
+
+std::string view_state_version_note(const std::string& path, int version) {
+  if (version >= kViewStateVersion) return {};
+  return "view state '" + path + "' has no \"version\": read as version 1, whose camera is Y-up (x east, y up, -z north), and "
+         "converted to the Z-up world; save it again (or add \"version\": 2 with a Z-up camera) to update it";
 }
 
 ViewState default_view_state() {

@@ -1,18 +1,36 @@
-// The time-of-day sun path (sun_path.hpp).
+// The sun's position for a time of day (sun_path.hpp).
 #include "nimbus/app/sun_path.hpp"
 
-#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace nimbus::app {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+}  // namespace
 
-SunPosition sun_at_hour(double hour) {
-  constexpr double kPi = 3.14159265358979323846;
-  if (!std::isfinite(hour)) hour = 12.0;
-  const double day = (hour - 6.0) / 12.0;  // 0 at sunrise, 1 at sunset
+double solar_declination_deg(double day_of_year) {
+  return 23.45 * std::sin(2.0 * kPi * (284.0 + day_of_year) / 365.0);
+}
+
+SunPosition sun_at(double hour, double latitude_deg, double day_of_year) {
+  if (!std::isfinite(hour)) throw std::invalid_argument("time of day: must be a finite number of hours");
+  if (!(latitude_deg >= -90.0 && latitude_deg <= 90.0))
+    throw std::invalid_argument("latitude: must be in [-90, 90] degrees, got " + std::to_string(latitude_deg));
+  if (!std::isfinite(day_of_year)) throw std::invalid_argument("day of year: must be finite");
+  const double lat = latitude_deg * kDeg, d = solar_declination_deg(day_of_year) * kDeg;
+  const double h = 15.0 * kDeg * std::remainder(hour - 12.0, 24.0);  // hour angle, [-pi, pi]
+  const double up = std::sin(lat) * std::sin(d) + std::cos(lat) * std::cos(d) * std::cos(h);
+  const double east = -std::cos(d) * std::sin(h);
+  const double north = std::cos(lat) * std::sin(d) - std::sin(lat) * std::cos(d) * std::cos(h);
   SunPosition s;
-  s.elevation_deg = std::clamp(60.0 * std::sin(kPi * day), -10.0, 60.0);
-  s.azimuth_deg = std::fmod(std::fmod(90.0 + 180.0 * day, 360.0) + 360.0, 360.0);
+  // atan2 of the horizontal length keeps the elevation exact near the zenith, where asin(up) is not.
+  s.elevation_deg = std::atan2(up, std::hypot(east, north)) / kDeg;
+  const double az = std::atan2(east, north) / kDeg;  // (-180, 180]; 0 at the zenith, where it is undefined
+  s.azimuth_deg = az < 0.0 ? az + 360.0 : az;
+  if (s.azimuth_deg >= 360.0) s.azimuth_deg = 0.0;
   return s;
 }
 

@@ -1,18 +1,33 @@
-// The sun over a day, for a time-of-day control: a simple path, not an ephemeris. It rises due
-// east at 6 h, stands 60 degrees high in the south at noon and sets due west at 18 h; below the
-// horizon (down to -10 degrees) before 6 h and after 18 h. Azimuth is the compass bearing
-// (0 north, 90 east), the convention of the sky file's sun_azimuth_deg.
+// The sun's position for a time of day, a latitude and a day of the year: the textbook solar
+// geometry (Cooper 1969's declination; Duffie & Beckman 2013, ch. 1.6), local solar time, no
+// equation of time, no refraction. The viewer's time-of-day slider and `nimbus render
+// --time-of-day` both use it. Azimuth is the compass bearing (0 north, 90 east), the convention of
+// the sky file's sun azimuth; elevation is above the horizon.
 #pragma once
 
 namespace nimbus::app {
 
 struct SunPosition {
-  double elevation_deg = 0.0;  // [-10, 60]
+  double elevation_deg = 0.0;  // [-90, 90]
   double azimuth_deg = 0.0;    // [0, 360)
 };
 
-// The sun at `hour` (local solar time in hours; the same formula outside 6-18 h, so the sun goes
-// on below the horizon; a non-finite hour gives the noon sun).
-SunPosition sun_at_hour(double hour);
+// Defaults of the time-of-day control: 45 degrees north at the June solstice (day 172).
+inline constexpr double kDefaultLatitudeDeg = 45.0;
+inline constexpr double kDefaultDayOfYear = 172.0;
+
+// The sun's declination on a day of the year (1 = 1 January; fractions allowed), degrees:
+// 23.45 sin(360 (284 + n) / 365) (Cooper 1969).
+double solar_declination_deg(double day_of_year);
+
+// The sun at local solar time `hour` (any finite value; 12 is solar noon; it wraps every 24 h),
+// at latitude_deg in [-90, 90] (north positive). With east, north, up the local axes, the
+// hour angle H = 15 (hour - 12) degrees and the declination d:
+//   up    = sin(lat) sin(d) + cos(lat) cos(d) cos(H)
+//   east  = -cos(d) sin(H)
+//   north = cos(lat) sin(d) - sin(lat) cos(d) cos(H)
+// Throws std::invalid_argument naming the argument for a non-finite one or a latitude outside
+// [-90, 90].
+SunPosition sun_at(double hour, double latitude_deg = kDefaultLatitudeDeg, double day_of_year = kDefaultDayOfYear);
 
 }  // namespace nimbus::app

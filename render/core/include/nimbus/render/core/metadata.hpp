@@ -17,9 +17,10 @@ namespace nimbus::render {
 // "x,y,z" with 9 significant digits.
 std::string fmt3(const glm::dvec3& v);
 
-// "eye X,Y,Z look_at X,Y,Z up X,Y,Z fov_deg F": the value of the "camera" key.
+// Positions and directions in nimbus's Z-up world (world_axes.hpp), as every flag takes them.
+// "eye X,Y,Z look_at X,Y,Z up X,Y,Z fov_deg F (z up)": the value of the "camera" key.
 std::string describe_camera(const Camera& camera);
-// "sun towards X,Y,Z E_w_m2 R,G,B" or "point X,Y,Z I_w_sr R,G,B [spot axis X,Y,Z inner_rad A
+// "sun towards X,Y,Z (z up) E_w_m2 R,G,B" or "point X,Y,Z (z up) I_w_sr R,G,B [spot axis X,Y,Z inner_rad A
 // outer_rad B]": a light as the "light" key of a cloud frame names it.
 std::string describe_light(const Light& light);
 // Several lights, "; " between them.

@@ -26,8 +26,9 @@ struct ViewState {
   // What lies under and behind the clouds: "sky" (ground, haze and sky lit by the sky's sun),
   // another scene preset (its own lights; its sun, if it has one, follows the sky's), or "none".
   std::string scene = "sky";
-  // The view (y-up metres): eye, look_at and fov_deg are the state's; the window sets the size
-  // and the clouds the near and far planes (state_camera, sky_renderer.hpp).
+  // The view, in the renderer's frame (world_axes.hpp; the file holds it Z-up): eye, look_at and
+  // fov_deg are the state's; the window sets the size and the clouds the near and far planes
+  // (state_camera, sky_renderer.hpp).
   Camera camera = [] {
     Camera c;
     c.eye = {-600.0, 250.0, 5200.0};
@@ -76,14 +77,24 @@ struct ViewState {
 // Throws std::invalid_argument naming the field.
 void validate(const ViewState& state);
 
+// The file format's version. 2: the camera is in nimbus's Z-up world (x east, y north, z up), as
+// every flag and file. 1 (a file with no "version"): the camera was Y-up (x east, y up, -z north);
+// such files still load, converted. Saving writes version 2.
+inline constexpr int kViewStateVersion = 2;
+
 // Throws std::invalid_argument naming `where` and the key; unknown keys are errors.
-ViewState view_state_from_json(const nlohmann::json& doc, const std::string& where);
+// `version_read`, when given, receives the file's version (1 when it has none).
+ViewState view_state_from_json(const nlohmann::json& doc, const std::string& where, int* version_read = nullptr);
 nlohmann::json view_state_to_json(const ViewState& state);
 
 // A state file: std::runtime_error naming the file when unreadable or not JSON,
 // std::invalid_argument for bad contents. Saving writes atomically.
-ViewState load_view_state(const std::string& path);
+ViewState load_view_state(const std::string& path, int* version_read = nullptr);
 void save_view_state(const ViewState& state, const std::string& path);
+
+// What a program tells its user about a file read at an old version (empty for the current one):
+// that its Y-up camera was converted, and that saving it again writes version 2.
+std::string view_state_version_note(const std::string& path, int version);
 
 // The default sky, seen from 250 m up, 5 km south of its nearest clouds.
 ViewState default_view_state();

@@ -1,6 +1,6 @@
 // Limits on what nimbus reads from files and stdin, so that hostile input (a huge file,
 // /dev/zero, a FIFO, 100,000 nested brackets) fails with one clear line before any parser runs
-// away. The limits are documented in README.md ("Input limits").
+// away. The limits are documented in docs/reliability.md ("Input limits").
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -3,8 +3,8 @@
 #   blender -b --factory-startup --python scripts/blender_vs_nimbus.py -- --nimbus build/nimbus \
 #       [--nimbus-python build/python] [--out DIR] [--png docs/blender-vs-nimbus.png] [options below]
 #
-# Both render the same VDB, camera and sun (nimbus's flags are Y-up; Blender is Z-up: a render point
-# (x, y, z) is Blender's (x, -z, y)), clouds alone over black, twice each with different seeds. The
+# Both render the same VDB, camera and sun (nimbus's flags and Blender are both Z up, x east, y
+# north: the vectors pass unchanged), clouds alone over black, twice each with different seeds. The
 # error is the relative RMSE of RGB over covered pixels (nimbus alpha > 0.01) with both renders' noise
 # taken out: sum((A - B)^2) - sum(var A) - sum(var B), over sum(A^2) - sum(var A), where A and B are
 # the means of the two renders and var = ((r1 - r2) / 2)^2 per pixel and channel.
@@ -33,11 +33,11 @@ def parse():
     p.add_argument("--preset", default="cumulus-humilis")
     p.add_argument("--voxel-size", type=float, default=12.0)
     p.add_argument("--res", default="160x90")
-    p.add_argument("--eye", default="0,1050,2200")
-    p.add_argument("--look-at", default="0,1000,0")
-    p.add_argument("--up", default="0,1,0")
+    p.add_argument("--eye", default="0,-2200,1050")
+    p.add_argument("--look-at", default="0,0,1000")
+    p.add_argument("--up", default="0,0,1")
     p.add_argument("--fov", type=float, default=30.0)
-    p.add_argument("--sun", action="append", help="X,Y,Z towards the sun, Y-up (repeatable; default front and back)")
+    p.add_argument("--sun", action="append", help="X,Y,Z towards the sun, Z up (repeatable; default front and back)")
     p.add_argument("--nimbus-spp", type=int, default=1024)
     p.add_argument("--cycles-spp", type=int, default=512)
     p.add_argument("--bounces", type=int, default=1024, help="Cycles volume (and total) bounces")
@@ -51,16 +51,12 @@ def parse():
                    help="the add-on's Cycles half-voxel shift (on: where nimbus puts the voxels; "
                         "off: object at the origin)")
     a = p.parse_args(argv)
-    a.sun = a.sun or ["0.5,0.6,0.62", "-0.35,0.45,-0.82"]
+    a.sun = a.sun or ["0.5,-0.62,0.6", "-0.35,0.82,0.45"]
     return a
 
 
 def vec(text):
     return Vector(float(v) for v in text.split(","))
-
-
-def y_up_to_z_up(v):
-    return Vector((v.x, -v.z, v.y))
 
 
 def enable_addon(nimbus, nimbus_python):
@@ -140,7 +136,7 @@ def set_up_scene(a, w, h):
 
     cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam)
-    eye, look, up = (y_up_to_z_up(vec(t)) for t in (a.eye, a.look_at, a.up))
+    eye, look, up = (vec(t) for t in (a.eye, a.look_at, a.up))
     f = (look - eye).normalized()
     r = f.cross(up).normalized()
     u = r.cross(f)
@@ -160,8 +156,8 @@ def set_up_scene(a, w, h):
     return scene, sun
 
 
-def point_sun(sun, to_sun_y_up):
-    d = y_up_to_z_up(vec(to_sun_y_up)).normalized()
+def point_sun(sun, to_sun):
+    d = vec(to_sun).normalized()
     sun.rotation_mode = "QUATERNION"
     sun.rotation_quaternion = d.to_track_quat("Z", "Y")  # the light travels along its -Z
 

@@ -23,23 +23,17 @@ RES = (320, 200)
 SIDE_FOV, BELOW_FOV = 50.0, 80.0
 
 
-def y_up(p):
-    """A Z-up world point (files, presets) as the renderer's Y-up camera coordinates."""
-    x, y, z = p
-    return (x, z, -y)
-
-
 def cameras(lo, hi, body):
     """Side: the whole box. Below: up at the base under the body (the first shape's centre, else the box's)."""
     c = [(a + b) / 2 for a, b in zip(lo, hi)]
     w, h = max(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]
     aspect = RES[0] / RES[1]
     d = 1.1 * max(w, aspect * h) / (2 * math.tan(math.radians(SIDE_FOV / 2)))
-    side = (y_up((c[0], c[1] - d, c[2])), y_up(c), SIDE_FOV)
+    side = ((c[0], c[1] - d, c[2]), tuple(c), SIDE_FOV)  # Z up, as the flags
     s = min(w, 1.5 * h)  # an anvil or a layer is seen from under its middle, not from its far edge
     ground = max(lo[2] - 0.6 * s, 0.02 * h)  # below the base, above the ground plane
     b = body or c
-    below = (y_up((b[0] - 0.15 * s, b[1] - 0.3 * s, ground)), y_up((b[0], b[1], lo[2])), BELOW_FOV)
+    below = ((b[0] - 0.15 * s, b[1] - 0.3 * s, ground), (b[0], b[1], lo[2]), BELOW_FOV)
     return {"side": side, "below": below}
 
 

@@ -15,13 +15,17 @@ using app::parse_frames;
 using app::task_count;
 using app::time_text;
 
-// Registers --time, --frames, --fps, --many-frames, --start-frame, --frame-from-env and --chunk.
+// Registers --time, --frames, --fps, --time-scale, --many-frames, --start-frame, --frame-from-env and --chunk.
 inline void add_frame_options(CLI::App* cmd, FrameArgs& a, const std::string& what) {
   cmd->add_option("--time", a.time, "time in seconds (wind and evolution)");
   cmd->add_option("--frames", a.frames, "frames A-B, written as a sequence " + what +
                                             " (a %04d field, or the frame before the extension)");
-  cmd->add_option("--fps", a.fps, "frames per second: frame n is at time (n - start frame) / fps")
+  cmd->add_option("--fps", a.fps, "frames per second of the film (file metadata; with the default --time-scale, "
+                                  "frame n is at sky time (n - start frame) / fps)")
       ->capture_default_str();
+  cmd->add_option("--time-scale", a.time_scale,
+                  "sky seconds per frame: realtime (1 / fps, the default), timelapse (10 s: a 3-second shot at 24 fps "
+                  "shows 12 minutes of clouds boiling) or a number of seconds");
   cmd->add_flag("--many-frames", a.many_frames, "allow --frames to span more than 10000 frames");
   cmd->add_option("--start-frame", a.start_frame, "the frame at time 0 (1001 is common)")->capture_default_str();
   cmd->add_option("--frame-from-env", a.frame_from_env,

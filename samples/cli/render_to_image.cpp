@@ -25,7 +25,7 @@ std::unique_ptr<CLI::App> image_command(ImageArgs& a) {
   add_scene_options(cmd.get(), a.scene, a.method, a.no_surface_airlight);
   add_cloud_render_options(cmd.get(), a.clouds);
   add_camera_options(cmd.get(), a.camera);
-  for (const char* flag : {"--frames", "--fps", "--many-frames", "--start-frame", "--frame-from-env", "--chunk"})
+  for (const char* flag : {"--frames", "--fps", "--time-scale", "--many-frames", "--start-frame", "--frame-from-env", "--chunk"})
     cmd->remove_option(cmd->get_option(flag));
   return cmd;
 }

@@ -49,6 +49,40 @@ TEST(AppFrameRange, FrameTimesCountFromTheStartFrame) {
   EXPECT_DOUBLE_EQ(s.time(7), 12.5);
 }
 
+// --time-scale spaces the frames in sky time: real time is 1 / fps (the default, and the times it
+// always gave), a time-lapse 10 s a frame, a number that many seconds; anything else is refused.
+TEST(AppFrameRange, TimeScaleSpacesTheFramesInSkyTime) {
+  FrameArgs a;
+  a.frames = "1001-1072";
+  a.start_frame = 1001;
+  a.fps = 24.0;
+  EXPECT_DOUBLE_EQ(app::parse_frames(a).time(1072), 71.0 / 24.0);  // 3 s of film, 3 s of sky
+  a.time_scale = "realtime";
+  EXPECT_EQ(app::parse_frames(a).time(1072), 71.0 / 24.0);
+  a.time_scale = "timelapse";
+  EXPECT_DOUBLE_EQ(app::parse_frames(a).time(1072), 710.0);  // 3 s of film, 12 minutes of sky
+  a.time_scale = "2.5";
+  EXPECT_DOUBLE_EQ(app::parse_frames(a).time(1003), 5.0);
+  const auto named = [](FrameArgs b) {
+    const std::string why = refusal([&] { app::parse_frames(b); });
+    EXPECT_EQ(why.rfind("--time-scale", 0), 0u) << b.time_scale << ": '" << why << "'";
+  };
+  for (const char* bad : {"0", "-1", "nan", "inf", "1e9", "fast", "2s"}) {
+    FrameArgs b = a;
+    b.time_scale = bad;
+    named(b);
+  }
+  FrameArgs late = a;
+  late.frames = "1001-13000";
+  late.many_frames = true;
+  late.time_scale = "86400";  // 12000 days: past the 1e9 s of sky time a sequence may span
+  named(late);
+  FrameArgs single;
+  single.time = 3.0;
+  single.time_scale = "timelapse";  // one picture has no frames to space
+  named(single);
+}
+
 TEST(AppFrameRange, TheTasksOfAnArrayPartitionTheRange) {
   for (const int chunk : {1, 3, 7, 50}) {
     FrameArgs a;

@@ -41,8 +41,10 @@ inline std::pair<int, int> parse_frame_range(const std::string& text) {
 
 // How a sequence-writing command (generate, render) is told its frames:
 //   --time T                       one picture at T seconds, or
-//   --frames A-B [--fps F]         frames A..B, frame n at time (n - S) / F, where S is
-//   [--start-frame S]              --start-frame (default 0; 1001 is common in film work);
+//   --frames A-B [--fps F]         frames A..B, frame n at sky time (n - S) x P, where S is
+//   [--start-frame S]              --start-frame (default 0; 1001 is common in film work) and P
+//   [--time-scale P]               the sky seconds per frame: realtime (1 / F, the default),
+//                                  timelapse (kTimelapseSecondsPerFrame) or a number of seconds;
 //   [--frame-from-env VAR]         only the frames of task $VAR of a job array (0-based), each
 //   [--chunk K]                    task taking K consecutive frames (default 1).
 // Frame n depends on (parameters, seed, n) alone, so any task order gives the same files.
@@ -50,6 +52,7 @@ struct FrameArgs {
   std::optional<double> time;
   std::string frames;
   double fps = 24.0;
+  std::string time_scale;  // --time-scale: empty or "realtime", "timelapse", or seconds per frame
   bool many_frames = false;
   int start_frame = 0;
   std::string frame_from_env;  // name of the environment variable holding the task id
@@ -63,10 +66,40 @@ struct FrameRange {
   bool sequence = false;    // --frames was given
   int start_frame = 0;
   double fps = 24.0;
+  // Sky seconds between frames (--time-scale); 0: real time, 1 / fps (divided by fps, so that real
+  // time gives the times it always gave, to the bit).
+  double seconds_per_frame = 0.0;
   double single_time = 0.0;  // --time (no sequence)
   // Seconds of `frame`'s picture.
-  double time(int frame) const { return sequence ? double(frame - start_frame) / fps : single_time; }
+  double time(int frame) const {
+    if (!sequence) return single_time;
+    return seconds_per_frame > 0.0 ? double(frame - start_frame) * seconds_per_frame : double(frame - start_frame) / fps;
+  }
 };
+
+// A named time-lapse: 10 sky seconds per frame. At 24 fps a second of film is 4 minutes of sky, so
+// a 3-second shot shows 12 minutes: about one fair-weather cumulus's life (10-30 min; Stull 2017,
+// ch. 6), its turrets rising and fading, as photographers' cloud time-lapses take a frame every
+// 2-10 s.
+inline constexpr double kTimelapseSecondsPerFrame = 10.0;
+
+// --time-scale: sky seconds per frame, 0 for real time (1 / fps); UsageError naming the flag for
+// anything but realtime, timelapse or a number in (0, 86400].
+inline double parse_time_scale(const std::string& text) {
+  if (text.empty() || text == "realtime") return 0.0;
+  if (text == "timelapse") return kTimelapseSecondsPerFrame;
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(v > 0.0 && v <= 86400.0))
+    throw UsageError("--time-scale: '" + text.substr(0, 40) +
+                     "' must be realtime, timelapse or sky seconds per frame in (0, 86400]");
+  return v;
+}
 
 // How many tasks of `chunk` frames cover first..last.
 inline long task_count(int first, int last, int chunk) { return (long(last) - first + chunk) / chunk; }
@@ -96,7 +129,9 @@ inline FrameRange parse_frames(const FrameArgs& a) {
   r.fps = a.fps;
   r.start_frame = a.start_frame;
   r.single_time = a.time.value_or(0.0);
+  r.seconds_per_frame = parse_time_scale(a.time_scale);
   if (!r.sequence) {
+    if (!a.time_scale.empty()) throw UsageError("--time-scale: needs --frames A-B (it spaces a sequence's frames)");
     if (!a.frame_from_env.empty()) throw UsageError("--frame-from-env: needs --frames A-B (the whole sequence)");
     if (a.chunk != 1) throw UsageError("--chunk: needs --frames A-B and --frame-from-env");
     if (a.start_frame != 0) throw UsageError("--start-frame: needs --frames A-B");
@@ -110,8 +145,9 @@ inline FrameRange parse_frames(const FrameArgs& a) {
   // 1e300 s, after frame 0 was written): the first and last frames bound them all.
   for (const int f : {r.first, r.last})
     if (!(std::abs(r.time(f)) <= kMaxSequenceSeconds))
-      throw UsageError("--fps: frame " + std::to_string(f) + " would be at " + time_text(r.time(f)) +
-                       ", beyond +-1e9 s of sky time; raise --fps or move --start-frame");
+      throw UsageError(std::string(a.time_scale.empty() ? "--fps" : "--time-scale") + ": frame " + std::to_string(f) +
+                       " would be at " + time_text(r.time(f)) + ", beyond +-1e9 s of sky time; " +
+                       (a.time_scale.empty() ? "raise --fps" : "lower --time-scale") + " or move --start-frame");
   const long count = long(r.last) - r.first + 1;
   if (count > kMaxFramesUnforced && !a.many_frames)
     throw UsageError("--frames: " + a.frames + " is " + std::to_string(count) + " frames, more than " +

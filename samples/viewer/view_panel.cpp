@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -26,36 +27,92 @@ bool slider(const char* label, double& v, double lo, double hi, const char* fmt 
   return changed;
 }
 
+// The last item's longer explanation, on hover.
+void tip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+// One line of text that never wraps (the panel's layout does not move when it changes); the whole
+// text on hover when it is clipped.
+void one_line(const std::string& text, const ImVec4* colour = nullptr) {
+  const std::string shown = text.empty() ? " " : text;
+  if (colour) ImGui::PushStyleColor(ImGuiCol_Text, *colour);
+  ImGui::TextUnformatted(shown.c_str());
+  if (colour) ImGui::PopStyleColor();
+  if (!text.empty()) tip(text.c_str());
+}
+
+// A preset's description up to its first full stop: the one line under its drop-down.
+std::string first_sentence(const std::string& text) {
+  const std::size_t stop = text.find(". ");
+  return stop == std::string::npos ? text : text.substr(0, stop + 1);
+}
+
+// Panel defaults: a quarter of the window's width, see-through, most sections closed.
+constexpr float kPanelShare = 0.25f;
+constexpr float kPanelAlpha = 0.6f;
+
+// A shader that failed to reload: its error in a window of its own at the bottom, so the panel does not move.
+void shader_error_window(const std::string& error) {
+  if (error.empty()) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 8.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+  ImGui::SetNextWindowSize(ImVec2(display.x * 0.6f, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::Begin("shader error (F5 reloads; the last good program runs)", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", error.c_str());
+  ImGui::End();
+}
+
 }  // namespace
 
 void draw_panel(Viewer& viewer, PanelState& panel) {
   render::ViewState& s = viewer.state();
   const FrameReport& r = viewer.report();
+  shader_error_window(viewer.shader_error());
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(420, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("nimbus");
-  ImGui::PushItemWidth(-190.0f);  // room for the labels on the right
+  ImGui::SetNextWindowSize(ImVec2(std::floor(display.x * kPanelShare), 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(160.0f, 60.0f), ImVec2(display.x, std::max(60.0f, display.y - 16.0f)));
+  ImGui::SetNextWindowBgAlpha(kPanelAlpha);
+  // Collapsed (its arrow, or a double click on its title) it covers nothing: G then uses the whole view.
+  const bool open = ImGui::Begin("nimbus");
+  viewer.set_covered_left(open ? ImGui::GetWindowPos().x + ImGui::GetWindowSize().x : 0.0);
+  if (!open) {
+    ImGui::End();
+    return;
+  }
+  ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f);  // the labels take the rest, clipped at the edge
+  // Two status lines that keep their place whatever they say.
+  char status[160];
   if (r.temporal_frames > 0)
-    ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d, %u frames accumulated)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
-                r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.temporal_frames);
+    std::snprintf(status, sizeof status, "%.1f fps  %.0f ms  %dx%d  %d slices  q%d  %u accumulated", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
+                  r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.temporal_frames);
   else
-    ImGui::Text("%.1f fps  %.0f ms  (%dx%d, %d slices, quality %d, %u sample%s%s)", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
-                r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.samples, r.samples == 1 ? "" : "s",
-                r.converged ? ", still" : "");
-  if (!viewer.message().empty()) ImGui::TextWrapped("%s", viewer.message().c_str());
-  if (!viewer.shader_error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", viewer.shader_error().c_str());
+    std::snprintf(status, sizeof status, "%.1f fps  %.0f ms  %dx%d  %d slices  q%d  %u sample%s%s", r.cpu_ms > 0 ? 1000.0 / r.cpu_ms : 0.0,
+                  r.cpu_ms, r.info.width, r.info.height, r.info.slices, r.quality_level, r.samples, r.samples == 1 ? "" : "s",
+                  r.converged ? ", still" : "");
+  one_line(status);
+  const ImVec4 quiet(0.75f, 0.85f, 1.0f, 1.0f);
+  one_line(viewer.message(), &quiet);
 
-  if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Checkbox("paused (Space; Left/Right step)", &s.paused);
-    slider("speed (sky s per s)", s.speed, 0.0, 1000.0, "%.1f", true);
+  if (ImGui::CollapsingHeader("Time")) {
+    ImGui::Checkbox("paused", &s.paused);
+    tip("Space pauses and resumes; Left/Right step while paused");
+    slider("speed x", s.speed, 0.0, 1000.0, "%.1f", true);
+    tip("sky seconds per real second");
     ImGui::Text("sky %.1f s, evolution %.1f s%s", s.sky_time_s, s.evolution_time_s, r.info.waited ? " (waiting)" : "");
   }
   if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
     double el = s.sky.sun_elevation_deg, az = s.sky.sun_azimuth_deg;
-    bool moved = slider("elevation (deg)", el, -10.0, 90.0, "%.1f");
-    moved |= slider("azimuth (deg)", az, 0.0, 359.9, "%.1f");
-    bool day_moved = slider("time of day (h)", panel.hour, 0.0, 24.0, "%.2f");
-    day_moved |= slider("latitude (deg)", panel.latitude_deg, -90.0, 90.0, "%.1f");
+    bool moved = slider("elevation", el, -10.0, 90.0, "%.1f");
+    tip("degrees above the horizon");
+    moved |= slider("azimuth", az, 0.0, 359.9, "%.1f");
+    tip("compass bearing, degrees: 0 north, 90 east");
+    bool day_moved = slider("time of day", panel.hour, 0.0, 24.0, "%.2f");
+    tip("local solar time, hours; with the latitude and the day of the year it sets the elevation and azimuth");
+    day_moved |= slider("latitude", panel.latitude_deg, -90.0, 90.0, "%.1f");
     day_moved |= slider("day of year", panel.day_of_year, 1.0, 366.0, "%.0f");
     if (day_moved) {
       // The renderer's suns end 10 degrees below the horizon: night holds the sun there.
@@ -76,7 +133,8 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     for (std::size_t i = 0; i < edit.clouds.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
       volume::SkyCloud& c = edit.clouds[i];
-      if (ImGui::BeginCombo("preset", c.preset.c_str())) {
+      std::string description;
+      if (ImGui::BeginCombo("preset", c.preset.empty() ? "(a file)" : c.preset.c_str())) {
         for (const auto& p : presets) {
           if (p.genus == "gas") continue;
           if (ImGui::Selectable(p.name.c_str(), p.name == c.preset)) {
@@ -84,8 +142,18 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
             c.overrides = nlohmann::json::object();
             done = true;
           }
+          tip(p.description.c_str());
         }
         ImGui::EndCombo();
+      }
+      for (const auto& p : presets)
+        if (p.name == c.preset) description = first_sentence(p.description);
+      const ImVec4 grey(0.7f, 0.7f, 0.7f, 1.0f);
+      one_line(description, &grey);
+      if (c.preset.empty()) {  // a file cloud: nothing of a preset to edit
+        ImGui::Separator();
+        ImGui::PopID();
+        continue;
       }
       const nlohmann::json base = volume::load_preset(c.preset).at("cloud");
       double coverage = c.overrides.value("coverage", base.value("coverage", 0.5));
@@ -99,7 +167,8 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
       ImGui::Separator();
       ImGui::PopID();
     }
-    if (slider("evolution rate (x preset)", edit.evolution_scale, 0.0, 50.0, "%.2f")) editing = true;
+    if (slider("evolution x", edit.evolution_scale, 0.0, 50.0, "%.2f")) editing = true;
+    tip("multiplies each preset's evolution rate");
     done |= ImGui::IsItemDeactivatedAfterEdit();
     if (done) {
       edit.wind_m_s = s.sky.wind_m_s;
@@ -111,31 +180,37 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     // Wind: speed and the compass direction it blows towards; drift needs no new keyframes.
     double speed = std::hypot(s.sky.wind_m_s.x, s.sky.wind_m_s.y);
     double towards = std::fmod(std::atan2(s.sky.wind_m_s.x, s.sky.wind_m_s.y) * 180.0 / kPi + 360.0, 360.0);
-    bool wind = slider("wind (m/s)", speed, 0.0, 60.0, "%.1f");
-    wind |= slider("wind towards (deg)", towards, 0.0, 359.9, "%.0f");
+    bool wind = slider("wind m/s", speed, 0.0, 60.0, "%.1f");
+    wind |= slider("wind to", towards, 0.0, 359.9, "%.0f");
+    tip("the compass direction the wind blows towards, degrees");
     if (wind) {
       s.sky.wind_m_s.x = speed * std::sin(towards * kPi / 180.0);
       s.sky.wind_m_s.y = speed * std::cos(towards * kPi / 180.0);
     }
   }
   if (ImGui::CollapsingHeader("Cloud optics")) {
-    slider("extinction (/m per density)", s.optics.extinction_per_m, 0.001, 0.5, "%.4f", true);
+    slider("extinction /m", s.optics.extinction_per_m, 0.001, 0.5, "%.4f", true);
+    tip("extinction per metre per unit of density");
     double albedo = s.optics.albedo.x;
     if (slider("albedo", albedo, 0.5, 1.0, "%.3f")) s.optics.albedo = glm::dvec3(albedo);
-    slider("phase g forward", s.optics.phase.g_forward, 0.0, 0.95);
-    slider("phase g back", s.optics.phase.g_back, -0.95, 0.0);
-    slider("phase forward weight", s.optics.phase.forward_weight, 0.0, 1.0);
+    slider("g forward", s.optics.phase.g_forward, 0.0, 0.95);
+    slider("g back", s.optics.phase.g_back, -0.95, 0.0);
+    slider("forward weight", s.optics.phase.forward_weight, 0.0, 1.0);
+    tip("the dual-lobe phase function: forward and back Henyey-Greenstein lobes and the forward one's weight");
     bool volume = s.slices.multiple.method == render::MultipleScatteringMethod::LightVolume;
-    if (ImGui::Checkbox("light volume (photon-traced multiple scattering)", &volume))
+    const bool clicked = ImGui::Checkbox("light volume", &volume);
+    tip("photon-traced multiple scattering, made per keyframe in the background");
+    if (clicked)
       s.slices.multiple.method = volume ? render::MultipleScatteringMethod::LightVolume : render::MultipleScatteringMethod::Octaves;
     if (volume) {
-      ImGui::SliderInt("light volume cells", &s.slices.multiple.light_volume.resolution, 16, 96);
+      ImGui::SliderInt("cells", &s.slices.multiple.light_volume.resolution, 16, 96);
       int photons_log2 = static_cast<int>(std::lround(std::log2(static_cast<double>(s.slices.multiple.light_volume.photons))));
-      if (ImGui::SliderInt("light volume photons (log2)", &photons_log2, 14, 24)) s.slices.multiple.light_volume.photons = std::int64_t{1} << photons_log2;
+      if (ImGui::SliderInt("photons log2", &photons_log2, 14, 24)) s.slices.multiple.light_volume.photons = std::int64_t{1} << photons_log2;
     }
-    ImGui::SliderInt(volume ? "octaves (until the volume is made)" : "multiple-scattering octaves", &s.slices.multiple.octaves, 0, 3);
+    ImGui::SliderInt("octaves", &s.slices.multiple.octaves, 0, 3);
+    tip(volume ? "multiple-scattering octaves, drawn until the light volume is made" : "multiple-scattering octaves");
   }
-  if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Renderer")) {
     ImGui::SliderInt("slices", &s.slices.slices, 8, 512);
     static const int light_sizes[] = {64, 128, 256, 512, 1024};
     if (ImGui::BeginCombo("light buffer", std::to_string(s.slices.light_res).c_str())) {
@@ -153,14 +228,18 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
       ImGui::EndCombo();
     }
     slider("render scale", s.render_scale, 0.1, 1.0, "%.2f");
-    slider("exposure (stops)", s.exposure_stops, -6.0, 6.0, "%.2f");
+    slider("exposure", s.exposure_stops, -6.0, 6.0, "%.2f");
+    tip("stops");
     AdaptiveQuality& a = viewer.adaptive();
-    ImGui::Checkbox("adaptive quality", &a.enabled);
+    ImGui::Checkbox("adaptive", &a.enabled);
+    tip("adaptive quality: fewer slices and pixels while things move, to hold the frame budget");
     bool temporal = viewer.temporal();
-    if (ImGui::Checkbox("accumulate moving frames", &temporal)) viewer.set_temporal(temporal);
-    slider("frame budget (ms)", a.budget_ms, 10.0, 1000.0, "%.0f", true);
+    if (ImGui::Checkbox("accumulate", &temporal)) viewer.set_temporal(temporal);
+    tip("accumulate moving frames (temporal reprojection)");
+    slider("budget ms", a.budget_ms, 10.0, 1000.0, "%.0f", true);
+    tip("the adaptive quality's frame budget");
   }
-  if (ImGui::CollapsingHeader("Frame times", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Frame times")) {
     const render::FrameStats& st = r.stats;
     ImGui::Text("CPU frame      %7.1f ms", r.cpu_ms);
     ImGui::Text("GPU scene      %7.1f ms", st.scene.total_ms);
@@ -173,19 +252,26 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     ImGui::Text("keyframes %lld+1, blend %.2f", static_cast<long long>(r.info.keyframe), r.info.blend);
     ImGui::TextWrapped("%s", st.clouds.timing.c_str());
   }
-  if (ImGui::Button("Screenshot (F12)")) viewer.key(Key::F12);
+  if (ImGui::Button("Frame G")) viewer.key(Key::G);
+  tip("frame the clouds in the part of the view the panel leaves free");
   ImGui::SameLine();
-  if (ImGui::Button("Save (Ctrl+S)")) viewer.key(Key::CtrlS);
+  if (ImGui::Button("Home H")) viewer.key(Key::H);
   ImGui::SameLine();
-  if (ImGui::Button("Load (Ctrl+O)")) viewer.key(Key::CtrlO);
-  if (ImGui::Button("Save sky (nimbus-sky.json)")) viewer.save_sky("nimbus-sky.json");
+  if (ImGui::Button("Shot F12")) viewer.key(Key::F12);
+  tip("screenshot: nimbus-NNNN.exr and .png");
+  if (ImGui::Button("Save ^S")) viewer.key(Key::CtrlS);
+  tip("save the view state (Ctrl+S)");
   ImGui::SameLine();
-  if (ImGui::Button("Reload shaders (F5)")) viewer.key(Key::F5);
+  if (ImGui::Button("Load ^O")) viewer.key(Key::CtrlO);
+  tip("load the view state (Ctrl+O)");
   ImGui::SameLine();
-  if (ImGui::Button("Frame (G)")) viewer.key(Key::G);
+  if (ImGui::Button("Save sky")) viewer.save_sky("nimbus-sky.json");
+  tip("the clouds, wind and sun as nimbus-sky.json, for --sky");
   ImGui::SameLine();
-  if (ImGui::Button("Home (H)")) viewer.key(Key::H);
-  ImGui::TextWrapped("Left drag tumbles, right drag pans, wheel zooms; Tab: fly (WASD, Q/E, Shift).");
+  if (ImGui::Button("F5")) viewer.key(Key::F5);
+  tip("reload the shaders from the source tree");
+  ImGui::TextDisabled("drag: turn, right drag: pan,");
+  ImGui::TextDisabled("wheel: zoom, Tab: fly (WASD)");
   ImGui::PopItemWidth();
   ImGui::End();
 }

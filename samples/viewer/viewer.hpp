@@ -81,6 +81,9 @@ class Viewer {
   // The sun by hand (panel), the camera by a script: both mark the frame as moving.
   void set_sun(double elevation_deg, double azimuth_deg);
   void set_camera(const glm::dvec3& eye, const glm::dvec3& look_at) { set_pose({eye, look_at}); }
+  // Window pixels on the left that the panel covers (0: none, or collapsed); G frames the clouds
+  // in the rest of the view.
+  void set_covered_left(double width_px) { covered_left_px_ = std::max(0.0, width_px); }
 
   // A frame at width x height window pixels (the adaptive quality may draw fewer); the image is
   // kept for display() and screenshots. now_s: real time, for the adaptive quality.
@@ -123,6 +126,7 @@ class Viewer {
 
   render::ViewState state_;
   ViewerOptions options_;
+  double covered_left_px_ = 0.0;
   std::unique_ptr<render::SkyRenderer> renderer_;
   std::unique_ptr<Display> display_;
   AdaptiveQuality adaptive_;

@@ -17,36 +17,6 @@
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::viewer {
-
-namespace {
-
-// G with the panel over the left of the view: the clouds framed in the part it leaves free. A
-// camera as wide as that part (the same focal length) is framed on them, then turned left about
-// the vertical by the angle between the view's centre and the free part's centre, so that the
-// clouds sit in the middle of what can be seen.
-CameraPose frame_in_free_part(render::Camera c, int width, const std::vector<render::CloudVolume>& clouds, bool on_ground,
-                              double covered_px) {
-  const double covered = std::clamp(covered_px, 0.0, 0.75 * width);
-  if (covered < 1.0) {
-    const render::Camera f = render::frame_clouds(c, clouds, on_ground);
-    return {f.eye, f.look_at};
-  }
-  const double tan_half = std::tan(0.5 * glm::radians(c.fov_deg));
-  const double free_width = width - covered;
-  render::Camera part = c;
-  part.width = std::max(1, int(std::lround(free_width)));
-  part.fov_deg = 2.0 * glm::degrees(std::atan(tan_half * free_width / width));
-  part = render::frame_clouds(part, clouds, on_ground);
-  // The free part's centre lies (covered / 2) pixels right of the view's centre.
-  const double turn = std::atan(tan_half * covered / width);
-  const glm::dvec3 forward = part.look_at - part.eye;
-  // A left turn about y, the renderer's up: x' = x cos + z sin, z' = z cos - x sin.
-  const glm::dvec3 turned{forward.x * std::cos(turn) + forward.z * std::sin(turn), forward.y,
-                          forward.z * std::cos(turn) - forward.x * std::sin(turn)};
-  return {part.eye, part.eye + turned};
-}
-
-}  // namespace
 namespace {
 
 // Whether a frame showed the state as it will stay: its keyframes were there and its light
@@ -94,7 +64,8 @@ void Viewer::key(Key k) {
       const int width = std::max(last_width_, 16), height = std::max(last_height_, 16);
       render::Camera c = render::state_camera(state_, width, height, clouds);
       // Over the sky scene's ground the eye stays on it (2 m up), looking up at the clouds.
-      set_pose(frame_in_free_part(c, width, clouds, state_.scene == "sky", covered_left_px_));
+      const render::Camera f = render::frame_clouds_right_of(c, clouds, state_.scene == "sky", covered_left_px_);
+      set_pose({f.eye, f.look_at});
       break;
     }
     case Key::H:

@@ -122,6 +122,41 @@ TEST(CloudFraming, TheFramedCameraSeesEveryCornerOfTheClouds) {
   EXPECT_EQ(frame_clouds(base, {}, true).eye, base.eye);  // nothing to frame
 }
 
+// The viewer's G with its panel over the left of the picture: the clouds are framed in the part
+// to its right, their centre in the middle of that part, every corner inside it.
+TEST(CloudFraming, FramedRightOfACoveredStripTheCloudsFillTheFreePart) {
+  openvdb::initialize();
+  auto ball = test::make_ball(10, 20.0);
+  ball->transform().postTranslate(openvdb::Vec3d(300.0, 900.0, -200.0));
+  const std::vector<CloudVolume> clouds = {make_cloud_volume(*ball, CloudOptics{}, "ball")};
+  Camera base;
+  base.width = 960;
+  base.height = 540;
+  base.fov_deg = 60.0;
+  for (const double covered : {240.0, 480.0}) {
+    const double left = -1.0 + 2.0 * covered / base.width;  // the free part in NDC: [left, 1]
+    for (bool on_ground : {false, true}) {
+      const Camera c = frame_clouds_right_of(base, clouds, on_ground, covered);
+      EXPECT_EQ(c.width, base.width);
+      EXPECT_EQ(c.fov_deg, base.fov_deg);
+      const glm::dvec3 centre = 0.5 * (clouds[0].world_min + clouds[0].world_max);
+      EXPECT_NEAR(ndc(c, centre).x, 0.5 * (left + 1.0), on_ground ? 0.05 : 0.01) << covered << " " << on_ground;
+      for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 p(k & 1 ? clouds[0].world_max.x : clouds[0].world_min.x,
+                           k & 2 ? clouds[0].world_max.y : clouds[0].world_min.y,
+                           k & 4 ? clouds[0].world_max.z : clouds[0].world_min.z);
+        const glm::dvec3 q = ndc(c, p);
+        EXPECT_GE(q.x, left) << "corner " << k << " behind the panel, covered " << covered << " on_ground " << on_ground;
+        EXPECT_LE(q.x, 1.0) << "corner " << k;
+        EXPECT_LE(std::abs(q.y), 1.0) << "corner " << k;
+      }
+    }
+  }
+  // Nothing covered: frame_clouds itself.
+  EXPECT_EQ(frame_clouds_right_of(base, clouds, false, 0.0).look_at, frame_clouds(base, clouds, false).look_at);
+  EXPECT_EQ(frame_clouds_right_of(base, clouds, false, std::nan("")).look_at, frame_clouds(base, clouds, false).look_at);
+}
+
 TEST(CloudFraming, AHandPlacedCameraReachesTheFarthestCloud) {
   openvdb::initialize();
   auto ball = test::make_ball(10, 20.0);

@@ -39,6 +39,27 @@ Camera frame_clouds(Camera c, const std::vector<CloudVolume>& clouds, bool on_gr
   return c;
 }
 
+Camera frame_clouds_right_of(Camera c, const std::vector<CloudVolume>& clouds, bool on_ground, double covered_px) {
+  const double covered = std::clamp(std::isfinite(covered_px) ? covered_px : 0.0, 0.0, 0.75 * c.width);
+  if (covered < 1.0 || clouds.empty()) return frame_clouds(c, clouds, on_ground);
+  const double tan_half = std::tan(0.5 * c.fov_deg * std::numbers::pi / 180.0);
+  const double free_width = c.width - covered;
+  Camera part = c;
+  part.width = std::max(1, int(std::lround(free_width)));
+  part.fov_deg = 2.0 * std::atan(tan_half * free_width / c.width) * 180.0 / std::numbers::pi;
+  part = frame_clouds(part, clouds, on_ground);
+  // The free part's centre lies covered / 2 pixels right of the picture's centre.
+  const double turn = std::atan(tan_half * covered / c.width);
+  const glm::dvec3 f = part.look_at - part.eye;
+  // A left turn about y, the renderer's up: x' = x cos + z sin, z' = z cos - x sin.
+  const glm::dvec3 turned{f.x * std::cos(turn) + f.z * std::sin(turn), f.y, f.z * std::cos(turn) - f.x * std::sin(turn)};
+  c.eye = part.eye;
+  c.look_at = part.eye + turned;
+  c.near_m = part.near_m;
+  c.far_m = part.far_m;
+  return c;
+}
+
 Camera fit_far_plane(Camera c, const std::vector<CloudVolume>& clouds) {
   if (clouds.empty()) return c;
   glm::dvec3 lo, hi;

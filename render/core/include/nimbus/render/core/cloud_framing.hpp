@@ -15,6 +15,13 @@ namespace nimbus::render {
 // planes fit the clouds. Width, height and fov are kept. An empty list leaves it as it is.
 Camera frame_clouds(Camera camera, const std::vector<CloudVolume>& clouds, bool on_ground);
 
+// The same, with the left `covered_px` pixels of the picture hidden (the viewer's panel): the
+// clouds are framed in the part to their right, centred in it. A camera as wide as that part
+// (the same focal length) is framed on them, then turned left about the vertical by the angle
+// between the picture's centre and the part's centre. covered_px is clamped to [0, 3/4 width];
+// below one pixel this is frame_clouds.
+Camera frame_clouds_right_of(Camera camera, const std::vector<CloudVolume>& clouds, bool on_ground, double covered_px);
+
 // A camera placed by hand: its far plane pushed out, if need be, to reach every cloud.
 Camera fit_far_plane(Camera camera, const std::vector<CloudVolume>& clouds);
 

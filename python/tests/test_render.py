@@ -64,3 +64,19 @@ def test_write_image_writes_what_read_image_reads(tmp_path, humilis):
     np.testing.assert_array_equal(back, image.astype(np.float16).astype(np.float32))
     assert meta["note"] == "test"
     assert (tmp_path / "a.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_sun_by_elevation_or_time_of_day_is_the_direction_it_stands_for(humilis):
+    """One Z-up world: sun_elevation/sun_azimuth and time_of_day place the sun the direction
+    (x east, y north, z up) places it, and a different sun changes the picture."""
+    v, _ = humilis
+    options = dict(scene="none", res=(48, 27), ms_photons=1 << 16, slices=48)
+    el, az = np.radians(30.0), np.radians(120.0)
+    vector = (np.cos(el) * np.sin(az), np.cos(el) * np.cos(az), np.sin(el))  # east, north, up
+    by_angles = nimbus.render(v, sun_elevation=30, sun_azimuth=120, **options)
+    by_vector = nimbus.render(v, sun=vector, **options)
+    np.testing.assert_allclose(by_angles, by_vector, rtol=1e-4, atol=1e-6)
+    noon = nimbus.render(v, time_of_day=12, latitude=45, day_of_year=81, **options)  # equinox: 45 degrees up, due south
+    south = nimbus.render(v, sun_elevation=45, sun_azimuth=180, **options)
+    np.testing.assert_allclose(noon, south, rtol=1e-3, atol=1e-5)
+    assert np.abs(noon - by_angles).max() > 100 * np.abs(noon - south).max()

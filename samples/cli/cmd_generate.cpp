@@ -188,9 +188,9 @@ void add_generate_command(CLI::App& app, Action& action) {
   cmd->add_option("--brick", a->brick,
                   "only brick I (0-based) of N, or of AxBxC along x, y, z: 128-voxel-aligned boxes that nimbus merge "
                   "joins (docs/farm.md)");
-  cmd->add_option("--set", a->sets, "override a parameter: key=value (repeatable; nimbus presets show NAME)");
+  cmd->add_option("--set", a->sets, "override a parameter: key=value (repeatable; nimbus presets show NAME; positions and winds are Z up: x east, y north)");
   cmd->add_option("--params", a->params, "JSON file of parameter overrides");
-  cmd->add_option("--up", a->up, "up axis of the written file: z (Blender) or y (Houdini)")->capture_default_str();
+  cmd->add_option("--up", a->up, "up axis of the written file: z (Blender, and nimbus's own world) or y (Houdini: the grid is turned)")->capture_default_str();
   cmd->add_flag("--float", a->full_float, "store 32-bit floats (default: half floats)");
   cmd->add_option("-o,--output", a->output, "output .vdb file")->required();
   cmd->callback([&action, a] { action = [a] { return run_generate(*a); }; });

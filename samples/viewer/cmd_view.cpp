@@ -183,7 +183,7 @@ void add_view_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("view", "The interactive animated sky: a window with a panel (docs/viewer.md)");
   cmd->add_option("files", a->files, "Fog volumes (VDB) to show, or sequences name.%04d.vdb played at their fps");
   cmd->add_option("--grid", a->grid, "The files' float grid (default: density, else the first)");
-  cmd->add_option("--up-axis", a->up, "The files' up axis: auto (their metadata, else y), y or z")->capture_default_str();
+  cmd->add_option("--up-axis", a->up, "The files' up axis: auto (their metadata, else y), y or z (sky files, states and scripts are Z up)")->capture_default_str();
   cmd->add_option("--scene", a->scene, "Under the clouds: sky (default), another scene preset, or none");
   cmd->add_option("--preset", a->presets, "Clouds from these presets, side by side (instead of the default sky)");
   cmd->add_option("--sky", a->sky, "A sky file (JSON: presets, positions, seeds, wind, sun)");

@@ -31,7 +31,7 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
       throw UsageError(flag + ": '" + echo(p) + "' holds a %: a view state renders one picture, not a sequence");
   int version = 0;
   const render::ViewState state = render::load_view_state(path, &version);
-  if (const std::string note = render::view_state_version_note(path, version); !note.empty()) std::cerr << "note: " << note << "\n";
+  const std::string version_note = render::view_state_version_note(path, version);  // said once every check has passed
   // The frame is rendered at the state's render scale, as the viewer draws it.
   const auto [frame_w, frame_h] = render::scaled_frame_size(width, height, state.render_scale);
   if (frame_w < 1 || frame_h < 1)
@@ -40,6 +40,7 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
                      std::to_string(frame_h) + "); give a larger --res");
   render::check_sky_cloud_files(state.sky);
   check_outputs({{"-o", output}, {"--preview", preview}}, {{"--view-state", path}});
+  if (!version_note.empty()) std::cerr << "note: " << version_note << "\n";
   checks_done();
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<render::GlContext> gl;

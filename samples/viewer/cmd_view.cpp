@@ -71,7 +71,7 @@ int run_view(const ViewArgs& a) {
   }
   int version = render::kViewStateVersion;
   render::ViewState state = a.state.empty() ? render::default_view_state() : render::load_view_state(a.state, &version);
-  if (const std::string note = render::view_state_version_note(a.state, version); !note.empty()) std::cerr << "note: " << note << "\n";
+  const std::string version_note = render::view_state_version_note(a.state, version);  // said once every check has passed
   if (!a.sky.empty()) state.sky = volume::load_sky_file(a.sky);
   if (!a.files.empty()) {
     // Fog volumes from any tool, where their files put them; no wind (a simulation moves itself).
@@ -137,6 +137,7 @@ int run_view(const ViewArgs& a) {
                       "--screenshot-dir");
   }
   render::check_sky_cloud_files(state.sky);  // the files a sky or --state names, and the FILE arguments
+  if (!version_note.empty()) std::cerr << "note: " << version_note << "\n";
   checks_done();
   viewer::ViewerOptions options;
   options.screenshot_dir = a.screenshot_dir;

@@ -108,7 +108,7 @@ void two_lamp_rows(const LampRows& r, std::map<bool, render::Image>& mid_referen
   }
 }
 
-// The steam of the seed's teacup under the street lamp (scene steam-lamp), clouds alone.
+// The steam of the teacup (Hoffmann 2007) under the street lamp (scene steam-lamp), clouds alone.
 void steam_rows(const LampRows& r) {
   const BenchCloudsArgs& a = r.a;
   const std::vector<int> slice_counts = int_list("--lamp-slices", a.lamp_slices, 2, 4096);

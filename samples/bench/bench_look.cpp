@@ -1,5 +1,5 @@
 // `nimbus bench look`: how far the slicer's multiple-scattering approximations are from the
-// path-traced reference of the same model (issue 12), and what each costs, front- and back-lit,
+// path-traced reference of the same model, and what each costs, front- and back-lit,
 // isotropic, HG 0.7 and the default dual lobe; with the path tracer's own time and noise at
 // several sample counts. Clouds alone over black, the sun at irradiance 3, no ambient.
 #include <algorithm>

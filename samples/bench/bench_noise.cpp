@@ -1,9 +1,10 @@
 // `nimbus bench noise`: ns per sample of every noise kind, scalar path against the SIMD paths,
 // beside Debian's libnoise (module::Perlin) and glm::perlin measured in the same run, and the
 // error of each row against a named anchor (the scalar path for nimbus's SIMD paths, the
-// documented range for the anchors). Protocol: research-noise.md section 4 (a 128^3
-// grid, x fastest, origin (0.137, 0.571, 0.913), one thread, thread CPU time, best of N, at
-// spacings 1/16 and 1.37 lattice units). The output is a markdown document: paste it as is.
+// documented range for the anchors). Protocol, that of the FastNoiseLite and FastNoise2 figures
+// in docs/bench-noise.md: a 128^3 grid, x fastest, origin (0.137, 0.571, 0.913), one thread,
+// thread CPU time, best of N, at spacings 1/16 and 1.37 lattice units. The output is a markdown
+// document: paste it as is.
 #include <time.h>
 #include <unistd.h>
 

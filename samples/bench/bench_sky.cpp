@@ -1,5 +1,5 @@
 // `nimbus bench sky`: what the physical sky costs and how far its tables are from the
-// brute-force reference (issue 12, deliverable 5): each table's build time on the CPU, the
+// brute-force reference: each table's build time on the CPU, the
 // frame's cost with the physical sky against the same frame with the old gradient sky (the
 // anchor), and the tables' sky radiance against render/reference/atmosphere_reference.hpp over
 // a set of view directions, for several sun elevations.

@@ -77,7 +77,7 @@ double peak_rss_gb() {
   return double(u.ru_maxrss) / (1024.0 * 1024.0);  // kilobytes on Linux
 }
 
-// The cumulus field (issue 13): 10 x 10 km (2 x 2 km with --quick) at 20 m voxels, 3 km of
+// The cumulus field: 10 x 10 km (2 x 2 km with --quick) at 20 m voxels, 3 km of
 // height, with time, active voxels, memory and file size; the anchor is the naive every-voxel
 // path on a 1 x 1 km column of the field, against the sparse path on the same column.
 void bench_field(bool quick, const std::filesystem::path& tmp) {

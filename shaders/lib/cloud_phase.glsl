@@ -1,6 +1,7 @@
 // The clouds' dual-lobe Henyey-Greenstein phase (cloud_optics.hpp: DualLobePhase, as
 // cloud_phase_value) and the octave sum of the Unreal-style multiple-scattering approximation
-// (research-render.md section 2). Branch-free but for selects.
+// (after Wrenninge et al. 2013; cloud_optics.hpp: MultipleScattering). Branch-free but for
+// selects.
 #ifndef NIMBUS_CLOUD_PHASE_GLSL
 #define NIMBUS_CLOUD_PHASE_GLSL
 

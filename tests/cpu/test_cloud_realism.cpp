@@ -1,6 +1,6 @@
-// Realism (issue 13): nimbus's cloud fields measured the way observers measure real ones
-// (research-viewer.md 5.2). The outlines are the vertically integrated optical depth
-// thresholded at 1, clouds touching the map's edge excluded.
+// Realism: nimbus's cloud fields measured the way observers measure real ones. The outlines
+// are the vertically integrated optical depth thresholded at 1, clouds touching the map's edge
+// excluded.
 //   - perimeter-area fractal dimension D of the cumulus field: observed 1.35 (Lovejoy 1982),
 //     1.33-1.38 in later studies; asserted within [1.25, 1.45] over at least 30 clouds;
 //   - cloud area distribution dn/dlog a ~ a^-b of the same field: observed about 0.87

@@ -1,4 +1,4 @@
-// Genus shapes (issue 34), measured on the generated grids of several seeds each, with the
+// Genus shapes, measured on the generated grids of several seeds each, with the
 // measures of tests/support/cloud_shape.hpp:
 //   - every single-cloud preset is one body: the largest 6-connected body holds at least 95 % of
 //     the cloud voxels;

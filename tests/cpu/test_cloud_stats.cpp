@@ -1,8 +1,8 @@
-// Observational cloud statistics on optical-depth maps (volume/cloud_stats.hpp,
-// research-viewer.md section 5.2): vertical optical depth of a hand-built grid, cloud outlines of
-// hand-drawn shapes whose areas and perimeters are known exactly, and the three fits (Lovejoy's
-// perimeter-area dimension, DeWitt's area exponent, Cahalan & Snider's spectral slope) on inputs
-// built to follow a known power law. Recovered figures are printed with a "[cloud-stats]" prefix.
+// Observational cloud statistics on optical-depth maps (support/cloud_stats.hpp): vertical
+// optical depth of a hand-built grid, cloud outlines of hand-drawn shapes whose areas and
+// perimeters are known exactly, and the three fits (Lovejoy's perimeter-area dimension, DeWitt's
+// area exponent, Cahalan & Snider's spectral slope) on inputs built to follow a known power law.
+// Recovered figures are printed with a "[cloud-stats]" prefix.
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 

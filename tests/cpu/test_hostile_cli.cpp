@@ -1,4 +1,4 @@
-// Hostile input to the nimbus command line (issue 15): each case is a table row of arguments,
+// Hostile input to the nimbus command line: each case is a table row of arguments,
 // stdin and the expected refusal. Every run must exit with the expected code, print exactly one
 // line on stderr that holds the expected words, print nothing on stdout, and leave the case's
 // directory exactly as it was (no output written, replaced or half-written, no temporaries).

@@ -27,8 +27,9 @@ NoiseParams fbm(Kind kind, int octaves, double frequency, double lacunarity) {
 }
 
 TEST(NoisePropsFootprint, BandTopsFollowTheMeasuredSpectra) {
-  // research-noise.md section 3: gradient noise's best octave is [0.5, 1), value noise's
-  // [0.34, 0.69), wavelet noise's nominal band [0.25, 0.5) (cycles per lattice unit).
+  // Measured independently (Perlin's 2002 reference, FastNoiseLite's value noise): gradient
+  // noise's best octave is [0.5, 1), value noise's [0.34, 0.69); wavelet noise's nominal band is
+  // [0.25, 0.5) (cycles per lattice unit).
   EXPECT_DOUBLE_EQ(band_top(Kind::Gradient), 1.0);
   EXPECT_DOUBLE_EQ(band_top(Kind::Wavelet), 0.5);
   EXPECT_GE(band_top(Kind::Value), 0.69);

@@ -1,4 +1,4 @@
-// Spectral tests of the noise kinds (research-noise.md section 3 protocol, goals of section 5):
+// Spectral tests of the noise kinds (the protocol of the independent figures in docs/noise.md):
 // 128^3 samples at spacing 0.25 lattice units (frequency 1), mean removed, 3D Hann window,
 // power binned by radial frequency |f| in cycles per lattice unit. The "best octave" is the
 // band [lo, 2 lo) holding the most energy (every lo where the band energy can change is tried).
@@ -84,7 +84,7 @@ TEST(NoiseSpectrum, WaveletSingleBandHoldsItsEnergyInOneOctave) {
               pct(s.share({0.25, 0.5})), pct(s.share_below(0.25)), pct(s.share_at_or_above(0.5)));
   EXPECT_GE(in, 0.80);
   EXPECT_LE(below, 0.12);
-  EXPECT_LE(s.share_below(0.25), 0.02);  // research-noise.md section 5, item 6
+  EXPECT_LE(s.share_below(0.25), 0.02);  // goal: under 2 % below the band
 }
 
 // 2. Gradient noise: a regression floor on its best-octave share. Value noise: reported only.
@@ -108,11 +108,12 @@ TEST(NoiseSpectrum, GradientAndValueOctaveShares) {
 // "Below the band" here means below 0.25 cycles per lattice unit, the bottom of wavelet
 // noise's nominal band [0.25, 0.5) (half the coefficient grid's Nyquist). It is a fixed
 // number, the same for both variants and independent of any measured octave, and it is the
-// definition under which research-noise.md measured 23.4 % for plain slices. The share below
-// the 3D best octave's lo (about 0.29-0.31) is printed too, since the research table quotes
-// the slice leakage under that definition as well.
+// definition under which an independent run of Cook & DeRose's appendix code measured 23.4 %
+// for plain slices. The share below the 3D best octave's lo (about 0.29-0.31) is printed too,
+// since that run quotes the slice leakage under that definition as well.
 //
-// Issue #2 / research-noise.md section 5, item 6: projected slices keep <= 5 % below the band.
+// Goal: projected slices keep <= 5 % below the band (nimbus's own bar: Cook & DeRose state no
+// figure).
 // With Cook & DeRose's halfway move (a B-spline stretched by k = 2 along the normal) nimbus
 // measured 5.6 % (5.3-6.0 % over seeds, depths and sizes): the sinc^3(2 f_n) response still
 // passes 6.6 % of the power at f_n = 1/4. nimbus stretches by kProjectionStretch = 3
@@ -187,8 +188,9 @@ TEST(NoiseSpectrum, WaveletFbmOctaveEnergiesFallByGainSquared) {
 }
 
 // 5. Isotropy: power density on 10-degree cones around the 6 axis directions over that around
-// the 8 body diagonals, within the best octave (research: Perlin 1.31-1.33, separable wavelet
-// 1.37, value 0.83; OpenSimplex2 1.06).
+// the 8 body diagonals, within the best octave (measured independently: Perlin's 2002 reference
+// 1.31-1.33, Cook & DeRose's separable wavelet 1.37, FastNoiseLite's value noise 0.83 and
+// OpenSimplex2 1.06).
 //
 // One 128^3 realisation is too few bins for this: a 10-degree cone holds only ~180 (wavelet) to
 // ~900 (gradient) frequency samples in the octave, and single seeds scatter by +-10 % (gradient)
@@ -200,7 +202,7 @@ TEST(NoiseSpectrum, WaveletFbmOctaveEnergiesFallByGainSquared) {
 //
 // No nimbus mode is documented as isotropic today, so only gradient noise's known anisotropy
 // is asserted. ANY MODE THAT IS DOCUMENTED AS ISOTROPIC MUST BE ADDED HERE WITH A RATIO
-// <= 1.10 (research-noise.md section 5, goal 7).
+// <= 1.10 (FastNoiseLite's OpenSimplex2 measures 1.06).
 TEST(NoiseSpectrum, IsotropyRatios) {
   constexpr int kIsoSeeds = 6;
   for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Wavelet}) {
@@ -229,7 +231,8 @@ TEST(NoiseSpectrum, IsotropyRatios) {
 }
 
 // 6. Band-limited ahead of aliasing: at spacing 0.125 (Nyquist 4 cycles per lattice unit)
-// almost nothing lies at or above twice the best octave's top (research: < 0.1 %).
+// almost nothing lies at or above twice the best octave's top (measured independently: 0.017 %
+// for Perlin's 2002 reference, 0.057 % for Cook & DeRose's appendix code).
 TEST(NoiseSpectrum, NoEnergyFarAboveTheOctave) {
   for (Kind kind : {Kind::Wavelet, Kind::Gradient}) {
     const PowerSpectrum& s = spectrum3d(kind, 0.125);

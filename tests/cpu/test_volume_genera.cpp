@@ -1,4 +1,4 @@
-// The shipped presets, told apart by measurement rather than by eye (issue 3, "Tests"): each
+// The shipped presets, told apart by measurement rather than by eye: each
 // preset is generated (at 1.5 times its voxel size, to keep the suite fast) and its density is
 // measured: the altitude range (1st to 99th percentile of density-weighted z), the horizontal
 // extent per altitude band, the share of empty columns in a layer, the decay with height and
@@ -245,7 +245,7 @@ TEST(VolumeGenera, EveryPresetRegeneratesBitIdenticallyAndTheSeedMatters) {
   }
 }
 
-// Low, middle and high clouds (the seed's cloud families) sit at their altitudes.
+// Low, middle and high clouds (the cloud families of Hoffmann 2007) sit at their altitudes.
 TEST(VolumeGenera, CloudFamiliesSitAtTheirAltitudes) {
   for (const char* low : {"cumulus-humilis", "cumulus-mediocris", "cumulus-congestus",
                           "cumulonimbus-capillatus-incus", "stratocumulus-stratiformis-perlucidus", "stratus"}) {

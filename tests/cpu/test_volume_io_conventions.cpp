@@ -1,7 +1,7 @@
-// Files as downstream tools see them (research-ecosystem.md section 1): OpenVDB's own reader,
-// vdb_print (libopenvdb-tools) and pyopenvdb (python3-openvdb) find a "density" fog volume with
-// background 0, saved as half float with Blosc, the voxel size in metres and nimbus's file
-// metadata. The tool checks are skipped when the tool is not installed.
+// Files as downstream tools see them (docs/volume.md, "Files, as downstream tools expect them"):
+// OpenVDB's own reader, vdb_print (libopenvdb-tools) and pyopenvdb (python3-openvdb) find a
+// "density" fog volume with background 0, saved as half float with Blosc, the voxel size in
+// metres and nimbus's file metadata. The tool checks are skipped when the tool is not installed.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Up axis on export: nimbus is Z-up; up = 'y' turns world +Z into +Y by the proper rotation
 // (x, y, z) -> (x, z, -y), moving voxels exactly and keeping the voxel size, and records
-// up_axis in the file metadata (research-ecosystem.md section 1, "Up axis / units").
+// up_axis in the file metadata (VDB files have no up-axis field: Houdini is Y-up, Blender Z-up).
 #include <gtest/gtest.h>
 
 #include "nimbus/volume/up_axis.hpp"

@@ -1,6 +1,6 @@
 """A private one-node Slurm cluster for tests and trials: munged, slurmctld and slurmd on
 127.0.0.1 with their keys, config, state, spool and logs in one directory, on free ports, no
-systemd (research-ecosystem.md section 5). Needs root (slurmd runs jobs as their user) and the
+systemd. Needs root (slurmd runs jobs as their user) and the
 Debian packages munge, slurmctld, slurmd and slurm-client (scripts/install-deps.sh installs them).
 
     with PrivateSlurm(directory) as cluster:

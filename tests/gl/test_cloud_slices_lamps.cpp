@@ -1,7 +1,7 @@
 // The half-angle slicer lit by lamps (point lights and spots; light.hpp) against the CPU
 // reference of the same model: near and far, front- and back-lit, isotropic and forward
 // scattering; a spot's cone across the cloud; two lamps in two passes, or the strongest alone;
-// the steam of the steam-lamp scene at 128 slices (issue 14's 1 % criterion).
+// the steam of the steam-lamp scene at 128 slices (within 1 % relative RMSE).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -163,7 +163,7 @@ TEST(CloudSlicesLamps, LightVolumeRefusesALamp) {
   }
 }
 
-// Issue 14's criterion: the steam of the seed's teacup under the street lamp of scene steam-lamp
+// The steam of the teacup (Hoffmann 2007) under the street lamp of scene steam-lamp
 // (clouds alone), at 128 slices, within 1 % relative RMSE of the reference. The steam at 4 mm
 // voxels (the preset's own 2 mm in CI time would be 8 times the reference's work).
 TEST(CloudSlicesLamps, SteamUnderTheLampWithinOnePercentAt128Slices) {

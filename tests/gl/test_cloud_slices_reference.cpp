@@ -193,7 +193,7 @@ TEST(CloudSlices, BranchesAgreeAtTheSwitch) {
   EXPECT_LT(e_over, 0.01);
 }
 
-// Issue 5: as the light sweeps through 90 degrees from the view (the branch switch) in 1-degree
+// As the light sweeps through 90 degrees from the view (the branch switch) in 1-degree
 // steps, the frame-to-frame change at the switch stays within twice the mean change between the
 // other steps, with the jitter pattern fixed (the strict case: the two branches' noise differs)
 // and varied from frame to frame. Measured at 48 slices (llvmpipe): 1.27x fixed, 1.03x varied;

@@ -132,7 +132,7 @@ TEST(Viewer, TimeRunsAndStopsWhilePaused) {
 }
 
 // The frame-to-frame change at a keyframe swap against the median change elsewhere on the same
-// path (issue 11: at most 2x). Measured (llvmpipe): see the printed ratio.
+// path (at most 2x). Measured (llvmpipe): see the printed ratio.
 TEST(Viewer, KeyframeSwapDoesNotPop) {
   NIMBUS_REQUIRE_GL();
   Dir d("pop");

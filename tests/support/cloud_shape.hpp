@@ -1,4 +1,4 @@
-// Shape measures of one generated cloud, to tell a genus by its shape (issue 34): its bodies
+// Shape measures of one generated cloud, to tell a genus by its shape: its bodies
 // (6-connected sets of cloud voxels), the flatness of its base and the widths of its layers. A
 // cloud voxel has extinction at least kCloudExtinctionPerM (0.01 per metre, an optical depth of
 // 1 over 100 m: what an observer sees as cloud rather than haze). Test code: the product does

@@ -1,4 +1,4 @@
-// Observational cloud statistics on optical-depth maps (research-viewer.md section 5.2):
+// Observational cloud statistics on optical-depth maps:
 // Lovejoy 1982 (perimeter-area dimension), DeWitt et al. 2024 and DeWitt & Garrett 2024 (area
 // distribution, bins under 24 counts dropped), Cahalan & Snider 1989 (1-D spectra of tau).
 #include "support/cloud_stats.hpp"

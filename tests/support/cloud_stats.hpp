@@ -1,9 +1,8 @@
 // Observational statistics of cloud fields, measured on a 2-D map of vertical optical depth
-// tau(x, y), so that generated clouds can be compared with satellite and aircraft numbers
-// (research-viewer.md section 5.2): the perimeter-area fractal dimension D (about 1.35,
-// Lovejoy 1982), the area-distribution exponent b of dn/dlog a ∝ a^-b (about 0.87, DeWitt et al.
-// 2024, fitted as DeWitt & Garrett 2024 advise) and the 1-D spectral slope of tau (about -5/3
-// between 200 m and 5 km, Cahalan & Snider 1989).
+// tau(x, y), so that generated clouds can be compared with satellite and aircraft numbers: the
+// perimeter-area fractal dimension D (about 1.35, Lovejoy 1982), the area-distribution exponent
+// b of dn/dlog a ∝ a^-b (about 0.87, DeWitt et al. 2024, fitted as DeWitt & Garrett 2024 advise)
+// and the 1-D spectral slope of tau (about -5/3 between 200 m and 5 km, Cahalan & Snider 1989).
 #pragma once
 #include <openvdb/openvdb.h>
 

@@ -57,7 +57,7 @@ PowerSpectrum::PowerSpectrum(std::span<const float> samples, std::array<int, 3> 
   // Real transform along x (nx / 2 + 1 bins), then complex transforms along y and z. Built
   // from 1D transforms because kiss_fftndr_alloc in Debian's kissfft 131.1.0-4.1~deb12u1
   // returns NULL for anything larger than about 52^2 (its overflow check, added for
-  // CVE-2026-41445, is too strict: upstream mborgerding/kissfft issue #129).
+  // CVE-2026-41445, is too strict: upstream mborgerding/kissfft#129).
   const int nxh = nx / 2 + 1;
   std::vector<kiss_fft_cpx> out(size_t(nz) * ny * nxh);
   {

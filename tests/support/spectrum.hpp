@@ -1,4 +1,4 @@
-// Power spectra of sampled 2D/3D signals for the spectral tests (research-noise.md section 3):
+// Power spectra of sampled 2D/3D signals for the spectral tests (docs/noise.md, "Spectra"):
 // mean removed, separable Hann window, real FFT (kissfft, float), power binned by radial
 // frequency |f|. Frequencies are in cycles per unit of `spacing` (cycles per lattice unit when
 // a noise with frequency 1 is sampled `spacing` lattice units apart).

@@ -9,9 +9,10 @@
 
 namespace nimbus::test {
 
-// A ball of `radius` voxels around index (0, 0, 0): density up to 5.7 (the maximum of a real
-// Houdini smoke file, research-ecosystem.md section 0) falling to tiny values at the rim, with
-// a ripple so neighbouring values differ. Active exactly where the distance is < radius.
+// A ball of `radius` voxels around index (0, 0, 0): density up to 5.7 (a real Houdini-written
+// smoke file, smoke.vdb of the mjurczyk/openvdb examples, peaks at 5.71) falling to tiny values
+// at the rim, with a ripple so neighbouring values differ. Active exactly where the distance is
+// < radius.
 openvdb::FloatGrid::Ptr make_ball(int radius, double voxel_size, const std::string& name = "density");
 
 // A fresh directory for the running test, removed (with its content) when destroyed.

@@ -257,7 +257,7 @@ LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera
   std::vector<ConvexHull> hulls;
   for (const ConvexHull& hull : s.hulls) hulls.push_back(grown(hull, margin_m));
   p.mesh = build_slice_mesh(hulls, p.axis.axis, p.planes);
-  // The slab between two planes is spacing / dot(l, s) thick along the light (issue 5: d / cos);
+  // The slab between two planes is spacing / dot(l, s) thick along the light;
   // for a lamp, per fragment along each of its rays.
   p.light_slab_m = p.planes.spacing_m / std::max(glm::dot(p.l, p.axis.axis), 1e-3);
   plan_light_frame(p, s.hull_points, light, centre, settings.light_res, pass);

@@ -23,7 +23,7 @@ struct LightPassPlan {
   SliceAxis axis;
   SlicePlanes planes;
   SliceMesh mesh;                   // every (slice, cloud) polygon
-  double light_slab_m = 0.0;        // a slab's thickness along the light (issue 5: d / cos)
+  double light_slab_m = 0.0;        // a slab's thickness along the light (spacing / dot(l, s))
   LightFrame light_frame;           // the sun's orthographic light buffer
   LampFrame lamp_frame;             // a lamp's perspective one
   glm::dvec2 texel_m{1.0};          // a light-buffer texel at the clouds' centre, metres

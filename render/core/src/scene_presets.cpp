@@ -168,7 +168,7 @@ Scene open_scene() {
   return s;
 }
 
-// An afternoon sky for clouds (issue 5): flat ground of fields, meadows and woods (its albedo
+// An afternoon sky for clouds: flat ground of fields, meadows and woods (its albedo
 // texture, ground_albedo.hpp) reaching the horizon, the sun 33 degrees up to the right of the
 // camera and a little ahead (clouds lit from the side, with bright edges and shafts below them),
 // a thin forward-scattering haze (visibility about 400 km; the air itself adds the aerial
@@ -191,7 +191,7 @@ Scene sky() {
   return s;
 }
 
-// The seed's teacup under a street lamp on a misty night (seed 004, "Modellierung von Gasen"):
+// The steaming teacup of Hoffmann 2007 ("Plazierung") under a street lamp on a misty night:
 // a cup on a cafe table, its tea's surface at the origin where the `steam` preset rises, and a
 // street lamp 3.2 m up and 3 m behind it (its post 2 m to the left, out of the default view), so
 // that the steam is lit from behind and glows,

@@ -6,8 +6,9 @@
 namespace nimbus::noise {
 
 // Top of one octave's band in cycles per lattice unit: above it each kind keeps only a small
-// share of its energy (measured in research-noise.md section 3: gradient noise's
-// best octave is [0.5, 1), value noise's [0.34, 0.69), wavelet noise's band [0.25, 0.5)).
+// share of its energy (128^3 spectra measured independently of nimbus: the best octave of
+// Perlin's 2002 reference is [0.5, 1), of FastNoiseLite's value noise [0.34, 0.69); wavelet
+// noise's nominal band, after Cook & DeRose 2005, is [0.25, 0.5)).
 double band_top(Kind kind);
 
 struct OctaveChoice {

@@ -1,5 +1,5 @@
 // Perlin-Worley noise: gradient (Perlin) fBm remapped onto the range left by Worley fBm, the
-// billow texture of Schneider's Nubis clouds (GPU Pro 7 II-4; research-viewer.md 5.1):
+// billow texture of Schneider's Nubis clouds (Schneider 2015, GPU Pro 7 chapter II-4):
 //   P  = clamp(1/2 + fbm_gradient / (4 sd), 0, 1)       +-2 standard deviations onto [0, 1]
 //   W  = clamp(fbm_worley, 0, 1)                         1 - F1 summed: 1 at feature points
 //   PW = remap(P, 0, 1, W, 1) = W + P (1 - W)            in [W, 1] subset of [0, 1]

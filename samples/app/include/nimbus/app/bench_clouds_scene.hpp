@@ -1,6 +1,6 @@
-// The scene of `nimbus bench clouds` (research-render.md section 5): a value-noise fBm "noisy
-// sphere" seen from (0, 0, 1.4) with vdb_render's default field of view and coefficients per
-// voxel, front-lit and back-lit; and a runner for OpenVDB's vdb_render on it.
+// The scene of `nimbus bench clouds` (docs/clouds.md, "Speed against error"): a value-noise fBm
+// "noisy sphere" seen from (0, 0, 1.4) with vdb_render's default field of view and coefficients
+// per voxel, front-lit and back-lit; and a runner for OpenVDB's vdb_render on it.
 #pragma once
 #include <openvdb/openvdb.h>
 

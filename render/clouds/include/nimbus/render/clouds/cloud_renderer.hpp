@@ -1,8 +1,8 @@
-// The half-angle slice renderer (Kniss et al. 2002/2003; seed 004, "Wolken-Renderer mit OpenGL"):
-// slice planes perpendicular to the half vector of the view direction and the light's propagation
-// direction, drawn in light order; each slice is shaded from the light buffer, then attenuates it,
-// so the clouds shadow themselves. Optionally composited over an opaque scene with fog in front.
-// Draws into the current GL 4.5 context.
+// The half-angle slice renderer (Kniss et al. 2002/2003; Hoffmann 2007, "Wolken-Renderer mit
+// OpenGL"): slice planes perpendicular to the half vector of the view direction and the light's
+// propagation direction, drawn in light order; each slice is shaded from the light buffer, then
+// attenuates it, so the clouds shadow themselves. Optionally composited over an opaque scene
+// with fog in front. Draws into the current GL 4.5 context.
 #pragma once
 #include <memory>
 #include <string>

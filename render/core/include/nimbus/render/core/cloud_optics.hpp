@@ -59,7 +59,7 @@ enum class MultipleScatteringMethod {
   LightVolume,  // the per-voxel light volume of photon-traced scattered light (light_volume.hpp)
 };
 
-// Unreal-style multiple-scattering approximation (research-render.md section 2): octave k = 0..N
+// Unreal-style multiple-scattering approximation (after Wrenninge et al. 2013): octave k = 0..N
 // sees the light through extinction scaled by a^k, adds b^k of its radiance, with phase
 // asymmetry scaled by c^k. octaves = 0 is single scattering.
 struct MultipleScattering {

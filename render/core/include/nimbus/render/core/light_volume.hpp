@@ -1,4 +1,4 @@
-// The per-voxel light volume (seed 004, "Helligkeitsberechnung an den Gitterpunkten": brightness
+// The per-voxel light volume (Hoffmann 2007, "Helligkeitsberechnung an den Gitterpunkten": brightness
 // computed at grid points, then read while slicing): on a coarse grid of cells over the clouds'
 // box, the fluence phi and the net flux F of the sunlight that has scattered at least once, per
 // unit sun irradiance, and the traceless second moment Q = int L(w) (w w^T - I / 3) dw. The slicer

@@ -1,4 +1,4 @@
-// A density volume on the GPU for the slice renderer (issue 5): the dense active box of a fog
+// A density volume on the GPU for the slice renderer: the dense active box of a fog
 // grid as a 3D texture, and the affine map from world space (metres) to its texture coordinates.
 #pragma once
 #include <openvdb/openvdb.h>

@@ -134,6 +134,10 @@ TEST(PeriodicField, TheLayoutWrapsAndNeverStacksAcrossAnEdge) {
     }
   }
   EXPECT_GT(near_edge, 10) << "no cloud crosses the edge: the wrap is not tested";
+  CloudFieldParams flat = f;
+  flat.periodic = false;
+  std::printf("  [measured] the preset's layout: %zu clouds periodic, %zu not; %d cross the x edges\n", a.size(),
+              field_layout(flat).size(), near_edge);
 }
 
 TEST(PeriodicField, WhatCannotBePeriodicIsRefusedByName) {

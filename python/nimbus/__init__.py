@@ -115,8 +115,25 @@ def _sets(overrides: Optional[Mapping[str, Any]]) -> list[str]:
     return out
 
 
+def _coverage_map(value: Any) -> Any:
+    """coverage_map as the module takes it: None, a PNG path, or (float32 bytes, width, height)."""
+    if value is None:
+        return None
+    if isinstance(value, (str, os.PathLike)):
+        return _path(value, "coverage_map")
+    import numpy as np
+
+    a = np.asarray(value)
+    if a.ndim != 2 or a.dtype.kind not in "fiu":
+        raise ValueError(f"coverage_map: must be a PNG path or a 2-D array of numbers in [0, 1] (row 0 north), "
+                         f"got {type(value).__name__} of shape {getattr(a, 'shape', None)}")
+    a = np.ascontiguousarray(a, dtype=np.float32)
+    return (a.tobytes(), int(a.shape[1]), int(a.shape[0]))
+
+
 def _generate_request(preset: str, seed: Optional[int], voxel_size: Optional[float], res: Optional[int],
-                      time: float, overrides: Optional[Mapping[str, Any]], params_file: Optional[str]) -> tuple:
+                      time: float, overrides: Optional[Mapping[str, Any]], params_file: Optional[str],
+                      coverage_map: Any = None) -> tuple:
     if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)
                              or not 0 <= int(seed) <= 0xFFFFFFFF):
         raise ValueError(f"seed: must be an integer in [0, 4294967295], got {seed!r}")
@@ -125,23 +142,25 @@ def _generate_request(preset: str, seed: Optional[int], voxel_size: Optional[flo
         raise ValueError(f"res: must be an integer in [1, 4096], got {res!r}")
     return (_text(preset, "preset"), None if seed is None else int(seed),
             None if voxel_size is None else _number(voxel_size, "voxel_size"), None if res is None else int(res),
-            _number(time, "time"), _sets(overrides), "" if params_file is None else _path(params_file, "params_file"))
+            _number(time, "time"), _sets(overrides), "" if params_file is None else _path(params_file, "params_file"),
+            _coverage_map(coverage_map))
 
 
 def plan(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float] = None, res: Optional[int] = None,
-         time: float = 0.0, overrides: Optional[Mapping[str, Any]] = None, params_file: Optional[str] = None) -> dict:
+         time: float = 0.0, overrides: Optional[Mapping[str, Any]] = None, params_file: Optional[str] = None,
+         coverage_map: Any = None) -> dict:
     """What ``generate`` would make, without making it (cheap): a dict with ``voxel_size`` (m),
     ``dims`` (voxels along x, y, z of the cloud's box), ``dense_bytes`` (that box as float32) and
     ``bounds_m`` ((x0, y0, z0), (x1, y1, z1)) voxel centres in metres, None when empty.
 
     Raises ValueError exactly where ``generate`` would for its arguments.
     """
-    return _nimbus._plan(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file))
+    return _nimbus._plan(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map))
 
 
 def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float] = None, res: Optional[int] = None,
              time: float = 0.0, overrides: Optional[Mapping[str, Any]] = None, params_file: Optional[str] = None,
-             progress: Optional[Callable[[float], Any]] = None) -> Volume:
+             coverage_map: Any = None, progress: Optional[Callable[[float], Any]] = None) -> Volume:
     """Generate a preset's cloud or gas at ``time`` seconds: the voxels ``nimbus generate`` makes for
     the same arguments (its file stores them as half floats unless ``--float``).
 
@@ -149,6 +168,9 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     voxel_size: metres (None = the preset's); or res: voxels across the cloud's largest extent.
     overrides: ``--set`` as a dict, e.g. {"coverage": 0.7, "shapes.0.size": [700, 600, 350]}.
     params_file: a JSON file of overrides (``--params``).
+    coverage_map: where clouds form (``--coverage-map``): a grey PNG path (red channel), or a 2-D
+        array of values in [0, 1], row 0 the north edge, stretched over the field's area (or the
+        preset's coverage_map_extent); 0 no cloud, 1 as without a map. docs/volume.md, Coverage maps.
     progress: called now and then with the fraction done (0..1), on the calling thread.
 
     Raises ValueError for bad arguments (an unknown preset or key, a bad value, a voxel size whose
@@ -157,7 +179,8 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     """
     if progress is not None and not callable(progress):
         raise ValueError("progress: must be callable (it is called with the fraction done)")
-    return _nimbus._generate(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file), progress)
+    return _nimbus._generate(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map),
+                             progress)
 
 
 def read(path: Union[str, os.PathLike], *, grid: Optional[str] = None) -> Volume:

@@ -4,12 +4,14 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 #include "calls.hpp"
 #include "generate_plan.hpp"
 #include "nimbus/app/usage_error.hpp"
 #include "nimbus/base/validate.hpp"
+#include "nimbus/volume/coverage_map.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "py_volume.hpp"
@@ -23,10 +25,32 @@ void check_time(double time_s) {
   if (!std::isfinite(time_s)) throw app::UsageError("time: must be a finite number of seconds");
 }
 
+// coverage_map: a PNG path (str), or (float32 bytes, width, height) from a NumPy array, or None.
+void set_coverage_map(cli::GenerateRequest& r, const py::object& map) {
+  if (map.is_none()) return;
+  if (py::isinstance<py::str>(map)) {
+    r.coverage_map = map.cast<std::string>();
+    return;
+  }
+  const auto t = map.cast<py::tuple>();
+  const std::string bytes = t[0].cast<std::string>();
+  const int w = t[1].cast<int>(), h = t[2].cast<int>();
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+  try {
+    r.coverage_image = volume::coverage_from_values(std::move(values), w, h, "coverage_map (array)");
+  } catch (const std::invalid_argument& e) {
+    throw app::UsageError(e.what());
+  }
+}
+
 py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
-              std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file) {
+              std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
+              const py::object& coverage_map) {
   check_time(time_s);
-  const cli::GeneratePlan p = cli::plan_generate({preset, seed, voxel_size, res, std::move(sets), params_file});
+  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file, "", nullptr};
+  set_coverage_map(request, coverage_map);
+  const cli::GeneratePlan p = cli::plan_generate(request);
   cli::check_generate_time(p, time_s);
   const openvdb::CoordBBox box = cli::check_generate_memory(p, time_s);  // as generate refuses it, before any voxel
   py::dict d;
@@ -48,9 +72,10 @@ py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::opti
 
 Volume generate(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
                 std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
-                const py::object& progress) {
+                const py::object& coverage_map, const py::object& progress) {
   check_time(time_s);
-  const cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file};
+  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file, "", nullptr};
+  set_coverage_map(request, coverage_map);
   Volume v;
   std::atomic<double> fraction{0.0};
   run_interruptible(

@@ -80,3 +80,46 @@ def test_progress_is_reported_and_grows():
     seen = []
     nimbus.generate("cumulus-mediocris", voxel_size=8.0, progress=seen.append)
     assert seen == sorted(seen) and all(0.0 <= f <= 1.0 for f in seen)
+
+
+def _grey_png(path, values):
+    """An 8-bit grey PNG written with zlib alone (no imaging library here)."""
+    import struct
+    import zlib
+
+    h, w = values.shape
+    raw = b"".join(b"\x00" + bytes(int(v) for v in row) for row in values)
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0))
+                     + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def test_generate_takes_a_coverage_map_as_a_png_or_an_array(run, tmp_path):
+    # A 4 x 4 km field, its east half black: the program's --coverage-map, a path and an array agree,
+    # and no voxel east of the black pixels' first centre holds cloud.
+    over = {"field.size": [4000, 4000], "field.max_diameter": 1200}
+    half = np.zeros((8, 16), dtype=np.uint8)
+    half[:, :8] = 255
+    png = tmp_path / "half.png"
+    _grey_png(png, half)
+    flags = ["--set", "field.size=[4000,4000]", "--set", "field.max_diameter=1200", "--voxel-size", "40"]
+    theirs = cli_volume(run, tmp_path, "--preset", "cumulus-field", "--float", "--coverage-map", png, *flags)
+    by_path = nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over, coverage_map=str(png))
+    by_array = nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over, coverage_map=half / 255.0)
+    assert_same_voxels(by_path, theirs)
+    assert_same_voxels(by_array, theirs)
+    d = by_path.density
+    x = (by_path.origin[0] + np.arange(d.shape[0])) * by_path.voxel_size  # density is indexed x, y, z
+    black = (x > -2000 + 8.5 * 250) & (x < 2000 - 0.5 * 250)
+    assert d[~black].max() > 0.1
+    assert d[black].max() == 0.0
+    white = nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over, coverage_map=np.ones((4, 4)))
+    plain = nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over)
+    assert_same_voxels(white, plain)
+    with pytest.raises(ValueError, match="coverage_map"):
+        nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over, coverage_map=np.full((4, 4), 2.0))
+    with pytest.raises(RuntimeError, match="nowhere.png"):
+        nimbus.generate("cumulus-field", voxel_size=40.0, overrides=over, coverage_map=str(tmp_path / "nowhere.png"))

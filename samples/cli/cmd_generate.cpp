@@ -23,6 +23,8 @@
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
+#include "nimbus/volume/sky.hpp"
+#include "nimbus/volume/sky_volume.hpp"
 #include "nimbus/volume/vdb_io.hpp"
 
 namespace nimbus::cli {
@@ -44,6 +46,8 @@ struct GenerateArgs {
   std::string up = "z";
   bool full_float = false;
   std::string output;
+  std::string sky;           // --sky SKY.json: the sky's clouds as one volume
+  std::string coverage_map;  // --coverage-map FILE.png
 };
 
 // "--brick I/N": the brick's index and the layout text (N or AxBxC); UsageError when malformed.
@@ -60,8 +64,84 @@ std::string mib(double bytes) {
   return buf;
 }
 
+// `nimbus generate --sky SKY.json`: every preset cloud of the sky, placed and drifted as the viewer
+// shows them at each time, summed into one density grid (sky_volume.hpp).
+int run_generate_sky(const GenerateArgs& a) {
+  // Flags that choose or change one preset make no sense for a sky (its clouds name their own).
+  const std::pair<bool, const char*> refused[] = {{!a.preset.empty(), "--preset"},
+                                                  {!a.params.empty(), "--params"},
+                                                  {!a.sets.empty(), "--set"},
+                                                  {!a.brick.empty(), "--brick"},
+                                                  {a.seed.has_value(), "--seed"},
+                                                  {a.res.has_value(), "--res"},
+                                                  {!a.coverage_map.empty(), "--coverage-map"}};
+  for (const auto& [given, flag] : refused)
+    if (given)
+      throw UsageError(std::string(flag) + ": not with --sky (the sky file names each cloud's preset, seed and "
+                                           "overrides; a cloud's coverage map goes in its overrides)");
+  if (a.up != "y" && a.up != "z") throw UsageError("--up: '" + a.up + "' must be y or z");
+  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
+    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  const FrameRange range = parse_frames(a.frame);
+  check_sequence_pattern("-o", a.output);
+  if (!range.sequence && has_frame_field(a.output))
+    throw UsageError("-o: '" + echo(a.output) + "' holds a frame field but no --frames was given");
+  volume::Sky sky;
+  try {
+    sky = volume::load_sky_file(a.sky);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--sky: ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("--sky: ") + e.what());
+  }
+  const double vs = a.voxel_size ? *a.voxel_size : sky.voxel_size_m;
+  // Sizes that would exhaust memory are refused before any voxel, at the first and last frame.
+  for (const int frame : {range.first, range.last}) {
+    const double t = range.time(frame);
+    uint64_t dense = 0;
+    try {
+      dense = volume::sky_dense_voxels(sky, vs, t);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("--sky " + a.sky + ": at " + time_text(t) + ": " + e.what());
+    }
+    ensure_fits_in_memory(dense, sizeof(float), "the sky's clouds' bounding boxes at voxel size " + number_text(vs) + " m");
+  }
+  std::vector<PathArg> outputs;
+  for (int frame = range.first; frame <= range.last; ++frame)
+    outputs.push_back({"-o", range.sequence ? sequence_path(a.output, frame) : a.output});
+  check_outputs(outputs, {{"--sky", a.sky}});
+  checks_done();
+
+  volume::ExportInfo info;
+  info.preset = "sky";
+  info.seed = sky.clouds.empty() ? 0 : sky.clouds.front().seed;
+  info.up_axis = a.up[0];
+  if (range.sequence) info.fps = range.fps;
+  info.extra = {{"sky_file", a.sky}, {"sky_clouds", int64_t(sky.clouds.size())}};
+  volume::ExportOptions eo;
+  eo.half_float = !a.full_float;
+  for (int frame = range.first; frame <= range.last; ++frame) {
+    const double t = range.time(frame);
+    const auto start = std::chrono::steady_clock::now();
+    volume::SkyVolumeStats stats;
+    const openvdb::FloatGrid::Ptr density = volume::generate_sky_density(sky, vs, t, &stats);
+    if (stats.active_voxels == 0)
+      throw std::runtime_error("the sky has no voxel of density >= 1e-6 at voxel size " + number_text(vs) + " m; nothing written");
+    info.time = t;
+    info.frame = range.sequence ? frame : 0;
+    const std::string path = range.sequence ? sequence_path(a.output, frame) : a.output;
+    volume::write_volume_vdb(path, {density}, info, eo);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("wrote %s: sky %s, %d clouds, voxel %g m, %lld active voxels, t = %g s, %.2f s\n", path.c_str(),
+                a.sky.c_str(), stats.clouds, vs, static_cast<long long>(stats.active_voxels), t, secs);
+  }
+  return 0;
+}
+
 int run_generate(const GenerateArgs& a) {
   if (a.output.empty()) throw UsageError("-o: an output file is required");
+  if (!a.sky.empty()) return run_generate_sky(a);
+  if (a.preset.empty()) throw UsageError("--preset: required (or --sky SKY.json for a sky's clouds)");
   if (a.up != "y" && a.up != "z") throw UsageError("--up: '" + a.up + "' must be y or z");
   const FrameRange range = parse_frames(a.frame);
   const int first = range.first, last = range.last;
@@ -75,7 +155,7 @@ int run_generate(const GenerateArgs& a) {
     brick = parse_brick(a.brick);
   }
 
-  GenerateRequest request{a.preset, a.seed, a.voxel_size, a.res, a.sets, a.params};
+  GenerateRequest request{a.preset, a.seed, a.voxel_size, a.res, a.sets, a.params, a.coverage_map, nullptr};
   const GeneratePlan plan = plan_generate(request);
   const volume::CloudParams& params = plan.params;
   volume::GenerateOptions opt;
@@ -115,7 +195,7 @@ int run_generate(const GenerateArgs& a) {
   }
   std::vector<PathArg> outputs;
   for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
-  check_outputs(outputs, {{"--params", a.params}});
+  check_outputs(outputs, {{"--params", a.params}, {"--coverage-map", a.coverage_map}});
   checks_done();
   if (tag) {
     const openvdb::Coord d = opt.clip->dim();
@@ -180,7 +260,13 @@ int run_generate(const GenerateArgs& a) {
 void add_generate_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<GenerateArgs>();
   CLI::App* cmd = app.add_subcommand("generate", "Generate a cloud or gas volume from a preset, as OpenVDB");
-  cmd->add_option("--preset", a->preset, "preset name (nimbus presets lists them)")->required();
+  cmd->add_option("--preset", a->preset, "preset name (nimbus presets lists them); or --sky");
+  cmd->add_option("--sky", a->sky,
+                  "a sky file's preset clouds as one volume, placed and drifted as the viewer shows them at --time "
+                  "(overlaps add); not with --preset, --params, --set, --brick, --seed, --res, --coverage-map");
+  cmd->add_option("--coverage-map", a->coverage_map,
+                  "grey PNG (red channel) stretched over the field's area: 0 no cloud, 1 as without a map "
+                  "(docs/volume.md, Coverage maps)");
   cmd->add_option("--seed", a->seed, "random seed (default: the preset's)");
   cmd->add_option("--voxel-size", a->voxel_size, "voxel size in metres (default: the preset's)");
   cmd->add_option("--res", a->res, "voxels across the cloud's largest extent (instead of --voxel-size)");

@@ -23,7 +23,13 @@ GeneratePlan plan_generate(const GenerateRequest& r) {
     if (!r.params_file.empty()) volume::merge_params_file(plan.doc, r.params_file);
     for (const std::string& s : r.sets) volume::set_key(plan.doc["cloud"], s);
     if (r.seed) plan.doc["cloud"]["seed"] = *r.seed;
+    if (!r.coverage_map.empty()) plan.doc["cloud"]["coverage_map"] = r.coverage_map;
+    if (r.coverage_image) plan.doc["cloud"].erase("coverage_map");  // the array given in its place
     plan.params = volume::cloud_from_json(plan.doc.at("cloud"), r.preset);
+    if (r.coverage_image) {
+      plan.params.coverage_image = r.coverage_image;
+      volume::validate(plan.params);
+    }
     plan.voxel_size_m = volume::preset_voxel_size(plan.doc, r.preset);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());

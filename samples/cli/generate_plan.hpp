@@ -21,6 +21,8 @@ struct GenerateRequest {
   std::optional<int> res;            // --res: voxels across the cloud's largest extent at time 0
   std::vector<std::string> sets;     // --set key=value, in order
   std::string params_file;           // --params FILE (JSON overrides); empty: none
+  std::string coverage_map;          // --coverage-map FILE.png; empty: the preset's (none)
+  std::shared_ptr<const volume::CoverageImage> coverage_image;  // a map in memory (Python); overrides the file
 };
 
 struct GeneratePlan {

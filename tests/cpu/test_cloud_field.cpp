@@ -189,6 +189,7 @@ TEST(CloudField, ShearLeansTheCloudByItsSlope) {
   // With no displacement, the sheared model at p equals the upright one at p moved back by
   // shear * (z - base).
   CloudParams p = small_field();
+  p.field->periodic = false;  // a periodic field's bounds are its tile, whatever the lean
   p.displacement = 0.0;
   p.wind = glm::dvec3(0.0);  // so both paths round alike
   p.shear = glm::dvec2(0.0);  // the preset leans already

@@ -6,7 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <glm/common.hpp>
+
 #include "nimbus/base/splitmix64.hpp"
+#include "nimbus/volume/coverage_map.hpp"
 
 namespace nimbus::volume {
 namespace {
@@ -79,11 +82,17 @@ void validate(const CloudFieldParams& p, const std::string& where) {
   need(p.roughness >= 0 && p.roughness <= 1, "roughness must be in [0, 1]");
 }
 
-std::vector<FieldCloud> field_layout(const CloudFieldParams& p) {
+std::vector<FieldCloud> field_layout(const CloudFieldParams& p, const CoverageMap* map) {
   validate(p);
   Rand rng{0x243f6a8885a308d3ull ^ (uint64_t(p.seed) * 0x9e3779b97f4a7c15ull)};
+  // The map's keep-or-reject draws come from a stream of their own, so that a map of 1
+  // everywhere (every candidate kept) leaves the main stream, and the layout, as without a map.
+  Rand keep_rng{0x13198a2e03707344ull ^ (uint64_t(p.seed) * 0xbf58476d1ce4e5b9ull)};
+  const glm::dvec2 lo = p.center_m - 0.5 * p.size_m;
   // Diameters until their footprints (circles) reach the covered area; then the largest first.
-  const double target = p.coverage * p.size_m.x * p.size_m.y;
+  // A coverage map scales the area to cover by its mean over the field (1 for a white map).
+  const double map_mean = map ? map->mean_over(lo, p.size_m) : 1.0;
+  const double target = p.coverage * map_mean * p.size_m.x * p.size_m.y;
   // The mean footprint bounds the count before drawing: refuse runaway layouts by name.
   {
     double mean = 0.0;
@@ -110,15 +119,32 @@ std::vector<FieldCloud> field_layout(const CloudFieldParams& p) {
 
   std::vector<FieldCloud> out;
   out.reserve(diam.size());
-  // Placed clouds on a coarse bucket grid, to test "inside a bigger footprint" quickly.
+  // Placed clouds on a coarse bucket grid, to test "inside a bigger footprint" quickly. A periodic
+  // field's buckets divide the period evenly, each at least a diameter wide, so that a wrapped
+  // neighbour lies in the next bucket round.
   const double cell = std::max(p.max_diameter_m, 1.0);
-  const int nx = std::max(1, int(std::ceil(p.size_m.x / cell))), ny = std::max(1, int(std::ceil(p.size_m.y / cell)));
+  int nx = std::max(1, int(std::ceil(p.size_m.x / cell))), ny = std::max(1, int(std::ceil(p.size_m.y / cell)));
+  glm::dvec2 cell2(cell);
+  if (p.periodic) {
+    nx = std::max(1, int(std::floor(p.size_m.x / cell)));
+    ny = std::max(1, int(std::floor(p.size_m.y / cell)));
+    cell2 = p.size_m / glm::dvec2(nx, ny);
+  }
   std::vector<std::vector<uint32_t>> buckets(size_t(nx) * ny);
-  const glm::dvec2 lo = p.center_m - 0.5 * p.size_m;
   auto bucket = [&](glm::dvec2 c, int dx, int dy) -> std::vector<uint32_t>* {
-    const int i = std::clamp(int((c.x - lo.x) / cell), 0, nx - 1) + dx, j = std::clamp(int((c.y - lo.y) / cell), 0, ny - 1) + dy;
+    int i = std::clamp(int((c.x - lo.x) / cell2.x), 0, nx - 1) + dx, j = std::clamp(int((c.y - lo.y) / cell2.y), 0, ny - 1) + dy;
+    if (p.periodic) {
+      i = (i % nx + nx) % nx;
+      j = (j % ny + ny) % ny;
+    }
     if (i < 0 || j < 0 || i >= nx || j >= ny) return nullptr;
     return &buckets[size_t(j) * nx + i];
+  };
+  // The offset between two centres; in a periodic field the shortest one round the period.
+  auto offset = [&](glm::dvec2 a, glm::dvec2 b) {
+    glm::dvec2 d = a - b;
+    if (p.periodic) d -= p.size_m * glm::round(d / p.size_m);
+    return d;
   };
   for (double L : diam) {
     FieldCloud c;
@@ -126,12 +152,14 @@ std::vector<FieldCloud> field_layout(const CloudFieldParams& p) {
     bool placed = false;
     for (int attempt = 0; attempt < 32 && !placed; ++attempt) {
       c.center_m = lo + glm::dvec2(rng.uniform(), rng.uniform()) * p.size_m;
+      // The map keeps the candidate with probability map(centre); a rejected one counts as a try.
+      if (map && !(keep_rng.uniform() < map->at(c.center_m))) continue;
       bool overlaps = false;
       for (int dy = -1; dy <= 1 && !overlaps; ++dy)
         for (int dx = -1; dx <= 1 && !overlaps; ++dx)
           if (auto* b = bucket(c.center_m, dx, dy))
             for (uint32_t k : *b) {
-              const glm::dvec2 d = c.center_m - out[k].center_m;
+              const glm::dvec2 d = offset(c.center_m, out[k].center_m);
               const double r = 0.5 * (out[k].diameter_m + L);
               if (d.x * d.x + d.y * d.y < r * r) {
                 overlaps = true;
@@ -154,6 +182,7 @@ std::vector<FieldCloud> field_layout(const CloudFieldParams& p) {
       u -= s.share;
     }
     c.depth_m = cloud_depth(c.species, L) * p.depth_scale * depth_u;
+    if (map && map->sets_height()) c.depth_m *= map->at(c.center_m);
     c.seed = seed;
     c.roughness = p.roughness;
     bucket(c.center_m, 0, 0)->push_back(static_cast<uint32_t>(out.size()));
@@ -200,9 +229,10 @@ std::vector<Shape> cloud_shapes(const FieldCloud& c, double base) {
   return out;
 }
 
-std::vector<Shape> field_shapes(const CloudFieldParams& p, double base) {
+std::vector<Shape> field_shapes(const CloudFieldParams& p, double base, const CoverageMap* map) {
   std::vector<Shape> out;
-  for (const FieldCloud& c : field_layout(p)) {
+  for (const FieldCloud& c : field_layout(p, map)) {
+    if (!(c.depth_m > 0.0)) continue;  // a map value of 0 (height) leaves no cloud
     const std::vector<Shape> s = cloud_shapes(c, base);
     out.insert(out.end(), s.begin(), s.end());
   }

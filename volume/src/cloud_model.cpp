@@ -2,6 +2,7 @@
 #include "nimbus/volume/cloud_model.hpp"
 
 #include <algorithm>
+#include <glm/common.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -20,11 +21,27 @@ void need(bool ok, const std::string& what) {
 
 bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// A periodic model's noise: a whole number of cycles per period on x and y (at least one), the
+// frequency moved to the nearest such (from the x period; the y period must then hold a whole
+// number too), and the lattice period set; z stays aperiodic.
+void make_periodic(double* frequency, std::array<int32_t, 3>* period, const std::optional<PeriodicTile>& tile) {
+  if (!tile) return;
+  const double cx = std::max(1.0, std::round(tile->size_m.x * *frequency));
+  const double f = cx / tile->size_m.x, cy = tile->size_m.y * f;
+  need(std::fabs(cy - std::round(cy)) <= 1e-6 * cy && cy >= 0.5,
+       "period: the x and y periods admit no common noise frequency near " + std::to_string(*frequency) +
+           " cycles per metre (use equal periods, or periods in a ratio of whole numbers)");
+  need(cx <= double(1 << 30) && cy <= double(1 << 30), "period: too many noise cycles per period (at most 2^30)");
+  *frequency = f;
+  *period = {int32_t(cx), int32_t(std::round(cy)), 0};
+}
+
 std::unique_ptr<noise::NoiseField> make_field(noise::Kind kind, noise::Fractal fractal, int octaves,
                                               double frequency, double lacunarity, double gain,
                                               uint32_t seed, double evolution, double t,
-                                              double voxel_size) {
+                                              double voxel_size, const std::optional<PeriodicTile>& tile) {
   noise::NoiseParams n;
+  make_periodic(&frequency, &n.period, tile);
   n.kind = kind;
   n.fractal = fractal;
   n.octaves = octaves;
@@ -38,6 +55,12 @@ std::unique_ptr<noise::NoiseField> make_field(noise::Kind kind, noise::Fractal f
 }
 
 }  // namespace
+
+std::optional<PeriodicTile> periodic_tile(const CloudParams& p) {
+  if (p.field && p.field->periodic) return PeriodicTile{p.field->center_m - 0.5 * p.field->size_m, p.field->size_m};
+  if (p.period_m.x > 0.0 && p.period_m.y > 0.0) return PeriodicTile{-0.5 * p.period_m, p.period_m};
+  return std::nullopt;
+}
 
 void validate(const CloudParams& p) {
   need(!p.shapes.empty() || p.field, "shapes: at least one shape (or a field) is needed");
@@ -77,6 +100,21 @@ void validate(const CloudParams& p) {
   need(std::isfinite(p.temperature_base), "temperature_base must be finite (metres)");
   need(std::isfinite(p.temperature_height) && p.temperature_height >= 0,
        "temperature_height must be finite and >= 0 (metres; 0: no temperature grid)");
+  need(std::isfinite(p.period_m.x) && std::isfinite(p.period_m.y) && p.period_m.x >= 0 && p.period_m.y >= 0 &&
+           p.period_m.x <= 1e6 && p.period_m.y <= 1e6 && (p.period_m.x > 0) == (p.period_m.y > 0),
+       "period must be [0, 0] or positive on both axes, at most 1e6 (metres)");
+  if (p.field && p.field->periodic && p.period_m.x > 0)
+    need(p.period_m == p.field->size_m, "period must equal field.size when field.periodic is true (or be [0, 0])");
+  if (periodic_tile(p)) {
+    need(p.stretch == 1.0, "stretch: fibres (stretch > 1) are not periodic; set stretch 1, or make the field not periodic");
+    need(p.noise != noise::Kind::Wavelet,
+         "noise: wavelet noise is periodic only on all three axes; a periodic field needs value, gradient or worley");
+    need(p.lacunarity == std::floor(p.lacunarity), "lacunarity must be a whole number in a periodic field");
+  }
+  const auto& e = p.coverage_map_extent;
+  need(std::isfinite(e[0]) && std::isfinite(e[1]) && std::isfinite(e[2]) && std::isfinite(e[3]) &&
+           ((e[0] == 0 && e[1] == 0 && e[2] == 0 && e[3] == 0) || (e[2] > e[0] && e[3] > e[1])),
+       "coverage_map_extent must be [west, south, east, north] with east > west and north > south (metres), or all 0");
 }
 
 CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time_seconds)
@@ -85,19 +123,23 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
   need(std::isfinite(voxel_size) && voxel_size > 0, "voxel size must be finite and > 0 (metres)");
   need(std::isfinite(time_seconds), "time must be finite (seconds)");
   const CloudParams& p = params_;
+  tile_ = periodic_tile(p);
+  if (p.coverage_image || !p.coverage_map.empty()) make_map();
   shapes_ = p.shapes;
   if (p.field) {
-    const std::vector<Shape> f = field_shapes(*p.field, p.base_altitude > -1e29 ? p.base_altitude : 0.0);
+    const std::vector<Shape> f = field_shapes(*p.field, p.base_altitude > -1e29 ? p.base_altitude : 0.0, map_.get());
     shapes_.insert(shapes_.end(), f.begin(), f.end());
   }
   shear_base_ = p.base_altitude > -1e29 ? p.base_altitude : 0.0;
   for (Shape& s : shapes_)
     if (s.rooted) s.root_z = shear_base_;  // turrets stand on the base
+  if (tile_) replicate_shapes();
   index_ = std::make_unique<ShapeIndex>(shapes_);
   fibre_dir_ = p.stretch_direction / std::hypot(p.stretch_direction.x, p.stretch_direction.y);
   if (p.cauliflower > 0) {
     noise::PerlinWorleyParams pw;
     pw.frequency = p.cauliflower_frequency;
+    make_periodic(&pw.frequency, &pw.period, tile_);
     pw.seed = p.seed + 7;
     if (p.evolution != 0.0) pw.time = p.evolution * time_;
     pw.perlin_octaves = noise::octaves_for_footprint(noise::perlin_part(pw), voxel_size).octaves;
@@ -105,17 +147,17 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
     cauli_ = std::make_unique<noise::PerlinWorleyField>(pw);
   }
   billow_ = make_field(p.noise, noise::Fractal::Fbm, p.octaves, p.frequency, p.lacunarity, p.gain,
-                       p.seed, p.evolution, time_, voxel_size);
+                       p.seed, p.evolution, time_, voxel_size, tile_);
   if (p.erosion > 0)
     detail_ = make_field(p.noise, noise::Fractal::Turbulence, 3, p.erosion_frequency, 2.0, 0.5,
-                         p.seed + 1, p.evolution, time_, voxel_size);
+                         p.seed + 1, p.evolution, time_, voxel_size, tile_);
   if (p.furrows > 0)
     furrow_ = make_field(p.noise, noise::Fractal::Ridged, 3, p.furrow_frequency, 2.0, 0.5, p.seed + 5,
-                         p.evolution, time_, voxel_size);
+                         p.evolution, time_, voxel_size, tile_);
   if (p.displacement > 0)
     for (int a = 0; a < 3; ++a)
       disp_[a] = make_field(noise::Kind::Gradient, noise::Fractal::Fbm, 3, p.displacement_frequency,
-                            2.0, 0.5, p.seed + 2 + a, p.evolution, time_, voxel_size);
+                            2.0, 0.5, p.seed + 2 + a, p.evolution, time_, voxel_size, tile_);
   threshold_ = 1.0 - p.coverage;
   mean_ = billow_->expected_mean();  // Worley noise is not centred
   inv_sd_ = 1.0 / billow_->expected_sd();
@@ -134,6 +176,89 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
 }
 
 int CloudModel::octaves_used() const { return billow_->data().octaves; }
+
+void CloudModel::make_map() {
+  const CloudParams& p = params_;
+  std::shared_ptr<const CoverageImage> image = p.coverage_image ? p.coverage_image : read_coverage_png(p.coverage_map);
+  const auto& e = p.coverage_map_extent;
+  glm::dvec2 lo, size;
+  if (e[2] > e[0]) {
+    lo = {e[0], e[1]};
+    size = {e[2] - e[0], e[3] - e[1]};
+    if (tile_)
+      need(std::fabs(lo.x - tile_->lo_m.x) <= 1e-9 * tile_->size_m.x && std::fabs(lo.y - tile_->lo_m.y) <= 1e-9 * tile_->size_m.y &&
+               std::fabs(size.x - tile_->size_m.x) <= 1e-9 * tile_->size_m.x &&
+               std::fabs(size.y - tile_->size_m.y) <= 1e-9 * tile_->size_m.y,
+           "coverage_map_extent: a periodic field's map must span its tile (or leave the extent out)");
+  } else if (p.field) {
+    lo = p.field->center_m - 0.5 * p.field->size_m;
+    size = p.field->size_m;
+  } else if (tile_) {
+    lo = tile_->lo_m;
+    size = tile_->size_m;
+  } else {
+    need(!p.shapes.empty(), "coverage_map: no shapes to stretch the map over; give coverage_map_extent");
+    Aabb b = shape_bounds(p.shapes[0]);
+    for (const Shape& s : p.shapes) b = b.united(shape_bounds(s));
+    lo = {b.lo.x, b.lo.y};
+    size = {b.hi.x - b.lo.x, b.hi.y - b.lo.y};
+  }
+  map_ = std::make_unique<CoverageMap>(std::move(image), lo, size, tile_.has_value(), p.coverage_map_height);
+}
+
+void CloudModel::replicate_shapes() {
+  const glm::dvec2 P = tile_->size_m, lo = tile_->lo_m, hi = lo + P;
+  const double margin = params_.displacement + 1.0;  // the displacement's reach past an edge
+  std::vector<Shape> out;
+  for (size_t i = 0; i < shapes_.size(); ++i) {
+    Shape s = shapes_[i];
+    bool endless[2] = {false, false};
+    for (int a = 0; a < 2; ++a) {
+      if (s.kind == ShapeKind::Slab && 2.0 * s.size[a] >= P[a] * (1.0 - 1e-9)) {
+        // A layer as wide as the period: endless along this axis. Centred on the tile and wide
+        // enough that its horizontal falloff never reaches a point of the tile.
+        need(s.roughness == 0.0, "period: a slab as wide as the period (shapes[" + std::to_string(i) +
+                                     "]) must have roughness 0 (its outline noise is not periodic)");
+        s.center[a] = lo[a] + 0.5 * P[a];
+        s.size[a] = 0.5 * P[a] / std::max(1.0 - s.falloff, 1e-3) * 1.001;
+        endless[a] = true;
+      }
+    }
+    const Aabb b = shape_bounds(s);
+    need((endless[0] || b.hi.x - b.lo.x < P.x) && (endless[1] || b.hi.y - b.lo.y < P.y),
+         "period: a shape " + std::to_string(int(std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y))) +
+             " m wide does not fit in the period (" + std::to_string(int(P.x)) + " x " + std::to_string(int(P.y)) +
+             " m): lower max_diameter, or widen the field");
+    // Moved by whole periods so that its box's centre lies in the tile (along the other axes).
+    const glm::dvec2 c = 0.5 * (glm::dvec2(b.lo.x, b.lo.y) + glm::dvec2(b.hi.x, b.hi.y));
+    const glm::dvec2 k = glm::floor((c - lo) / P);
+    const glm::dvec3 shift(endless[0] ? 0.0 : -k.x * P.x, endless[1] ? 0.0 : -k.y * P.y, 0.0);
+    s.center += shift;
+    s.end += shift;
+    for (int dy = endless[1] ? 0 : -1; dy <= (endless[1] ? 0 : 1); ++dy)
+      for (int dx = endless[0] ? 0 : -1; dx <= (endless[0] ? 0 : 1); ++dx) {
+        Shape r = s;
+        const glm::dvec3 o(dx * P.x, dy * P.y, 0.0);
+        r.center += o;
+        r.end += o;
+        const Aabb rb = shape_bounds(r);
+        if (rb.hi.x > lo.x - margin && rb.lo.x < hi.x + margin && rb.hi.y > lo.y - margin && rb.lo.y < hi.y + margin)
+          out.push_back(r);
+      }
+  }
+  shapes_ = std::move(out);
+}
+
+glm::dvec3 CloudModel::wrapped(const glm::dvec3& q) const {
+  if (!tile_) return q;
+  const glm::dvec2 P = tile_->size_m, lo = tile_->lo_m;
+  return {q.x - P.x * std::floor((q.x - lo.x) / P.x), q.y - P.y * std::floor((q.y - lo.y) / P.y), q.z};
+}
+
+double CloudModel::map_at(const glm::dvec3& p) const {
+  if (!map_) return 1.0;
+  return map_->at({p.x - params_.wind.x * time_, p.y - params_.wind.y * time_});
+}
 
 glm::dvec3 CloudModel::sheared(const glm::dvec3& p) const {
   glm::dvec3 q = p - params_.wind * time_;
@@ -168,8 +293,9 @@ double smoothstep01(double x) {
 
 }  // namespace
 
-double CloudModel::coverage_at(const glm::dvec3& q, double z0) const {
+double CloudModel::coverage_at(const glm::dvec3& q_in, double z0) const {
   const CloudParams& p = params_;
+  const glm::dvec3 q = wrapped(q_in);
   const bool under_ceiling = z0 > p.ceiling_altitude - p.ceiling_softness;
   const double ceiling = under_ceiling ? smoothstep01((p.ceiling_altitude - z0) / p.ceiling_softness) : 1.0;
   double s = 0.0;
@@ -200,7 +326,7 @@ float CloudModel::finish(double s, double w, float billow_noise, float detail, f
 float CloudModel::density(const glm::dvec3& p) const {
   const double z0 = sheared(p).z;
   const glm::dvec3 q = moved(p);
-  const double s = coverage_at(q, z0);
+  const double s = coverage_at(q, z0) * map_at(p);  // the map: 0 leaves no cloud
   if (!(s > min_useful_coverage_)) return 0.0f;
   const glm::dvec3 m = noise_point(q);
   const float n = billow_->eval(m.x, m.y, m.z);
@@ -228,15 +354,47 @@ Aabb CloudModel::bounds() const {
   Aabb b = index_->bounds().expanded(params_.displacement);
   // Nothing below the base (coverage is 0 there, in q0): rooted shapes' undersides reach below it.
   if (params_.base_altitude > -1e29) b.lo.z = std::min(std::max(b.lo.z, params_.base_altitude), b.hi.z);
-  return world_box(b);
+  Aabb w = world_box(b);
+  if (tile_) {  // an endless field: one period, fixed in the world (the wind moves the clouds through it)
+    w.lo.x = tile_->lo_m.x;
+    w.lo.y = tile_->lo_m.y;
+    w.hi.x = tile_->lo_m.x + tile_->size_m.x;
+    w.hi.y = tile_->lo_m.y + tile_->size_m.y;
+  }
+  return w;
 }
 
 bool CloudModel::may_touch(const Aabb& w) const {
   // The world box in q0 coordinates (the inverse of world_box), grown by the displacement.
   const glm::dvec3 shift = params_.wind * time_;
   const Aabb l = lean(w.lo.z - shift.z, w.hi.z - shift.z);
-  const Aabb q{w.lo - shift - l.hi, w.hi - shift - l.lo};
-  return index_->any_overlaps(q.expanded(params_.displacement));
+  const Aabb q = Aabb{w.lo - shift - l.hi, w.hi - shift - l.lo}.expanded(params_.displacement);
+  if (!tile_) return index_->any_overlaps(q);
+  // Periodic: the box moved by whole periods into the tile, and its part past the tile's far
+  // edge tested again one period back (the shapes are held in the tile and just across it).
+  double xs[2][2], ys[2][2];
+  auto wrap_range = [](double lo, double hi, double tlo, double P, double (*out)[2]) {
+    if (hi - lo >= P) {
+      out[0][0] = tlo - 1.0;
+      out[0][1] = tlo + P + 1.0;
+      return 1;
+    }
+    const double k = std::floor((lo - tlo) / P);
+    lo -= k * P;
+    hi -= k * P;
+    out[0][0] = lo;
+    out[0][1] = hi;
+    if (hi <= tlo + P) return 1;
+    out[1][0] = lo - P;
+    out[1][1] = hi - P;
+    return 2;
+  };
+  const int nx = wrap_range(q.lo.x, q.hi.x, tile_->lo_m.x, tile_->size_m.x, xs);
+  const int ny = wrap_range(q.lo.y, q.hi.y, tile_->lo_m.y, tile_->size_m.y, ys);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (index_->any_overlaps(Aabb{{xs[i][0], ys[j][0], q.lo.z}, {xs[i][1], ys[j][1], q.hi.z}})) return true;
+  return false;
 }
 
 int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
@@ -254,7 +412,7 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
   if (disp_[0]) {
     size_t kept = 0;
     for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 m(q[i][0], q[i][1], q[i][2]);
+      const glm::dvec3 m = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
       bool is_far = true;
       index_->visit(Aabb{m, m}.expanded(params_.displacement), [&](uint32_t k) {
         is_far = is_far && shape_distance_bound(shapes_[k], m) > params_.displacement;
@@ -284,6 +442,7 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     out[i] = 0.0f;
     if (far[i]) continue;
     s[i] = coverage_at({q[i][0], q[i][1], q[i][2]}, z0[i]);
+    if (map_ && s[i] > 0.0) s[i] *= map_at(points[i]);  // the map: 0 leaves no cloud
     if (s[i] > min_useful_coverage_) {
       const glm::dvec3 m = noise_point({q[i][0], q[i][1], q[i][2]});
       busy.push_back({m.x, m.y, m.z});

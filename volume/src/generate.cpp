@@ -30,16 +30,29 @@ int64_t to_index(double world, double voxel, bool up) {
   return static_cast<int64_t>(i);
 }
 
+// The voxels whose centres lie in the model's bounds; along a periodic axis exactly one period:
+// the centres in [tile lo, tile lo + period), so that copies of the grid placed a period apart
+// tile without a repeated or a missing voxel (when the period is a whole number of voxels).
+void index_range(const CloudModel& model, double vs, const glm::dvec3& origin, int64_t lo[3], int64_t hi[3]) {
+  const Aabb b = model.bounds();
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = to_index(b.lo[a] + origin[a], vs, false);
+    hi[a] = to_index(b.hi[a] + origin[a], vs, true);
+  }
+  if (const auto& t = model.tile())
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = to_index(t->lo_m[a] + origin[a], vs, true);
+      hi[a] = to_index(t->lo_m[a] + origin[a] + t->size_m[a], vs, true) - 1;
+    }
+}
+
 }  // namespace
 
-openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time) {
-  const Aabb b = CloudModel(params, voxel_size, time).bounds();
-  openvdb::Coord lo, hi;
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = int(to_index(b.lo[a], voxel_size, false));
-    hi[a] = int(to_index(b.hi[a], voxel_size, true));
-  }
-  return {lo, hi};
+openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time,
+                                      const glm::dvec3& origin_m) {
+  int64_t lo[3], hi[3];
+  index_range(CloudModel(params, voxel_size, time), voxel_size, origin_m, lo, hi);
+  return {openvdb::Coord(int(lo[0]), int(lo[1]), int(lo[2])), openvdb::Coord(int(hi[0]), int(hi[1]), int(hi[2]))};
 }
 
 openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& o,
@@ -51,11 +64,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   // keeps them all.
   const CloudModel model(params, o.octave_limit ? o.voxel_size : 1e-12, o.time);
   const double vs = o.voxel_size;
-  const Aabb b = model.bounds();
   int64_t lo[3], hi[3], voxels = 1;
+  index_range(model, vs, o.origin_m, lo, hi);
   for (int a = 0; a < 3; ++a) {
-    lo[a] = to_index(b.lo[a], vs, false);
-    hi[a] = to_index(b.hi[a], vs, true);
     if (o.clip) {  // a sub-box: the same voxels as the whole grid has there
       lo[a] = std::max<int64_t>(lo[a], o.clip->min()[a]);
       hi[a] = std::min<int64_t>(hi[a], o.clip->max()[a]);
@@ -63,6 +74,8 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     if (hi[a] < lo[a]) hi[a] = lo[a] - 1;  // nothing to do on this axis
     voxels *= hi[a] - lo[a] + 1;
   }
+  const openvdb::CoordBBox keep{openvdb::Coord{int(lo[0]), int(lo[1]), int(lo[2])},
+                                openvdb::Coord{int(hi[0]), int(hi[1]), int(hi[2])}};
   // The upper bound of what the grid could hold must fit in memory.
   ensure_fits_in_memory(static_cast<uint64_t>(voxels), sizeof(float), "the cloud's bounding box at this voxel size");
 
@@ -86,8 +99,8 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
     if (o.sparse) {
       // Voxel centres of this block span [origin, origin + 7] * vs; skip it if no shape is near.
-      const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs,
-                     glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs};
+      const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs - o.origin_m,
+                     glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs - o.origin_m};
       if (!model.may_touch(box.expanded(1e-9 * vs))) return;
     }
     glm::dvec3 p[kLeaf * kLeaf * kLeaf];
@@ -96,7 +109,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     for (int z = 0; z < kLeaf; ++z)
       for (int y = 0; y < kLeaf; ++y)
         for (int x = 0; x < kLeaf; ++x)
-          p[n++] = glm::dvec3(origin.x() + x, origin.y() + y, origin.z() + z) * vs;
+          p[n++] = glm::dvec3(origin.x() + x, origin.y() + y, origin.z() + z) * vs - o.origin_m;
     GenerateStats& c = counts.local();
     c.voxels_visited += n;
     if (o.sparse) {
@@ -108,8 +121,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     Leaf* leaf = nullptr;
     for (int i = 0; i < n; ++i) {
       if (!(d[i] >= kMinDensity)) continue;
-      if (o.clip && !o.clip->isInside(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
-                                                     origin.z() + i / (kLeaf * kLeaf))))
+      // Only the index box (a clip's, or one period of a periodic field, whose density goes on
+      // past it), though the leaf blocks reach beyond it.
+      if (!keep.isInside(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf, origin.z() + i / (kLeaf * kLeaf))))
         continue;
       if (!leaf) leaf = new Leaf(origin, 0.0f, false);
       leaf->setValueOn(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,

@@ -9,6 +9,7 @@
 #include "embedded_json.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/noise/params.hpp"
+#include "nimbus/volume/coverage_map.hpp"
 #include "nimbus/volume/json_io.hpp"
 
 namespace nimbus::volume {
@@ -153,7 +154,10 @@ CloudFieldParams field_from_json(const json& j, const std::string& where) {
     else if (k == "max_diameter") f.max_diameter_m = number(v, key);
     else if (k == "depth_scale") f.depth_scale = number(v, key);
     else if (k == "roughness") f.roughness = number(v, key);
-    else if (k == "seed") {
+    else if (k == "periodic") {
+      if (!v.is_boolean()) expected(key, "true or false", v);
+      f.periodic = v.get<bool>();
+    } else if (k == "seed") {
       if (!v.is_number_unsigned()) expected(key, "an integer >= 0", v);
       f.seed = v.get<uint32_t>();
     } else if (k == "species") {
@@ -177,7 +181,8 @@ json field_to_json(const CloudFieldParams& f) {
   return {{"center", {f.center_m.x, f.center_m.y}}, {"size", {f.size_m.x, f.size_m.y}},
           {"coverage", f.coverage}, {"size_exponent", f.size_exponent},
           {"min_diameter", f.min_diameter_m}, {"max_diameter", f.max_diameter_m},
-          {"depth_scale", f.depth_scale}, {"roughness", f.roughness}, {"seed", f.seed}, {"species", species}};
+          {"depth_scale", f.depth_scale}, {"roughness", f.roughness}, {"seed", f.seed}, {"species", species},
+          {"periodic", f.periodic}};
 }
 
 double preset_voxel_size(const json& doc, const std::string& where) {
@@ -235,13 +240,26 @@ CloudParams cloud_from_json(const json& c, const std::string& where) {
     else if (k == "evolution") p.evolution = number(v, key);
     else if (k == "temperature_base") p.temperature_base = number(v, key);
     else if (k == "temperature_height") p.temperature_height = number(v, key);
-    else bad(key + ": unknown key");
+    else if (k == "period") p.period_m = vec2(v, key);
+    else if (k == "coverage_map") {
+      if (!v.is_string()) expected(key, "a PNG file name (or \"\" for none)", v);
+      p.coverage_map = v.get<std::string>();
+    } else if (k == "coverage_map_extent") {
+      if (!v.is_array() || (v.size() != 4 && !v.empty())) expected(key, "[west, south, east, north] in metres, or []", v);
+      if (v.size() == 4)
+        for (int i = 0; i < 4; ++i) p.coverage_map_extent[size_t(i)] = number(v[size_t(i)], key + "[" + std::to_string(i) + "]");
+    } else if (k == "coverage_map_height") {
+      if (!v.is_boolean()) expected(key, "true or false", v);
+      p.coverage_map_height = v.get<bool>();
+    } else bad(key + ": unknown key");
   }
   try {
     validate(p);
   } catch (const std::invalid_argument& e) {
     bad(where + ": " + e.what());
   }
+  // The map's pixels, read once here (std::runtime_error naming the file) and shared by the models.
+  if (!p.coverage_map.empty()) p.coverage_image = read_coverage_png(p.coverage_map);
   return p;
 }
 
@@ -282,6 +300,13 @@ json cloud_to_json(const CloudParams& p) {
           {"shear", {p.shear.x, p.shear.y}},
           {"shapes", shapes}};
   if (p.field) j["field"] = field_to_json(*p.field);
+  if (p.period_m.x > 0) j["period"] = {p.period_m.x, p.period_m.y};
+  if (!p.coverage_map.empty()) {
+    j["coverage_map"] = p.coverage_map;
+    const auto& e = p.coverage_map_extent;
+    j["coverage_map_extent"] = e[2] > e[0] ? json{e[0], e[1], e[2], e[3]} : json::array();
+    j["coverage_map_height"] = p.coverage_map_height;
+  }
   return j;
 }
 
@@ -351,11 +376,23 @@ void merge_params_file(json& preset, const std::string& path) {
   if (j.contains("cloud") && j.contains("voxel_size") &&
       !(j["voxel_size"].is_number() && std::isfinite(j["voxel_size"].get<double>()) && j["voxel_size"].get<double>() > 0))
     expected(where + ": voxel_size", "a number > 0 (metres)", j["voxel_size"]);
-  if (j.contains("cloud")) {
-    preset.merge_patch(j);
+  json patch = j;
+  // A coverage map named relative to the file is found beside it.
+  json& cloud = patch.contains("cloud") ? patch["cloud"] : patch;
+  if (cloud.contains("coverage_map") && cloud["coverage_map"].is_string())
+    cloud["coverage_map"] = resolve_beside(cloud["coverage_map"].get<std::string>(), path);
+  if (patch.contains("cloud")) {
+    preset.merge_patch(patch);
   } else {
-    preset["cloud"].merge_patch(j);
+    preset["cloud"].merge_patch(patch);
   }
+}
+
+std::string resolve_beside(const std::string& file, const std::string& json_path) {
+  if (file.empty() || file.front() == '/') return file;
+  const size_t slash = json_path.rfind('/');
+  if (slash == std::string::npos) return file;
+  return json_path.substr(0, slash + 1) + file;
 }
 
 }  // namespace nimbus::volume

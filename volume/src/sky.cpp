@@ -152,7 +152,14 @@ json sky_to_json(const Sky& s) {
 }
 
 Sky load_sky_file(const std::string& path) {
-  return sky_from_json(read_json_file(path, "sky file"), "sky file '" + path + "'");
+  json doc = read_json_file(path, "sky file");
+  // A cloud's coverage map named relative to the sky file is found beside it.
+  if (doc.is_object() && doc.contains("clouds") && doc["clouds"].is_array())
+    for (json& c : doc["clouds"])
+      if (c.is_object() && c.contains("overrides") && c["overrides"].is_object() && c["overrides"].contains("coverage_map") &&
+          c["overrides"]["coverage_map"].is_string())
+        c["overrides"]["coverage_map"] = resolve_beside(c["overrides"]["coverage_map"].get<std::string>(), path);
+  return sky_from_json(doc, "sky file '" + path + "'");
 }
 
 void save_sky_file(const Sky& sky, const std::string& path) {
@@ -175,7 +182,9 @@ CloudParams sky_cloud_params(const Sky& sky, std::size_t index) {
   const std::string where = "sky clouds[" + std::to_string(index) + "]";
   json cloud = load_preset(c.preset).at("cloud");
   for (const auto& [k, v] : c.overrides.items()) {
-    if (!cloud.contains(k)) bad(where + ".overrides." + echo(k) + ": preset '" + c.preset + "' has no such key");
+    // Any preset takes a coverage map (cloud_model.hpp), whether or not its file lists the keys.
+    const bool map_key = k == "coverage_map" || k == "coverage_map_extent" || k == "coverage_map_height";
+    if (!cloud.contains(k) && !map_key) bad(where + ".overrides." + echo(k) + ": preset '" + c.preset + "' has no such key");
     if (cloud[k].is_object() && v.is_object()) {  // a field: its keys one by one
       for (const auto& [kk, vv] : v.items()) {
         if (!cloud[k].contains(kk)) bad(where + ".overrides." + echo(k) + "." + echo(kk) + ": preset '" + c.preset + "' has no such key");

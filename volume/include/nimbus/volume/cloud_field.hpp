@@ -46,6 +46,10 @@ struct CloudFieldParams {
   // perimeter-area dimension about 1.29 (observed 1.33-1.38; docs/volume.md).
   double roughness = 0.6;
   uint32_t seed = 0;                    // the layout: positions, sizes, species, per-cloud seeds
+  // A sky without edges: the field repeats with period size_m in x and y. The layout wraps (the
+  // no-overlap test uses wrapped distances, and the model replicates the shapes that cross an
+  // edge), and the cloud model makes every noise periodic with the same period (cloud_model.hpp).
+  bool periodic = false;
 };
 
 // One placed cloud (what the layout drew).
@@ -67,10 +71,15 @@ void validate(const CloudFieldParams& p, const std::string& where = "field");
 // seldom merge into larger ones, which would flatten the size distribution. A pure function of the parameters. Refuses layouts of more than
 // kMaxFieldClouds clouds by name (a minimum diameter far too small for the area).
 inline constexpr size_t kMaxFieldClouds = 200000;
-std::vector<FieldCloud> field_layout(const CloudFieldParams& p);
+// With a coverage map (coverage_map.hpp), the covered area is coverage * the map's mean over the
+// field times the area, each candidate centre is kept with probability map(centre) (a draw of
+// its own stream, so a map of 1 everywhere gives the layout without a map), and, when the map
+// also sets heights, a cloud's depth is multiplied by map(centre).
+class CoverageMap;
+std::vector<FieldCloud> field_layout(const CloudFieldParams& p, const CoverageMap* map = nullptr);
 
 // The shapes of every cloud, their bases at base_altitude_m.
-std::vector<Shape> field_shapes(const CloudFieldParams& p, double base_altitude_m);
+std::vector<Shape> field_shapes(const CloudFieldParams& p, double base_altitude_m, const CoverageMap* map = nullptr);
 std::vector<Shape> cloud_shapes(const FieldCloud& c, double base_altitude_m);
 
 const char* to_string(Species s);

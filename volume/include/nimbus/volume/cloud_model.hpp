@@ -24,9 +24,11 @@
 // seed's cumulonimbus: turbulence "folded at the middle"), so subtracting it cuts deep, narrow
 // furrows between large smooth lumps; it is in [0, 1] and only lowers f, so the bound holds.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <optional>
@@ -36,6 +38,7 @@
 #include "nimbus/noise/field.hpp"
 #include "nimbus/noise/perlin_worley.hpp"
 #include "nimbus/volume/cloud_field.hpp"
+#include "nimbus/volume/coverage_map.hpp"
 #include "nimbus/volume/gas.hpp"
 #include "nimbus/volume/shape.hpp"
 #include "nimbus/volume/shape_index.hpp"
@@ -98,7 +101,31 @@ struct CloudParams {
   // (Blender reads 0..1 as 0..1000 K). temperature_height 0: no temperature grid.
   double temperature_base = 0.0;
   double temperature_height = 0.0;
+  // A sky without edges (docs/volume.md, "Periodic fields"): the density repeats with this period
+  // in x and y, metres ((0, 0): not periodic), over a tile centred on the origin; a periodic field
+  // (field.periodic) sets it to the field's size, centred on the field. Every noise gets a whole
+  // number of cycles per period: its frequency becomes round(period * frequency) / period (at
+  // least one cycle). Shapes crossing the tile's edges are replicated across the opposite ones,
+  // and a slab at least a period wide is endless along that axis.
+  glm::dvec2 period_m{0.0};
+  // Coverage (weather) map (coverage_map.hpp): a PNG whose red channel multiplies the shapes'
+  // coverage (0: no cloud) at the point moved back by the wind (the map travels with the clouds);
+  // a field also keeps each cloud's centre with probability map(centre). Empty: none.
+  std::string coverage_map;
+  // The map's pixels: read from coverage_map by cloud_from_json, or given in memory.
+  std::shared_ptr<const CoverageImage> coverage_image;
+  // West, south, east, north (metres) the map is stretched over; all 0: the field's area, else
+  // the periodic tile, else the shapes' horizontal bounds.
+  std::array<double, 4> coverage_map_extent{0.0, 0.0, 0.0, 0.0};
+  bool coverage_map_height = false;  // the map also multiplies each field cloud's depth
 };
+
+// The periodic tile of the parameters (lo corner and size, metres), or nothing when they are not
+// periodic.
+struct PeriodicTile {
+  glm::dvec2 lo_m{0.0}, size_m{0.0};
+};
+std::optional<PeriodicTile> periodic_tile(const CloudParams& p);
 
 // Throws std::invalid_argument naming the parameter.
 void validate(const CloudParams& p);
@@ -119,8 +146,12 @@ class CloudModel {
   Aabb bounds() const;
   // Whether any point of the world box may have non-zero density.
   bool may_touch(const Aabb& world_box) const;
-  // Every shape: the explicit ones, then the field's.
+  // Every shape: the explicit ones, then the field's (then, periodic, the replicas).
   const std::vector<Shape>& shapes() const { return shapes_; }
+  // The periodic tile, if any; bounds() spans exactly it in x and y.
+  const std::optional<PeriodicTile>& tile() const { return tile_; }
+  // The coverage map's value at a world point at this model's time (1 without a map).
+  double map_at(const glm::dvec3& p) const;
 
   // The coverage at or below which f cannot become positive whatever the noise.
   double min_useful_coverage() const { return min_useful_coverage_; }
@@ -137,6 +168,9 @@ class CloudModel {
   glm::dvec3 sheared(const glm::dvec3& p) const;  // q0: wind and shear applied
   glm::dvec3 moved(const glm::dvec3& p) const;    // q: and displacement
   glm::dvec3 noise_point(const glm::dvec3& q) const;  // n: stretched
+  glm::dvec3 wrapped(const glm::dvec3& q) const;      // q moved into the periodic tile (x, y)
+  void make_map();           // map_ from the parameters' image (or file) and extent
+  void replicate_shapes();   // periodic: shapes moved into the tile, copies across its edges
   Aabb world_box(const Aabb& q0_box) const;
   Aabb lean(double z_lo, double z_hi) const;  // the shear's horizontal offsets over that height
   // s: the shapes' coverage at q, with the base and the ceiling at the undisplaced altitude z0.
@@ -156,6 +190,8 @@ class CloudModel {
   double inv_sd_;               // 1 / sd(fbm)
   double min_useful_coverage_;
   std::unique_ptr<noise::NoiseField> billow_, detail_, furrow_, disp_[3];
+  std::optional<PeriodicTile> tile_;
+  std::unique_ptr<CoverageMap> map_;
 };
 
 }  // namespace nimbus::volume

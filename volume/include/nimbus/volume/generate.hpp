@@ -25,6 +25,9 @@ struct GenerateOptions {
   // Only the voxels inside this index box (inclusive). Each voxel's value is a function of its
   // world position alone, so the grid of a sub-box equals the whole grid's voxels there.
   std::optional<openvdb::CoordBBox> clip;
+  // Where the model's origin goes in the grid's world (metres): voxel (i, j, k) holds the model's
+  // density at (i, j, k) * voxel_size - origin_m. A sky's clouds at their positions (sky_volume.hpp).
+  glm::dvec3 origin_m{0.0};
   // Called now and then with the share of leaf blocks done, from any thread (the callee
   // serialises); may be empty.
   std::function<void(double)> progress;
@@ -48,7 +51,8 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
 // The index box (inclusive) that generate_density fills before any clip: every voxel whose centre
 // lies in the model's bounds at `time`, at `voxel_size` metres (octaves limited as the options'
 // default). Throws std::invalid_argument for bad parameters or an index beyond 2^30.
-openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time);
+openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_size, double time,
+                                      const glm::dvec3& origin_m = glm::dvec3(0.0));
 
 // The temperature grid "temperature" of a hot gas, on exactly the density grid's active
 // voxels and transform (see CloudParams::temperature_height); nullptr when the parameters

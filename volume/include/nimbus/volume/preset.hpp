@@ -26,7 +26,8 @@ const std::vector<PresetInfo>& list_presets();
 nlohmann::json load_preset(std::string_view name);
 
 // CloudParams from a "cloud" object. Every key must be known; a wrong type or range throws
-// std::invalid_argument naming the key (prefixed by `where`).
+// std::invalid_argument naming the key (prefixed by `where`). A "coverage_map" PNG is read here
+// (std::runtime_error naming the file when it cannot be).
 CloudParams cloud_from_json(const nlohmann::json& cloud, const std::string& where);
 
 // A preset document's "voxel_size" in metres (25 when absent); std::invalid_argument naming
@@ -41,6 +42,11 @@ void set_key(nlohmann::json& cloud, std::string_view key_eq_value);
 
 // --params FILE: merge a JSON object (the "cloud" keys, or a whole preset document) into a
 // preset document. Throws std::invalid_argument naming the file.
+// A "coverage_map" given relative to the file is taken relative to the file's directory.
 void merge_params_file(nlohmann::json& preset, const std::string& path);
+
+// `file` as named inside the JSON file `json_path`: a relative name is taken relative to that
+// file's directory; an absolute or empty one is kept.
+std::string resolve_beside(const std::string& file, const std::string& json_path);
 
 }  // namespace nimbus::volume

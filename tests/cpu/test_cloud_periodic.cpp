@@ -1,4 +1,4 @@
-// Periodic fields (issue 35, "a sky without edges"): the density at p equals the density at
+// Periodic fields (a sky without edges): the density at p equals the density at
 // p + (period, 0, 0) and p + (0, period, 0), the generated grid spans exactly one period, its
 // faces continue into the next period, and the layout never stacks clouds across an edge.
 #include <gtest/gtest.h>

@@ -337,7 +337,7 @@ TEST(NoisePropsStatsWavelet, BandVarianceMatchesConstruction) {
     }
   }
   std::printf("wavelet band variance predicted by the construction: %.5f (Cook & DeRose: 0.210, "
-              "research-noise.md measured 0.2029)\n", predicted);
+              "an independent run of their appendix code measured 0.2029)\n", predicted);
   RecordProperty("band_variance_construction", std::to_string(predicted));
 }
 

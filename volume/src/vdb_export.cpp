@@ -1,5 +1,5 @@
 // Sparse density volumes as fog-volume VDB files, with nimbus's file metadata
-// (research-ecosystem.md sections 1 and 6a: grid "density", GRID_FOG_VOLUME, background 0,
+// (as Blender, Houdini and OpenVDB's tools expect them, docs/volume.md: grid "density", GRID_FOG_VOLUME, background 0,
 // half float, Blosc, voxel size in metres, creator/preset/seed/time/frame/up axis/units).
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // multiples of 128 voxels, the span of OpenVDB's level-1 internal node (Tree_float_5_4_3: 16 x 8
 // voxels), so no leaf or internal node of the tree is shared between bricks. Every voxel is a
 // function of its world position alone (generate.hpp), so the joined bricks equal the field
-// generated in one process, voxel for voxel (research-ecosystem.md section 5).
+// generated in one process, voxel for voxel.
 #pragma once
 #include <openvdb/openvdb.h>
 

@@ -1,4 +1,4 @@
-// A field of many clouds over an area of kilometres (research-viewer.md section 5): cloud
+// A field of many clouds over an area of kilometres (sizes as observed: Stull 2017, DeWitt et al. 2024): cloud
 // diameters drawn from a power law, placed until the shapes cover a fraction of the area, each
 // with its own species, seed and depth, all on the field's common flat base (the lifting
 // condensation level). The clouds are shapes for one CloudModel, so a field is a pure function of

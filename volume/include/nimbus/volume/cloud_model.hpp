@@ -1,5 +1,5 @@
 // The density field of a cloud or gas: shapes that place it, noise that gives it billows and
-// wisps, and Ebert's gas function that turns the result into density (seed 004). Z is up,
+// wisps, and Ebert's gas function that turns the result into density (Ebert et al. 2003, as in Hoffmann 2007). Z is up,
 // units are metres and seconds.
 //
 //   q0     = p - wind t - (shear_x, shear_y, 0) (z - base)          leaning with height
@@ -21,7 +21,7 @@
 // continuous at their boundary; since fbm <= 1, f can be positive only where
 // s > (1 - coverage) / (1 + billow (1 - mean) / sd(fbm)), and the noise is evaluated only there.
 // ridged = sum a_i (1 - |n_i|)^2 / sum a_i peaks sharply where the noise crosses zero (the
-// seed's cumulonimbus: turbulence "folded at the middle"), so subtracting it cuts deep, narrow
+// cumulonimbus of Hoffmann 2007: turbulence "folded at the middle"), so subtracting it cuts deep, narrow
 // furrows between large smooth lumps; it is in [0, 1] and only lowers f, so the bound holds.
 #pragma once
 #include <array>

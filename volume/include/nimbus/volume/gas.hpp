@@ -1,6 +1,6 @@
-// Ebert's gas density function (seed 004, slide "Gasmodellierung"):
+// Ebert's gas density function (Ebert et al. 2003, as in Hoffmann 2007, slide "Gasmodellierung"):
 //   density = pow(turb * max_density, exponent)
-// and its sine variant, which first maps turb to (1 + sin(turb * pi)) / 2. The seed prints
+// and its sine variant, which first maps turb to (1 + sin(turb * pi)) / 2. The slide prints
 // that as "(1 + sin(turbulence(pt)*PI)/2)", whose range [0.5, 1.5] cannot be intended; the
 // parenthesised form keeps [0, 1].
 #pragma once

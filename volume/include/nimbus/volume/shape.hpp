@@ -1,4 +1,4 @@
-// Primitive shapes that place gas in the world (seed 004, slide "Plazierung"): each gives a
+// Primitive shapes that place gas in the world (Hoffmann 2007, slide "Plazierung"): each gives a
 // coverage in [0, 1] that is 1 well inside, falls smoothly to 0 at its boundary ("fuzzy
 // blobbies"), and is exactly 0 outside its bounding box. World units are metres, Z up.
 #pragma once
@@ -30,12 +30,12 @@ struct Shape {
   double falloff = 0.3;    // share of the size over which coverage falls from 1 to 0, (0, 1]
   double weight = 1.0;     // peak coverage, [0, 1]
   // Altitude profile: coverage times ((top - z) / (top - bottom))^fade_up over the shape's
-  // height (0: none). Steam and smoke thin out as they rise (seed 004, teacup).
+  // height (0: none). Steam and smoke thin out as they rise (Hoffmann 2007, the steaming teacup).
   double fade_up = 0.0;
   // Fractal outline: the normalised distance u is moved by up to +-roughness by gradient fBm
   // in the shape's own units (lattice cycles per horizontal semi-axis: kRoughnessFrequency,
   // gain kRoughnessGain, 8 octaves), so a small cloud is a scaled copy of a large one and every
-  // outline is fractal from the cloud's size down (research-viewer.md 5.2). [0, 1]; 0: smooth.
+  // outline is fractal from the cloud's size down (as real cloud outlines are: D about 1.35, Lovejoy 1982). [0, 1]; 0: smooth.
   double roughness = 0.0;
   uint32_t roughness_seed = 0;  // offsets the noise, so shapes differ
   // Convective: the shape rises from the cloud base. Below its lower pivot (an ellipsoid's or

@@ -1,6 +1,6 @@
 // Up-axis conversion of grids. nimbus works Z-up (Blender's convention); Houdini, Maya and
 // vdb_render expect +Y up, and VDB files have no up-axis field, so a Y-up export rotates the
-// grids themselves (research-ecosystem.md section 1, "Up axis / units").
+// grids themselves.
 #pragma once
 #include <openvdb/openvdb.h>
 

@@ -1,6 +1,6 @@
 // Writing OpenVDB files that Blender, Houdini and vdb_print read: dense sample grids (`nimbus
 // noise`) and sparse density volumes with optional extra grids (temperature, flame) and the
-// file metadata downstream tools look for (research-ecosystem.md sections 1 and 6a).
+// file metadata downstream tools look for (docs/volume.md, "Files, as downstream tools expect them").
 //
 // Every file is written atomically (atomic_file.hpp) and sealed with a whole-file CRC-32 that
 // the reader (vdb_read.hpp) checks before it parses any grid; the header UUID is derived from
@@ -44,7 +44,7 @@ void write_dense_vdb(const std::filesystem::path& path, const DenseGridDesc& des
 
 // What a volume file says about itself, written as file-level metadata under the keys in
 // the comments. VDB has no up-axis or units field, so these are informative for people and
-// pipelines (research-ecosystem.md section 1, "Up axis / units").
+// pipelines (Blender is Z-up and Houdini Y-up, both in metres).
 struct ExportInfo {
   std::string creator;                 // "creator"; empty: "nimbus <version>"
   std::string preset;                  // "preset", e.g. "cumulus_humilis"
@@ -71,11 +71,11 @@ Metadata export_metadata(const ExportInfo& info);
 //
 // `grids[0]` is the density grid; it is written as "density" and must be named "density" or
 // nothing. The others keep their names, which must be non-empty and distinct, and must have
-// exactly the density grid's transform (research-ecosystem.md section 1, "Density is
-// mandatory"). Every grid is written as a fog volume: class GRID_FOG_VOLUME, background 0,
+// exactly the density grid's transform (readers take "density" as the one mandatory grid and
+// expect the others to match it). Every grid is written as a fog volume: class GRID_FOG_VOLUME, background 0,
 // voxel size in metres from its transform, half float unless `options` say otherwise, the
-// library's default compression (Blosc + active mask; ZIP is dropped for fog volumes anyway,
-// research-ecosystem.md section 0). The caller's grids are not modified. With
+// library's default compression (Blosc + active mask; OpenVDB's writer drops ZIP for fog volumes
+// anyway, io::Archive::setGridCompression). The caller's grids are not modified. With
 // info.up_axis == 'y' the grids are rotated so that world +Z becomes +Y (up_axis.hpp).
 //
 // Throws std::invalid_argument naming the grid for: no grids, a null grid, a wrong name, a

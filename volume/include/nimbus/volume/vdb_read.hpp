@@ -1,6 +1,6 @@
 // Reading fog volumes from OpenVDB files written by nimbus or by anyone else (Houdini,
 // Blender, EmberGen): a float grid by name with any transform, values above 1 allowed (real
-// Houdini smoke reaches 5.7, research-ecosystem.md section 0), and a dense copy of its active
+// Houdini smoke file, smoke.vdb of the mjurczyk/openvdb examples, reaches 5.71), and a dense copy of its active
 // box for the renderer.
 //
 // Every failure is a std::runtime_error whose one-line message starts with the file name:

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "nimbus/app/usage_error.hpp"
+#include "nimbus/base/validate.hpp"
 
 namespace nimbus::app {
 
@@ -88,17 +89,11 @@ inline constexpr double kTimelapseSecondsPerFrame = 10.0;
 inline double parse_time_scale(const std::string& text) {
   if (text.empty() || text == "realtime") return 0.0;
   if (text == "timelapse") return kTimelapseSecondsPerFrame;
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(v > 0.0 && v <= 86400.0))
+  const std::optional<double> v = parse_double(text);
+  if (!v || !(*v > 0.0 && *v <= 86400.0))
     throw UsageError("--time-scale: '" + text.substr(0, 40) +
                      "' must be realtime, timelapse or sky seconds per frame in (0, 86400]");
-  return v;
+  return *v;
 }
 
 // How many tasks of `chunk` frames cover first..last.

@@ -35,8 +35,6 @@ void add_sun_options(CLI::App* cmd, SunArgs& a) {
   cmd->add_option("--day-of-year", a.day_of_year, "Day of the year for --time-of-day, 1-366 (default 172, the June solstice)");
 }
 
-bool gives_sun(const SunArgs& a) { return !a.vector.empty() || a.elevation_deg || a.hour; }
-
 std::optional<glm::dvec3> sun_direction_of(const SunArgs& a) {
   const int ways = int(!a.vector.empty()) + int(a.elevation_deg.has_value()) + int(a.hour.has_value());
   if (ways > 1) throw UsageError("--sun, --sun-elevation, --time-of-day: give the sun one way, not " + std::to_string(ways));

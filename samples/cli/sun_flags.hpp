@@ -24,9 +24,6 @@ struct SunArgs {
 
 void add_sun_options(CLI::App* cmd, SunArgs& args);
 
-// Whether any of the flags gives a sun.
-bool gives_sun(const SunArgs& args);
-
 // The unit direction towards the sun in the renderer's frame (world_axes.hpp), or nullopt when no
 // flag gives one. UsageError naming the flag for a bad value, two ways at once, a qualifier
 // without what it qualifies (--latitude without --time-of-day), or a sun more than 10 degrees

@@ -103,7 +103,8 @@ void main() {
 #if MS_VOLUME == 2
   vec3 scattered = light_volume_radiance(v_world + k * q);  // made for this eye and the clouds' phase
 #else
-  vec3 scattered = light_volume_inscatter(v_world + k * q, -q * inv_len, cloud.phase);
+  // A copy of a periodic tile reads its cloud's light volume where its cloud is.
+  vec3 scattered = light_volume_inscatter(v_world + k * q - cloud.copy_offset_m, -q * inv_len, cloud.phase);
 #endif
   vec3 color = cloud.albedo * (irradiance * (lit + scattered) + cloud.ambient) * alpha;  // (S / sigma_t) alpha
 #else

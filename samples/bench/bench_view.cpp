@@ -32,6 +32,7 @@ struct BenchViewArgs {
   std::string sizes = "640x360,1280x720";
   int frames = 60;
   double budget_ms = 100.0;
+  double repeat_to_m = -1.0;  // < 0: the view state's (32 km)
   int error_every = 3;   // compare every Nth adaptive frame with the full-quality frame
   std::string strip;     // a PNG strip of the time-lapse
   int still_samples = 64;  // the still view's progressive samples measured (0: not measured)
@@ -228,13 +229,18 @@ int run_bench_view(const BenchViewArgs& a) {
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
+  if (!(a.repeat_to_m <= 1e6)) throw UsageError("--repeat-to: must be in [0, 1e6] metres");
   for (const std::string& name : split_paths(a.paths))
     if (std::find(std::begin(kPathNames), std::end(kPathNames), name) == std::end(kPathNames))
       throw UsageError("--paths: unknown path '" + name + "' (known: orbit|orbit, octaves|orbit, temporal|time-lapse|"
                        "time-lapse, temporal|sun drag)");
   check_outputs({{"--strip", a.strip}});
   const auto gl = render::GlContext::create_headless();
-  const render::ViewState start = render::default_view_state();
+  const render::ViewState start = [&] {
+    render::ViewState s = render::default_view_state();
+    if (a.repeat_to_m >= 0.0) s.slices.repeat_to_m = a.repeat_to_m;
+    return s;
+  }();
   viewer::ViewerOptions options;
   std::printf("# nimbus bench view: the default sky (%zu clouds, %.0f m voxels, keyframes every %.0f s of sky time), %s\n",
               start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, gl->renderer().c_str());
@@ -244,8 +250,9 @@ int run_bench_view(const BenchViewArgs& a) {
                   static_cast<long long>(start.slices.multiple.light_volume.photons), start.slices.multiple.octaves);
   else
     std::snprintf(ms, sizeof ms, "%d octaves", start.slices.multiple.octaves);
-  std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %s; adaptive budget %.0f ms\n",
-              start.slices.slices, start.slices.light_res, render::to_string(start.shafts).c_str(), start.cloud_shadow_res, ms, a.budget_ms);
+  std::printf("# full quality: %d slices, light %d^2, shafts %s, cloud shadow %d^2, %s, periodic tiles to %.0f m; adaptive budget %.0f ms\n",
+              start.slices.slices, start.slices.light_res, render::to_string(start.shafts).c_str(), start.cloud_shadow_res, ms,
+              start.slices.repeat_to_m, a.budget_ms);
   std::printf("# orbit: 1.8 deg of tumble per frame, sky time x10; time-lapse: still camera, sky time x30; real time steps\n");
   std::printf("# frame = the viewer's whole frame on the CPU (render, readback); error = rel. RMSE of the adaptive frame,\n");
   std::printf("#   upscaled as the display does, against the full-quality frame of the same state (one frame in %d)\n\n",
@@ -390,6 +397,8 @@ void add_bench_view(CLI::App& bench, Action& action) {
   cmd->add_option("--sizes", a->sizes, "Comma-separated frame sizes WxH")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Frames per path")->capture_default_str();
   cmd->add_option("--budget-ms", a->budget_ms, "Adaptive quality's frame budget while moving")->capture_default_str();
+  cmd->add_option("--repeat-to", a->repeat_to_m,
+                  "How far the periodic field's tile is repeated from the eye, metres (default: the view state's 32000; 0: one tile)");
   cmd->add_option("--error-every", a->error_every, "Measure the error of every Nth adaptive frame (0: never)")
       ->capture_default_str();
   cmd->add_option("--paths", a->paths, "Only these paths, by the table's names separated by '|' (e.g. 'orbit|orbit, temporal')");

@@ -20,6 +20,7 @@
 #include "nimbus/base/memory.hpp"
 #include "outputs.hpp"
 #include "progress.hpp"
+#include "nimbus/volume/cloud_model.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -210,6 +211,16 @@ int run_generate(const GenerateArgs& a) {
   info.seed = params.seed;
   info.up_axis = a.up[0];
   if (sequence) info.fps = range.fps;
+  // A periodic field says so: renderers draw its copies to the horizon (render/core cloud_source.hpp).
+  if (const std::optional<volume::PeriodicTile> tile = volume::periodic_tile(params)) {
+    char period[64];
+    std::snprintf(period, sizeof period, "%.17g %.17g", tile->size_m.x, tile->size_m.y);
+    info.extra.emplace_back(std::string(volume::kPeriodMetadataKey), std::string(period));
+  }
+  if (tag) {  // a brick's keys after the field's own, which merge keeps
+    const volume::Metadata keys = volume::brick_metadata(*tag);
+    info.extra.insert(info.extra.end(), keys.begin(), keys.end());
+  }
   volume::ExportOptions eo;
   eo.half_float = !a.full_float;
 
@@ -241,7 +252,6 @@ int run_generate(const GenerateArgs& a) {
     if (auto temperature = volume::generate_temperature(params, *density)) grids.push_back(temperature);
     info.time = t;
     info.frame = sequence ? frame : 0;
-    if (tag) info.extra = volume::brick_metadata(*tag);
     const std::string path = sequence ? sequence_path(a.output, frame) : a.output;
     volume::write_volume_vdb(path, grids, info, eo);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

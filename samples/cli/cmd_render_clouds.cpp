@@ -121,6 +121,10 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--slices", a.slices, "Half-angle slices")->capture_default_str();
   cmd->add_option("--light-res", a.light_res, "Light buffer size, texels per side")->capture_default_str();
+  cmd->add_option("--repeat-to", a.repeat_to,
+                  "A periodic field (cumulus-field, stratocumulus-field) is drawn with copies of its tile out to this "
+                  "distance from the eye, metres, to the horizon; auto: 32000 under --scene sky, else 0 (one tile)")
+      ->capture_default_str();
   cmd->add_option("--cloud-shadow-res", a.shadow_map_res, "Texels per side of the clouds' shadow on the scene")
       ->capture_default_str();
   cmd->add_option("--shafts", a.shafts, "The scene's light-shaft method under the clouds (see --method)")
@@ -199,7 +203,9 @@ render::Camera frame_camera(const CloudRenderArgs& a, const CloudRenderPlan& pla
     if (!framed || !camera_args.up.empty()) throw;
     throw std::runtime_error("framing the camera on " + describe_clouds(a, frame, plan.range.sequence) + ": " + e.what());
   }
-  if (!camera_args.eye.empty() || !camera_args.look_at.empty()) camera = render::fit_far_plane(camera, clouds);
+  const double repeat_to_m = plan.frame.settings.slices.repeat_to_m;
+  if (!camera_args.eye.empty() || !camera_args.look_at.empty() || repeat_to_m > 0.0)
+    camera = render::fit_far_plane(camera, clouds, repeat_to_m);
   return camera;
 }
 

@@ -34,6 +34,8 @@ struct CloudRenderArgs {
   bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
   int slices = 128;
   int light_res = 256;
+  // Periodic clouds' copies out to this distance, metres: "auto" is 32000 under --scene sky, else 0.
+  std::string repeat_to = "auto";
   int shadow_map_res = 512;          // the clouds' shadow on the scene
   std::string shafts = "raymarch:48";  // the scene's method under the clouds
   std::optional<double> cloud_extinction;

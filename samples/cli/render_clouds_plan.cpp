@@ -235,6 +235,14 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
   slices.multiple.occlusion = a.ms_occlusion;
   slices.multiple.contribution = a.ms_contribution;
   slices.multiple.eccentricity = a.ms_eccentricity;
+  if (a.repeat_to == "auto") {
+    slices.repeat_to_m = p.frame.scene && p.frame.scene->name == "sky" ? 32000.0 : 0.0;
+  } else {
+    const std::optional<double> r = parse_double(a.repeat_to);
+    if (!r || !(*r >= 0.0 && *r <= 1e6))
+      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in [0, 1e6] metres");
+    slices.repeat_to_m = *r;
+  }
   try {
     render::validate(slices);
   } catch (const std::invalid_argument& e) {

@@ -26,7 +26,7 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       {"--frame-from-env", clouds}, {"--chunk", clouds}, {"--sun", clouds}, {"--sun-elevation", clouds}, {"--sun-azimuth", clouds}, {"--time-of-day", clouds},
       {"--latitude", clouds}, {"--day-of-year", clouds}, {"--lamp", clouds}, {"--lamp-intensity", clouds},
       {"--spot", clouds}, {"--spot-cone", clouds}, {"--max-lights", clouds}, {"--slices", clouds},
-      {"--light-res", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
+      {"--light-res", clouds}, {"--repeat-to", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
       {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},
       {"--ambient", clouds}, {"--multiple", clouds}, {"--ms-method", clouds}, {"--ms-grid", clouds},
       {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-diffusion-depth", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},

@@ -12,5 +12,6 @@ layout(std140, binding = BLOCK_CLOUD) uniform CloudBlock {
   vec3 phase;              // g_forward, g_back, forward weight
   float blend;             // weight of the next keyframe's density (lib/cloud_density.glsl)
   vec3 tc_eye;             // the eye's density-texture coordinates
+  vec3 copy_offset_m;      // a periodic tile's copy: its offset from the cloud, metres (the light volume is the cloud's)
 } cloud;
 #endif

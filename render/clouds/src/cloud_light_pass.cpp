@@ -113,20 +113,25 @@ void set_blur_uniforms(const ShaderProgram& blur, const LightPassPlan& plan, dou
   blur.set("u_weight", weight);
 }
 
-// Every cloud's block for this pass (its optics, and what depends on the eye and the slabs); the
-// ambient sky light enters once, in the first pass.
-std::vector<CloudBlock> cloud_blocks(const CloudRenderer::Impl& s, const FrameContext& frame,
-                                     const LightPassPlan& plan, int pass) {
-  std::vector<CloudBlock> blocks(s.clouds.size());
-  for (std::size_t j = 0; j < s.clouds.size(); ++j) {
+// Every copy's block for this pass (its cloud's optics, and what depends on the eye, the slabs and
+// its offset); the ambient sky light enters once, with the first light.
+std::vector<CloudBlock> cloud_blocks(const CloudRenderer::Impl& s, const PassClouds& pc, const FrameContext& frame,
+                                     const LightPassPlan& plan, bool ambient) {
+  std::vector<CloudBlock> blocks(pc.instances.size());
+  for (std::size_t i = 0; i < pc.instances.size(); ++i) {
+    const std::size_t j = pc.instances[i].cloud;
+    const glm::dvec3 o = pc.instances[i].offset_m;
     const CloudVolume& c = s.clouds[j];
-    const VolumeTexture& t = s.textures[j];
-    CloudBlock& b = blocks[j];
-    b.world_to_texture = to_float(t.world_to_texture);
-    b.tc_eye = glm::vec3(t.world_to_texture * glm::dvec4(frame.camera.eye, 1.0));
+    CloudBlock& b = blocks[i];
+    // The copy's texture map is its cloud's after moving back by the offset: world_to_texture * T(-o).
+    glm::dmat4 world_to_texture = s.textures[j].world_to_texture;
+    world_to_texture[3] = s.textures[j].world_to_texture * glm::dvec4(-o, 1.0);
+    b.world_to_texture = to_float(world_to_texture);
+    b.tc_eye = glm::vec3(world_to_texture * glm::dvec4(frame.camera.eye, 1.0));
+    b.copy_offset_m = to_float(o);
     b.sigma_t = static_cast<float>(c.optics.extinction_per_m);
     b.albedo = to_float(c.optics.albedo);
-    b.ambient = frame.settings.ambient && pass == 0 ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f);
+    b.ambient = frame.settings.ambient && ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f);
     b.phase = glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
                         static_cast<float>(c.optics.phase.forward_weight));
     b.tau_per_density = static_cast<float>(c.optics.extinction_per_m * plan.light_slab_m);
@@ -135,20 +140,21 @@ std::vector<CloudBlock> cloud_blocks(const CloudRenderer::Impl& s, const FrameCo
   return blocks;
 }
 
-// Draws slice k's polygons, binding each cloud's block and textures when the cloud changes.
+// Draws slice k's polygons, binding each copy's block and its cloud's textures when the copy changes.
 class SliceDrawer {
  public:
-  SliceDrawer(const CloudRenderer::Impl& s, const SliceMesh& mesh) : s_(s), mesh_(mesh), bound_(s.clouds.size()) {}
+  SliceDrawer(const CloudRenderer::Impl& s, const PassClouds& pc, const SliceMesh& mesh)
+      : s_(s), pc_(pc), mesh_(mesh), bound_(pc.instances.size()) {}
 
   bool any(int k) const {
-    const std::size_t n = s_.clouds.size();
+    const std::size_t n = pc_.instances.size();
     for (std::size_t j = 0; j < n; ++j)
       if (mesh_.count[static_cast<std::size_t>(k) * n + j] > 0) return true;
     return false;
   }
 
   void draw(int k) {
-    const std::size_t n = s_.clouds.size();
+    const std::size_t n = pc_.instances.size();
     for (std::size_t j = 0; j < n; ++j) {
       const std::size_t idx = static_cast<std::size_t>(k) * n + j;
       if (mesh_.count[idx] == 0) continue;
@@ -159,25 +165,27 @@ class SliceDrawer {
   }
 
  private:
-  void bind(std::size_t j) const {
-    s_.cloud_ubo.bind(contract::BLOCK_CLOUD, j);
+  void bind(std::size_t i) const {
+    const std::size_t j = pc_.instances[i].cloud;
+    s_.cloud_ubo.bind(contract::BLOCK_CLOUD, i);
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, s_.textures[j].texture.id());
     const VolumeTexture& next = s_.next_textures[j] ? *s_.next_textures[j] : s_.textures[j];
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, next.texture.id());
   }
 
   const CloudRenderer::Impl& s_;
+  const PassClouds& pc_;
   const SliceMesh& mesh_;
-  std::size_t bound_;  // the cloud whose block is bound (none yet: the count)
+  std::size_t bound_;  // the copy whose block is bound (none yet: the count)
 };
 
 // The slice loop: each slice is drawn into the eye target lit from the light buffer, then its
 // optical depth is added into the light buffer (after the blur, when there is one) for the next.
-int draw_slices(CloudRenderer::Impl& s, const FrameContext& frame, const LightPassPlan& plan,
+int draw_slices(CloudRenderer::Impl& s, const PassClouds& pc, const FrameContext& frame, const LightPassPlan& plan,
                 const ShaderProgram& eye, const ShaderProgram& lp, const GlFramebuffer& target) {
   const bool blur = frame.settings.blur_cone_rad > 0.0;
   const int w = frame.camera.width, h = frame.camera.height;
-  SliceDrawer slices(s, plan.mesh);
+  SliceDrawer slices(s, pc, plan.mesh);
   int drawn = 0;
   int cur = 0;
   for (int k = 0; k < plan.planes.count; ++k) {
@@ -240,9 +248,57 @@ void accumulate_pass(CloudRenderer::Impl& s, const FrameContext& frame) {
   });
 }
 
+// The far copies' pass under everything in the eye buffer: eye += (1 - eye alpha) pass, for the
+// radiance and, with an underlay, the distances the composite reads.
+void under_pass(CloudRenderer::Impl& s, const FrameContext& frame) {
+  frame.timer.time(kEye, [&] {
+    glBindFramebuffer(GL_FRAMEBUFFER, s.eye_fbo.id());
+    glViewport(0, 0, frame.camera.width, frame.camera.height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+    glBindTextureUnit(contract::UNIT_CLOUD_COLOR, s.pass_color.id());
+    glBindTextureUnit(contract::UNIT_CLOUD_DISTANCE, s.pass_distance.id());
+    s.under_program(frame.underlay != nullptr).use();
+    draw_fullscreen_triangle(s.empty_vao);
+  });
+}
+
 }  // namespace
 
-LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const Light& light,
+PassClouds pass_clouds(const CloudRenderer::Impl& s, std::vector<CloudInstance> instances) {
+  PassClouds pc;
+  pc.instances = std::move(instances);
+  for (const CloudInstance& i : pc.instances) {
+    const glm::dvec3 o = i.offset_m;
+    pc.moved = pc.moved || o != glm::dvec3(0.0);
+    pc.hulls.push_back(o == glm::dvec3(0.0) ? s.hulls[i.cloud] : translated(s.hulls[i.cloud], o));
+    for (const glm::dvec3& v : s.cloud_hull_points[i.cloud]) pc.hull_points.push_back(v + o);
+  }
+  return pc;
+}
+
+// The slices of a pass with copies (cloud_tiles.hpp): the near pass keeps the slab that the
+// clouds alone (one copy each) get along the axis, up to three times the slices (a thicker slab
+// shows as grain, through the jitter); the far pass, whose copies lie at least half a tile beyond
+// the near ones, gets twice that slab, within the same bounds.
+double extent_along(const std::vector<glm::dvec3>& points, const glm::dvec3& axis) {
+  double lo = 1e300, hi = -1e300;
+  for (const glm::dvec3& p : points) {
+    lo = std::min(lo, glm::dot(p, axis));
+    hi = std::max(hi, glm::dot(p, axis));
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+
+int tile_slices(const CloudRenderer::Impl& s, const PassClouds& pc, const glm::dvec3& axis, int slices) {
+  if (!pc.moved && !pc.far) return slices;
+  const double alone = extent_along(s.hull_points, axis);
+  if (!(alone > 0.0)) return slices;
+  const double scale = std::clamp((pc.far ? 0.5 : 1.0) * extent_along(pc.hull_points, axis) / alone, 1.0, 3.0);
+  return std::min(4096, static_cast<int>(std::lround(slices * scale)));
+}
+
+LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const PassClouds& pc, const Camera& camera, const Light& light,
                               const glm::dvec3& centre, const CloudSliceSettings& settings, int pass) {
   LightPassPlan p;
   p.lamp = light.kind == LightKind::Point;
@@ -252,36 +308,39 @@ LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera
                                                                : glm::dvec3(0.0, -1.0, 0.0))
                : -glm::normalize(light.direction_to_sun);
   p.axis = choose_slice_axis(camera_frame(camera).forward, p.l, settings.branch);
-  p.planes = slice_planes(s.hull_points, p.axis.axis, settings.slices);
+  p.planes = slice_planes(pc.hull_points, p.axis.axis, tile_slices(s, pc, p.axis.axis, settings.slices));
   const double margin_m = settings.jitter ? jitter_margin_m(camera, p.axis, p.planes) : 0.0;
   std::vector<ConvexHull> hulls;
-  for (const ConvexHull& hull : s.hulls) hulls.push_back(grown(hull, margin_m));
+  for (const ConvexHull& hull : pc.hulls) hulls.push_back(grown(hull, margin_m));
   p.mesh = build_slice_mesh(hulls, p.axis.axis, p.planes);
   // The slab between two planes is spacing / dot(l, s) thick along the light;
   // for a lamp, per fragment along each of its rays.
   p.light_slab_m = p.planes.spacing_m / std::max(glm::dot(p.l, p.axis.axis), 1e-3);
-  plan_light_frame(p, s.hull_points, light, centre, settings.light_res, pass);
+  plan_light_frame(p, pc.hull_points, light, centre, settings.light_res, pass);
   return p;
 }
 
-int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Light& light,
-                    const LightPassPlan& plan, int pass) {
+int draw_light_pass(CloudRenderer::Impl& s, const PassClouds& pc, const FrameContext& frame, const Light& light,
+                    const LightPassPlan& plan, PassTarget to) {
   const CloudSliceSettings& settings = frame.settings;
   s.upload_mesh(plan.mesh);
+  // The frame's radiance toward the eye was made at the clouds' own cells: a moved copy, seen from
+  // elsewhere, reads the light volume per sample instead.
+  const bool light_radiance = frame.light_radiance && !pc.moved;
   const ShaderProgram& eye = s.eye_program(frame.underlay != nullptr, frame.light_volume ? 0 : settings.multiple.octaves,
-                                           frame.light_volume ? (frame.light_radiance ? 2 : 1) : 0, plan.lamp);
+                                           frame.light_volume ? (light_radiance ? 2 : 1) : 0, plan.lamp);
   const ShaderProgram& lp = plan.lamp ? s.lamp_light_program : s.light_program;
   s.slice_light_ubo.update(slice_light_block(frame, light, plan));
   s.slice_light_ubo.bind(contract::BLOCK_SLICE_LIGHT);
   set_pass_uniforms(s, frame, eye, lp, plan);
   if (settings.blur_cone_rad > 0.0) set_blur_uniforms(s.blur_program, plan, settings.blur_cone_rad);
-  s.cloud_ubo.update(cloud_blocks(s, frame, plan, pass));
+  s.cloud_ubo.update(cloud_blocks(s, pc, frame, plan, to != PassTarget::AddToEye));
 
-  // The first pass draws into the eye buffer; later ones into their own, added in after.
+  // The first pass draws into the eye buffer; the others into their own, added or put under after.
   const float zero[4] = {0, 0, 0, 0};
-  const GlFramebuffer& target = pass == 0 ? s.eye_fbo : s.pass_fbo;
+  const GlFramebuffer& target = to == PassTarget::Eye ? s.eye_fbo : s.pass_fbo;
   frame.timer.time(kLight, [&] { glClearNamedFramebufferfv(s.light_fbo[0].id(), GL_COLOR, 0, zero); });
-  if (pass > 0)
+  if (to != PassTarget::Eye)
     frame.timer.time(kEye, [&] {
       glClearNamedFramebufferfv(s.pass_fbo.id(), GL_COLOR, 0, zero);
       glClearNamedFramebufferfv(s.pass_fbo.id(), GL_COLOR, 1, zero);
@@ -289,12 +348,13 @@ int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Lig
   glBindTextureUnit(contract::UNIT_JITTER, s.jitter.id());
   if (frame.light_volume) {
     glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, s.light_volume_tex.id());
-    if (frame.light_radiance) glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, s.light_radiance_tex.id());
+    if (light_radiance) glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, s.light_radiance_tex.id());
   }
   if (frame.underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, frame.underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());
-  const int drawn = draw_slices(s, frame, plan, eye, lp, target);
-  if (pass > 0) accumulate_pass(s, frame);
+  const int drawn = draw_slices(s, pc, frame, plan, eye, lp, target);
+  if (to == PassTarget::AddToEye) accumulate_pass(s, frame);
+  if (to == PassTarget::UnderEye) under_pass(s, frame);
   glDisable(GL_BLEND);
   check_gl("cloud slices");
   return drawn;

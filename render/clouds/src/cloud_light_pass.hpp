@@ -12,9 +12,25 @@
 #include "cloud_renderer_impl.hpp"
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/cloud_tiles.hpp"
 #include "nimbus/render/core/light.hpp"
 
 namespace nimbus::render::cloud_detail {
+
+// The clouds one slicing draws: copies of the renderer's clouds (cloud_tiles.hpp), each with its
+// hull moved by its offset.
+struct PassClouds {
+  std::vector<CloudInstance> instances;
+  std::vector<ConvexHull> hulls;        // each instance's
+  std::vector<glm::dvec3> hull_points;  // all their vertices
+  bool moved = false;                   // a copy lies off its cloud (an offset is not 0)
+  bool far = false;                     // the far copies' pass (tile_slices)
+};
+PassClouds pass_clouds(const CloudRenderer::Impl& s, std::vector<CloudInstance> instances);
+
+// Where a pass's slices go: the eye buffer (the first light's near pass), added into it (a later
+// light's), or under it (the far copies, behind everything the near passes drew).
+enum class PassTarget { Eye, AddToEye, UnderEye };
 
 // What a light's pass draws, planned on the CPU.
 struct LightPassPlan {
@@ -30,8 +46,8 @@ struct LightPassPlan {
   std::string note;                 // for a lamp: slices on its near side, clipping (metadata)
 };
 
-// The pass of light number `pass` (0: the first, which also carries the ambient term).
-LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const Camera& camera, const Light& light,
+// The pass of light number `pass` over the clouds `pc` (the lamp notes name the pass).
+LightPassPlan plan_light_pass(const CloudRenderer::Impl& s, const PassClouds& pc, const Camera& camera, const Light& light,
                               const glm::dvec3& centre, const CloudSliceSettings& settings, int pass);
 
 // What every pass of a frame shares.
@@ -45,9 +61,10 @@ struct FrameContext {
   GpuTimer& timer;
 };
 
-// Draws the planned pass (into the eye buffer for pass 0, else into the pass buffer, then added
-// into the eye buffer's radiance). Returns how many slices it drew.
-int draw_light_pass(CloudRenderer::Impl& s, const FrameContext& frame, const Light& light,
-                    const LightPassPlan& plan, int pass);
+// Draws the planned pass of the clouds `pc` to `target` (AddToEye and UnderEye draw into the pass
+// buffer first). The ambient term enters with the passes to Eye and UnderEye, once per pixel's
+// clouds. Returns how many slices it drew.
+int draw_light_pass(CloudRenderer::Impl& s, const PassClouds& pc, const FrameContext& frame, const Light& light,
+                    const LightPassPlan& plan, PassTarget target);
 
 }  // namespace nimbus::render::cloud_detail

@@ -59,6 +59,7 @@ void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("cloud '" + c.name + "': " + e.what());
     }
+    validate_period(c);
     hulls.push_back(cloud_hull(c));
     const std::vector<glm::dvec3> v = hull_vertices(hulls.back());
     hull_points.insert(hull_points.end(), v.begin(), v.end());
@@ -71,6 +72,8 @@ void CloudRenderer::set_clouds(std::vector<CloudVolume> clouds, GLenum format) {
   s.placements = std::move(placements);
   s.hulls = std::move(hulls);
   s.hull_points = std::move(hull_points);
+  s.cloud_hull_points.clear();
+  for (const Placement& p : s.placements) s.cloud_hull_points.push_back(p.hull_vertices);
   s.clouds = std::move(clouds);
 }
 
@@ -109,7 +112,11 @@ void CloudRenderer::set_motion(const std::vector<CloudMotion>& motion) {
     t.world_min = c.world_min;
     t.world_max = c.world_max;
     s.hulls[j] = translated(p.hull, o);
-    for (const glm::dvec3& v : p.hull_vertices) s.hull_points.push_back(v + o);
+    s.cloud_hull_points[j].clear();
+    for (const glm::dvec3& v : p.hull_vertices) {
+      s.hull_points.push_back(v + o);
+      s.cloud_hull_points[j].push_back(v + o);
+    }
   }
 }
 
@@ -365,9 +372,14 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
     throw std::logic_error("cloud renderer: multiple-scattering method light-volume needs set_light_volume first");
   const glm::dvec3 centre = clouds_centre(s.hull_points);
   const std::vector<int> order = lights_drawn(all_lights, centre, settings, light_volume);
+  // The copies drawn (cloud_tiles.hpp): without periodic clouds, every cloud where it is.
+  CloudTilePlan tiles = plan_cloud_tiles(s.clouds, camera, settings.repeat_to_m);
+  PassClouds near = pass_clouds(s, std::move(tiles.near));
+  PassClouds far = pass_clouds(s, std::move(tiles.far));
+  far.far = true;
 
   const int w = camera.width, h = camera.height;
-  s.prepare_frame(w, h, settings, order.size(), underlay != nullptr);
+  s.prepare_frame(w, h, settings, order.size() + (far.instances.empty() ? 0 : 1), underlay != nullptr);
   GpuTimer timer(kPassCount, stats != nullptr);
   const CameraBlock camera_values = camera_block(camera);
   s.camera_ubo.update(camera_values);
@@ -399,17 +411,23 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
       light_radiance = true;
     }
   }
-  // One pass per light, its radiance added into the first's.
+  // One pass per light over the near clouds, its radiance added into the first's; then the far
+  // copies, lit by the first light alone, under them.
   const FrameContext frame{camera, camera_values, settings, light_volume, light_radiance, underlay, timer};
   int drawn = 0;
   SliceAxis first_axis;
   std::string lamp_notes;
   for (std::size_t pass = 0; pass < order.size(); ++pass) {
     const Light& light = all_lights[order[pass]];
-    const LightPassPlan plan = plan_light_pass(s, camera, light, centre, settings, static_cast<int>(pass));
+    const LightPassPlan plan = plan_light_pass(s, near, camera, light, centre, settings, static_cast<int>(pass));
     if (pass == 0) first_axis = plan.axis;
     if (!plan.note.empty()) lamp_notes += (lamp_notes.empty() ? "" : "; ") + plan.note;
-    drawn += draw_light_pass(s, frame, light, plan, static_cast<int>(pass));
+    drawn += draw_light_pass(s, near, frame, light, plan, pass == 0 ? PassTarget::Eye : PassTarget::AddToEye);
+  }
+  if (!far.instances.empty()) {
+    const Light& light = all_lights[order.front()];
+    const LightPassPlan plan = plan_light_pass(s, far, camera, light, centre, settings, 0);
+    drawn += draw_light_pass(s, far, frame, light, plan, PassTarget::UnderEye);
   }
 
   Image img = underlay ? s.composite(*underlay, timer, w, h, depths) : read_rgba(s.eye_fbo, w, h);
@@ -421,6 +439,12 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
   }
   describe_slice_frame(img, s.clouds, all_lights, order, settings, camera, underlay ? underlay->scene : nullptr,
                        first_axis, lamp_notes);
+  if (settings.repeat_to_m > 0.0) {
+    std::ostringstream t;
+    t << near.instances.size() << " near, " << far.instances.size() << " far (lit by the first light alone)";
+    if (tiles.left_out > 0) t << ", " << tiles.left_out << " more in reach left out";
+    img.metadata["periodic_copies"] = t.str();
+  }
   if (stats) *stats = frame_stats(timer, drawn, first_axis, order.size());
   return img;
 }

@@ -21,6 +21,14 @@ const ShaderProgram& CloudRenderer::Impl::eye_program(bool underlay, int octaves
   return it->second;
 }
 
+const ShaderProgram& CloudRenderer::Impl::under_program(bool underlay) {
+  std::optional<ShaderProgram>& p = under_programs[underlay ? 1 : 0];
+  if (!p)
+    p.emplace(std::vector<std::string>{"fullscreen.vert.glsl", "cloud_under.frag.glsl"},
+              std::string("#define UNDERLAY ") + (underlay ? "1" : "0") + "\n");
+  return *p;
+}
+
 void CloudRenderer::Impl::upload_mesh(const cloud_detail::SliceMesh& mesh) {
   if (mesh.vertices.size() > mesh_capacity) {
     mesh_capacity = std::max<std::size_t>(mesh.vertices.size(), 2 * mesh_capacity);

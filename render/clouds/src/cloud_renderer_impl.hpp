@@ -44,10 +44,13 @@ struct CloudRenderer::Impl {
   std::vector<cloud_detail::Placement> placements;
   std::vector<cloud_detail::ConvexHull> hulls;           // where each cloud's density can be non-zero
   std::vector<glm::dvec3> hull_points;     // all their vertices
+  std::vector<std::vector<glm::dvec3>> cloud_hull_points;  // each hull's vertices
   ShaderProgram light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 0\n"};
   ShaderProgram lamp_light_program{{"cloud_light.vert.glsl", "cloud_light.frag.glsl"}, "#define LAMP 1\n"};
   ShaderProgram blur_program{{"fullscreen.vert.glsl", "cloud_light_blur.frag.glsl"}};
   std::optional<ShaderProgram> accumulate_program;  // the second light's pass on
+  std::optional<ShaderProgram> under_programs[2];    // the far copies' pass, [underlay]
+  const ShaderProgram& under_program(bool underlay);
   std::map<std::tuple<bool, int, int, bool>, ShaderProgram> eye_programs;  // by (underlay, octaves, MS_VOLUME, lamp)
   std::optional<ShaderProgram> composite_programs[2];  // [spots]: without and with spots in the scene
   const ShaderProgram& composite_program_for(bool spots);

@@ -60,11 +60,16 @@ Camera frame_clouds_right_of(Camera c, const std::vector<CloudVolume>& clouds, b
   return c;
 }
 
-Camera fit_far_plane(Camera c, const std::vector<CloudVolume>& clouds) {
+Camera fit_far_plane(Camera c, const std::vector<CloudVolume>& clouds, double repeat_to_m) {
   if (clouds.empty()) return c;
   glm::dvec3 lo, hi;
   cloud_bounds(clouds, lo, hi);
   c.far_m = std::max(c.far_m, 4.0 * glm::length(hi - c.eye) + glm::length(hi - lo));
+  // A copy is drawn when it comes within repeat_to_m of the eye; its far side is a tile further.
+  if (repeat_to_m > 0.0)
+    for (const CloudVolume& cloud : clouds)
+      if (cloud.period_m.x > 0.0 || cloud.period_m.z > 0.0)
+        c.far_m = std::max(c.far_m, 1.5 * (repeat_to_m + glm::length(cloud.world_max - cloud.world_min)));
   return c;
 }
 

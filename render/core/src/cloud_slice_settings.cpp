@@ -33,6 +33,8 @@ void validate(const CloudSliceSettings& s) {
     throw std::invalid_argument("slice settings branch: not one of auto, front-to-back, back-to-front");
   if (s.max_lights < 1 || s.max_lights > 8)
     throw std::invalid_argument("slice settings max_lights: must be in [1, 8], got " + std::to_string(s.max_lights));
+  if (!(s.repeat_to_m >= 0.0 && s.repeat_to_m <= 1e6))
+    throw std::invalid_argument("slice settings repeat_to_m: must be in [0, 1e6] metres, got " + std::to_string(s.repeat_to_m));
   try {
     validate(s.multiple);
   } catch (const std::invalid_argument& e) {
@@ -54,6 +56,7 @@ void describe_slices(Image& image, const CloudSliceSettings& settings) {
     o << ", octaves " << s.multiple.octaves << " (occlusion " << s.multiple.occlusion << " contribution "
       << s.multiple.contribution << " eccentricity " << s.multiple.eccentricity << ")";
   o << ", branch " << branch_name(s.branch) << ", max_lights " << s.max_lights;
+  if (s.repeat_to_m > 0.0) o << ", periodic tiles repeated to " << s.repeat_to_m << " m";
   image.metadata["slices"] = o.str();
 }
 

@@ -1,6 +1,8 @@
 // Clouds from VDB files and presets (cloud_source.hpp).
 #include "nimbus/render/core/cloud_source.hpp"
 
+#include "nimbus/render/core/world_axes.hpp"
+
 #include <openvdb/tools/ChangeBackground.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <variant>
 
 #include "nimbus/base/memory.hpp"
+#include "nimbus/volume/cloud_model.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/up_axis.hpp"
@@ -25,7 +28,7 @@ UpAxis parse_up_axis(const std::string& text) {
 }
 
 openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps,
-                                        const CloudFileOptions& options) {
+                                        const CloudFileOptions& options, glm::dvec3* period_m) {
   volume::VdbReadOptions ro;
   if (!grid.empty()) ro.grid = grid;
   ro.level_set_to_fog = options.level_set_to_fog;
@@ -47,6 +50,14 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
   for (const auto& [key, value] : f.metadata) {
     const std::string* text = std::get_if<std::string>(&value);
     if (up == UpAxis::Auto && key == "up_axis" && text && *text == "z") z_up = true;
+    if (period_m && key == volume::kPeriodMetadataKey) {
+      double px = 0.0, py = 0.0;
+      char rest = 0;
+      if (!text || std::sscanf(text->c_str(), "%lf %lf %c", &px, &py, &rest) != 2 || !std::isfinite(px) ||
+          !std::isfinite(py) || px < 0.0 || py < 0.0 || px > 1e7 || py > 1e7)
+        throw std::runtime_error(path + ": metadata '" + volume::kPeriodMetadataKey + "' must be two periods in [0, 1e7] metres, 'PX PY'");
+      *period_m = glm::dvec3(px, 0.0, py);  // the world's x and y are the renderer's x and z
+    }
     if (fps && key == "fps") {
       if (const double* d = std::get_if<double>(&value)) *fps = *d;
       if (const int64_t* n = std::get_if<int64_t>(&value)) *fps = static_cast<double>(*n);
@@ -57,7 +68,8 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
 
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
                             const CloudFileOptions& options) {
-  const openvdb::FloatGrid::Ptr g = load_cloud_grid(path, grid, up, nullptr, options);
+  glm::dvec3 period(0.0);
+  const openvdb::FloatGrid::Ptr g = load_cloud_grid(path, grid, up, nullptr, options, &period);
   // The grid's own errors (a box too large to copy densely, a frustum transform...) name the file.
   CloudVolume c;
   try {
@@ -70,6 +82,7 @@ CloudVolume load_cloud_file(const std::string& path, const std::string& grid, Up
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(path + ": " + e.what());
   }
+  c.period_m = period;
   // World extents a camera can frame: a voxel of 1e300 m once reached the camera as Inf.
   constexpr double kMaxWorld = 1e8;  // metres
   for (int a = 0; a < 3; ++a)
@@ -95,7 +108,15 @@ CloudVolume generate_preset_cloud(const PresetCloud& preset, std::optional<doubl
   opt.time = time_s;
   opt.progress = progress;
   const auto grid = volume::generate_density(preset.params, opt);
-  return make_cloud_volume(*volume::rotate_z_up_to_y_up(*grid), optics, preset.name);
+  CloudVolume c = make_cloud_volume(*volume::rotate_z_up_to_y_up(*grid), optics, preset.name);
+  c.period_m = render_period(preset.params);
+  return c;
+}
+
+glm::dvec3 render_period(const volume::CloudParams& params) {
+  const std::optional<volume::PeriodicTile> tile = volume::periodic_tile(params);
+  if (!tile) return glm::dvec3(0.0);
+  return glm::abs(world_to_render(glm::dvec3(tile->size_m, 0.0)));
 }
 
 }  // namespace nimbus::render

@@ -58,7 +58,7 @@ Camera state_camera(const ViewState& state, int width, int height, const std::ve
   c.height = height;
   c.near_m = 1.0;
   c.far_m = 40000.0;  // the sky scene's: its sky ends at 20 km
-  return fit_far_plane(c, clouds);
+  return fit_far_plane(c, clouds, state.slices.repeat_to_m);
 }
 
 FrameDescription frame_description(const ViewState& s, const FrameQuality& q) {

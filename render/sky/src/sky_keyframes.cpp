@@ -16,6 +16,7 @@
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/memory.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
+#include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/up_axis.hpp"
 #include "nimbus/volume/vdb_read.hpp"
@@ -171,6 +172,7 @@ std::vector<CloudVolume> SkyKeyframes::pair(int64_t k) const {
     t->postTranslate(openvdb::Vec3d(slots_[i].position_y.x, slots_[i].position_y.y, slots_[i].position_y.z));
     CloudVolume c = make_cloud_volume(volume::dense_box(ga, box), *t, optics_, slots_[i].name);
     set_next_keyframe(c, volume::dense_box(gb, box), 0.0);
+    c.period_m = render_period(slots_[i].params);
     clouds.push_back(std::move(c));
   }
   return clouds;

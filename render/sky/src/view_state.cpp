@@ -150,8 +150,9 @@ ViewState view_state_from_json(const json& doc, const std::string& where, int* v
         else if (rk == "render_scale") s.render_scale = number(rv, rkey);
         else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
         else if (rk == "jitter") s.slices.jitter = volume::json_bool(rv, rkey);
+        else if (rk == "repeat_to") s.slices.repeat_to_m = number(rv, rkey);
         else if (rk == "shafts") s.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
-        else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, shafts)");
+        else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, repeat_to, shafts)");
       });
     } else if (k != "nimbus" && k != "version") {
       bad(key + ": unknown key (known: version, sky, scene, camera, time, optics, renderer)");
@@ -192,6 +193,7 @@ json view_state_to_json(const ViewState& s) {
             {"render_scale", s.render_scale},
             {"exposure", s.exposure_stops},
             {"jitter", s.slices.jitter},
+            {"repeat_to", s.slices.repeat_to_m},
             {"shafts", to_string(s.shafts)}}}};
 }
 

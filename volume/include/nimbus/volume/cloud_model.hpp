@@ -126,6 +126,9 @@ struct PeriodicTile {
   glm::dvec2 lo_m{0.0}, size_m{0.0};
 };
 std::optional<PeriodicTile> periodic_tile(const CloudParams& p);
+// The VDB metadata key in which `nimbus generate` writes a periodic tile's size, "PX PY" (metres,
+// the world's x and y), so that renderers can draw its copies (render/core cloud_source.hpp).
+inline constexpr const char* kPeriodMetadataKey = "period_m";
 
 // Throws std::invalid_argument naming the parameter.
 void validate(const CloudParams& p);

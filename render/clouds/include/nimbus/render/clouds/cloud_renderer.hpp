@@ -89,7 +89,10 @@ class CloudRenderer {
   // term enters once. Lights left out are named in the metadata key "lights_left_out". A lamp
   // takes the octaves method of multiple scattering (std::invalid_argument with light-volume).
   // `depths`: with an underlay, what each pixel shows and how far (pixel_depths.hpp), read back
-  // from the composite; without one it is left empty.
+  // from the composite; without one it is left empty. With settings.repeat_to_m > 0, periodic
+  // clouds (CloudVolume::period_m) are drawn with copies of their tiles (cloud_tiles.hpp): the
+  // lights' passes draw the near ones, and one more pass, lit by the first light, draws the far
+  // copies under them (metadata key "periodic_copies").
   Image render(const Camera& camera, const std::vector<Light>& lights, const CloudSliceSettings& settings,
                const SceneUnderlay* underlay = nullptr, CloudFrameStats* stats = nullptr,
                PixelDepths* depths = nullptr);

@@ -23,6 +23,7 @@ Camera frame_clouds(Camera camera, const std::vector<CloudVolume>& clouds, bool 
 Camera frame_clouds_right_of(Camera camera, const std::vector<CloudVolume>& clouds, bool on_ground, double covered_px);
 
 // A camera placed by hand: its far plane pushed out, if need be, to reach every cloud.
-Camera fit_far_plane(Camera camera, const std::vector<CloudVolume>& clouds);
+// With repeat_to_m > 0, periodic clouds' copies out to that distance (cloud_tiles.hpp) fit too.
+Camera fit_far_plane(Camera camera, const std::vector<CloudVolume>& clouds, double repeat_to_m = 0.0);
 
 }  // namespace nimbus::render

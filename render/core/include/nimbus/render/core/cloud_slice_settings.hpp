@@ -23,6 +23,10 @@ struct CloudSliceSettings {
   // Lights drawn, one slicing pass (and light buffer) each: the strongest at the clouds' centre
   // (strongest_lights, light.hpp); the rest are left out and named in the metadata. [1, 8]
   int max_lights = 4;
+  // A periodic cloud (CloudVolume::period_m) is drawn with copies of its tile out to this
+  // distance from the eye, metres, so that a field fills the sky to the horizon (cloud_tiles.hpp);
+  // 0: one tile. [0, 1e6]
+  double repeat_to_m = 0.0;
 };
 
 void validate(const CloudSliceSettings& settings);

@@ -30,12 +30,16 @@ struct CloudFileOptions {
 // (volume/vdb_read.hpp). Missing, damaged or hostile files and level sets throw
 // std::runtime_error, an unknown grid volume::GridNotFound (both naming the file), and a box too
 // large to hold OutOfMemoryRequest. Negative values (and a negative background) become 0.
+// A file whose "period_m" metadata (volume::kPeriodMetadataKey) holds two numbers "PX PY" (the world's x and y periods of a
+// periodic field, metres, as `nimbus generate` writes them) gets them as its period
+// (CloudVolume::period_m); anything else in that key is refused as a damaged file.
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
                             const CloudFileOptions& options = {});
 // The same grid, y-up, before it becomes a cloud (the viewer keeps keyframes as grids). `fps`:
 // the file's "fps" metadata when it has one.
 openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up,
-                                        double* fps = nullptr, const CloudFileOptions& options = {});
+                                        double* fps = nullptr, const CloudFileOptions& options = {},
+                                        glm::dvec3* period_m = nullptr);
 
 // A preset's cloud parameters and its own voxel size (metres); std::invalid_argument naming an
 // unknown preset or a bad parameter.
@@ -46,8 +50,14 @@ struct PresetCloud {
 };
 PresetCloud load_preset_cloud(const std::string& name);
 
+// The period of cloud parameters' periodic tile (volume::periodic_tile) in the renderer's frame, as
+// CloudVolume::period_m takes it: the world's x and y periods along render x and z; 0 when the
+// parameters do not repeat.
+glm::dvec3 render_period(const volume::CloudParams& params);
+
 // The preset generated at `time_s` (its density field is a pure function of parameters, seed and
-// time), turned y-up. voxel_size_m: nullopt = the preset's own. progress may be empty.
+// time), turned y-up, with its period (render_period). voxel_size_m: nullopt = the preset's own.
+// progress may be empty.
 CloudVolume generate_preset_cloud(const PresetCloud& preset, std::optional<double> voxel_size_m, double time_s,
                                   const CloudOptics& optics, const std::function<void(double)>& progress = {});
 

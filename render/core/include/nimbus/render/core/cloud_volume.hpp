@@ -29,6 +29,11 @@ struct CloudVolume {
   // World bounds of the support (density can be non-zero only inside): index origin - 1 to
   // origin + size on each axis, as VolumeTexture::world_min/max.
   glm::dvec3 world_min{0.0}, world_max{0.0};
+  // A tile of a periodic field (docs/volume.md, "Periodic fields"): the density repeats with this
+  // period along render x and z (the world's x and y), metres; 0 on an axis: it does not repeat
+  // there, and y is always 0. The slicer draws copies of the tile out to
+  // CloudSliceSettings::repeat_to_m (cloud_tiles.hpp); nothing else reads it.
+  glm::dvec3 period_m{0.0};
 };
 
 // Copies the active box of `grid` (volume::dense_active_box). Throws std::invalid_argument

@@ -73,11 +73,13 @@ struct CloudBlock {
   float blend = 0.0f;                // weight of the next keyframe's density, [0, 1]
   glm::vec3 tc_eye{0.0f};            // the eye's density-texture coordinates
   float pad1 = 0.0f;
+  glm::vec3 copy_offset_m{0.0f};     // a periodic tile's copy: its offset from the cloud (cloud_tiles.hpp), metres
+  float pad2 = 0.0f;
 };
 static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock, albedo) == 64 &&
               offsetof(CloudBlock, sigma_t) == 76 && offsetof(CloudBlock, ambient) == 80 &&
               offsetof(CloudBlock, tau_per_density) == 92 && offsetof(CloudBlock, phase) == 96 && offsetof(CloudBlock, blend) == 108 &&
-              offsetof(CloudBlock, tc_eye) == 112 && sizeof(CloudBlock) == 128,
+              offsetof(CloudBlock, tc_eye) == 112 && offsetof(CloudBlock, copy_offset_m) == 128 && sizeof(CloudBlock) == 144,
               "CloudBlock must follow std140 as lib/cloud_block.glsl declares it");
 
 // lib/cloud_light_block.glsl: SliceLightBlock, the light of the slicer's current pass (the sun,

@@ -51,8 +51,10 @@ struct ViewState {
   // background: keyframe_light_volumes.hpp), or octaves (0-3; also drawn while the first light
   // volume is being built). Light volume photons [1024, 1 << 26]: 2^19, a quarter of `nimbus
   // render`'s, so that a keyframe's volume is made in about half a second on 2 cores
-  // (docs/viewer.md; 0.4-0.5 points more error); cells along the longest axis [4, 192]. The
-  // JSON holds these fields only; the others keep CloudSliceSettings' defaults.
+  // (docs/viewer.md; 0.4-0.5 points more error); cells along the longest axis [4, 192]. A
+  // periodic field's tiles are repeated to 32 km from the eye, within the aerial perspective's
+  // 40 km reach ("repeat_to", [0, 1e6] m; 0: one tile). The JSON holds these fields only; the
+  // others keep CloudSliceSettings' defaults.
   CloudSliceSettings slices = [] {
     CloudSliceSettings s;
     s.slices = 128;
@@ -61,6 +63,7 @@ struct ViewState {
     s.multiple.octaves = 2;
     s.multiple.light_volume.resolution = 48;
     s.multiple.light_volume.photons = 1 << 19;
+    s.repeat_to_m = 32000.0;
     return s;
   }();
   ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)

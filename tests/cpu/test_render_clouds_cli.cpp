@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "nimbus/render/image/image_io.hpp"
+#include "nimbus/volume/vdb_io.hpp"
 #include "support/run_nimbus.hpp"
 
 namespace nimbus::test {
@@ -44,6 +45,57 @@ TEST(RenderCloudsCli, PresetOverTheSkySceneWritesAFinishedFrame) {
   for (std::size_t i = 3; i < img.rgba.size(); i += 4) ASSERT_EQ(img.rgba[i], 1.0f);  // sky everywhere behind
   EXPECT_TRUE(fs::exists(d / "a.png"));
   fs::remove_all(d);
+}
+
+// A periodic field's file says its period (period_m), and render repeats its tile to the horizon
+// under the sky (auto), or as far as --repeat-to says; a bad period in a file is a damaged file.
+TEST(RenderCloudsCli, APeriodicFieldFileIsRepeatedToTheHorizon) {
+  const fs::path d = temp_dir("periodic");
+  const std::string field = (d / "sc.vdb").string();
+  auto g = run_nimbus("generate --preset stratocumulus-field --voxel-size 200 -o " + field);
+  ASSERT_EQ(g.code, 0) << g.output;
+  const auto info = run_nimbus("info " + field);
+  EXPECT_NE(info.output.find("period_m: 10000 10000"), std::string::npos) << info.output;
+  const std::string view = " --scene sky --res 64x36 --slices 32 --light-res 64 --ms-method octaves --sun-elevation 30 "
+                           "--eye 0,-4000,300 --look-at 0,30000,1500 --fov 80 ";
+  auto r = run_nimbus("render " + field + view + "-o " + (d / "a.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image tiled = render::read_exr(d / "a.exr");
+  ASSERT_TRUE(tiled.metadata.count("periodic_copies"));
+  EXPECT_NE(tiled.metadata.at("periodic_copies").find("far"), std::string::npos) << tiled.metadata.at("periodic_copies");
+  // Without the scene, alpha is the clouds' cover: the copies add cloud toward the horizon, where
+  // one tile has ended.
+  const std::string alone = " --scene none --res 64x36 --slices 32 --light-res 64 --ms-method octaves --sun-elevation 30 "
+                            "--eye 0,-4000,300 --look-at 0,30000,1500 --fov 80 ";
+  r = run_nimbus("render " + field + alone + "--repeat-to 32000 -o " + (d / "b.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image copies = render::read_exr(d / "b.exr");
+  r = run_nimbus("render " + field + alone + "-o " + (d / "c.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const render::Image one = render::read_exr(d / "c.exr");
+  EXPECT_FALSE(one.metadata.count("periodic_copies")) << "auto is one tile without the sky";
+  double alpha_copies = 0.0, alpha_one = 0.0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x) {
+      alpha_copies += copies.pixel(x, y)[3];
+      alpha_one += one.pixel(x, y)[3];
+    }
+  EXPECT_GT(alpha_copies, alpha_one + 64.0) << alpha_copies << " against " << alpha_one;
+  for (const char* bad : {"-1", "2e6", "far", "nan"}) {
+    const auto e = run_nimbus("render " + field + view + "--repeat-to " + bad + " -o " + (d / "c.exr").string());
+    EXPECT_EQ(e.code, 2) << bad;
+    EXPECT_NE(e.output.find("--repeat-to"), std::string::npos) << e.output;
+  }
+  // A period that is not two numbers is a damaged file, named.
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->tree().setValueOn(openvdb::Coord(0, 0, 0), 0.5f);
+  volume::ExportInfo ei;
+  ei.extra = {{"period_m", std::string("10000 north")}};
+  volume::write_volume_vdb(d / "bad.vdb", {grid}, ei);
+  const auto e = run_nimbus("render " + (d / "bad.vdb").string() + view + "-o " + (d / "c.exr").string());
+  EXPECT_EQ(e.code, 1) << e.output;
+  EXPECT_NE(e.output.find("period_m"), std::string::npos) << e.output;
 }
 
 TEST(RenderCloudsCli, GeneratedFileAndPresetGiveTheSameImage) {

@@ -279,8 +279,9 @@ PassClouds pass_clouds(const CloudRenderer::Impl& s, std::vector<CloudInstance> 
 
 // The slices of a pass with copies (cloud_tiles.hpp): the near pass keeps the slab that the
 // clouds alone (one copy each) get along the axis, up to three times the slices (a thicker slab
-// shows as grain, through the jitter); the far pass, whose copies lie at least half a tile beyond
-// the near ones, gets twice that slab, within the same bounds.
+// shows as grain, through the jitter). The far pass, whose copies lie at least half a tile beyond
+// the near ones and cover little of the frame, gets twice that slab, and never more than the
+// settings' slices (docs/volume.md, "To the horizon": its cost against its error).
 double extent_along(const std::vector<glm::dvec3>& points, const glm::dvec3& axis) {
   double lo = 1e300, hi = -1e300;
   for (const glm::dvec3& p : points) {
@@ -294,7 +295,8 @@ int tile_slices(const CloudRenderer::Impl& s, const PassClouds& pc, const glm::d
   if (!pc.moved && !pc.far) return slices;
   const double alone = extent_along(s.hull_points, axis);
   if (!(alone > 0.0)) return slices;
-  const double scale = std::clamp((pc.far ? 0.5 : 1.0) * extent_along(pc.hull_points, axis) / alone, 1.0, 3.0);
+  const double ratio = extent_along(pc.hull_points, axis) / alone;
+  const double scale = pc.far ? std::clamp(0.5 * ratio, 0.5, 1.0) : std::clamp(ratio, 1.0, 3.0);
   return std::min(4096, static_cast<int>(std::lround(slices * scale)));
 }
 

@@ -101,7 +101,8 @@ void main() {
   float lit = cloud_octaves(cloud.phase, u_octave_abc, OCTAVES, -dot(light_dir, q) * inv_len, tau);
 #if MS_VOLUME
 #if MS_VOLUME == 2
-  vec3 scattered = light_volume_radiance(v_world + k * q);  // made for this eye and the clouds' phase
+  // made for this eye (a copy's toward the eye moved back by its offset) and the clouds' phase
+  vec3 scattered = light_volume_radiance(v_world + k * q - cloud.copy_offset_m);
 #else
   // A copy of a periodic tile reads its cloud's light volume where its cloud is.
   vec3 scattered = light_volume_inscatter(v_world + k * q - cloud.copy_offset_m, -q * inv_len, cloud.phase);

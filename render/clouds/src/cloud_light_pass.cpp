@@ -143,8 +143,8 @@ std::vector<CloudBlock> cloud_blocks(const CloudRenderer::Impl& s, const PassClo
 // Draws slice k's polygons, binding each copy's block and its cloud's textures when the copy changes.
 class SliceDrawer {
  public:
-  SliceDrawer(const CloudRenderer::Impl& s, const PassClouds& pc, const SliceMesh& mesh)
-      : s_(s), pc_(pc), mesh_(mesh), bound_(pc.instances.size()) {}
+  SliceDrawer(const CloudRenderer::Impl& s, const PassClouds& pc, const SliceMesh& mesh, bool copy_radiance)
+      : s_(s), pc_(pc), mesh_(mesh), bound_(pc.instances.size()), copy_radiance_(copy_radiance) {}
 
   bool any(int k) const {
     const std::size_t n = pc_.instances.size();
@@ -171,21 +171,26 @@ class SliceDrawer {
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, s_.textures[j].texture.id());
     const VolumeTexture& next = s_.next_textures[j] ? *s_.next_textures[j] : s_.textures[j];
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, next.texture.id());
+    if (copy_radiance_) {
+      const int k = pc_.radiance[i];
+      glBindTextureUnit(contract::UNIT_LIGHT_RADIANCE, k < 0 ? s_.light_radiance_tex.id() : s_.copy_radiance_tex[k].id());
+    }
   }
 
   const CloudRenderer::Impl& s_;
   const PassClouds& pc_;
   const SliceMesh& mesh_;
   std::size_t bound_;  // the copy whose block is bound (none yet: the count)
+  bool copy_radiance_;  // each copy binds its own radiance toward the eye
 };
 
 // The slice loop: each slice is drawn into the eye target lit from the light buffer, then its
 // optical depth is added into the light buffer (after the blur, when there is one) for the next.
 int draw_slices(CloudRenderer::Impl& s, const PassClouds& pc, const FrameContext& frame, const LightPassPlan& plan,
-                const ShaderProgram& eye, const ShaderProgram& lp, const GlFramebuffer& target) {
+                const ShaderProgram& eye, const ShaderProgram& lp, const GlFramebuffer& target, bool copy_radiance) {
   const bool blur = frame.settings.blur_cone_rad > 0.0;
   const int w = frame.camera.width, h = frame.camera.height;
-  SliceDrawer slices(s, pc, plan.mesh);
+  SliceDrawer slices(s, pc, plan.mesh, copy_radiance);
   int drawn = 0;
   int cur = 0;
   for (int k = 0; k < plan.planes.count; ++k) {
@@ -326,9 +331,10 @@ int draw_light_pass(CloudRenderer::Impl& s, const PassClouds& pc, const FrameCon
                     const LightPassPlan& plan, PassTarget to) {
   const CloudSliceSettings& settings = frame.settings;
   s.upload_mesh(plan.mesh);
-  // The frame's radiance toward the eye was made at the clouds' own cells: a moved copy, seen from
-  // elsewhere, reads the light volume per sample instead.
-  const bool light_radiance = frame.light_radiance && !pc.moved;
+  // The frame's radiance toward the eye was made at the clouds' own cells: copies read theirs,
+  // made toward the eye moved back by their offsets, or the light volume per sample.
+  const bool copy_radiance = pc.moved && pc.radiance.size() == pc.instances.size();
+  const bool light_radiance = frame.light_radiance && (!pc.moved || copy_radiance);
   const ShaderProgram& eye = s.eye_program(frame.underlay != nullptr, frame.light_volume ? 0 : settings.multiple.octaves,
                                            frame.light_volume ? (light_radiance ? 2 : 1) : 0, plan.lamp);
   const ShaderProgram& lp = plan.lamp ? s.lamp_light_program : s.light_program;
@@ -354,7 +360,7 @@ int draw_light_pass(CloudRenderer::Impl& s, const PassClouds& pc, const FrameCon
   }
   if (frame.underlay) glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, frame.underlay->distance_texture);
   glBindVertexArray(s.mesh_vao.id());
-  const int drawn = draw_slices(s, pc, frame, plan, eye, lp, target);
+  const int drawn = draw_slices(s, pc, frame, plan, eye, lp, target, light_radiance && copy_radiance);
   if (to == PassTarget::AddToEye) accumulate_pass(s, frame);
   if (to == PassTarget::UnderEye) under_pass(s, frame);
   glDisable(GL_BLEND);

@@ -25,6 +25,10 @@ struct PassClouds {
   std::vector<glm::dvec3> hull_points;  // all their vertices
   bool moved = false;                   // a copy lies off its cloud (an offset is not 0)
   bool far = false;                     // the far copies' pass (tile_slices)
+  // With copies (moved): each one's radiance toward the eye, -1 the clouds' own
+  // (light_radiance_tex), else copy_radiance_tex[k]; empty: none made, the pass reads the light
+  // volume per sample.
+  std::vector<int> radiance;
 };
 PassClouds pass_clouds(const CloudRenderer::Impl& s, std::vector<CloudInstance> instances);
 

@@ -174,12 +174,15 @@ void CloudRenderer::Impl::set_light_volume_uniforms(const ShaderProgram& program
   program.set("u_lv_light_dir", to_float(lv_light_dir));
 }
 
-void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase) {
-  if (light_radiance_tex.id() == 0 || lr_cells != lv_cells) {
-    light_radiance_tex = make_texture_3d(GL_RGBA32F, 2 * lv_cells.x, lv_cells.y, lv_cells.z,
-                                         TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
+void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase, GlTexture& target) {
+  if (lr_cells != lv_cells) {  // a new grid: every texture made again at its size
+    light_radiance_tex.reset();
+    copy_radiance_tex.clear();
     lr_cells = lv_cells;
   }
+  if (target.id() == 0)
+    target = make_texture_3d(GL_RGBA32F, 2 * lv_cells.x, lv_cells.y, lv_cells.z,
+                             TextureParams{GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 1});
   if (!radiance_program) radiance_program.emplace(std::vector<std::string>{"light_volume_radiance.comp.glsl"});
   const ShaderProgram& p = *radiance_program;
   p.use();
@@ -187,7 +190,7 @@ void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::
   p.set("u_lr_phase", phase);
   p.set("u_eye", to_float(eye));
   glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, light_volume_tex.id());
-  glBindImageTexture(contract::IMAGE_LIGHT_RADIANCE, light_radiance_tex.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(contract::IMAGE_LIGHT_RADIANCE, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((lv_cells.x + 3) / 4, (lv_cells.y + 3) / 4, (lv_cells.z + 3) / 4);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   check_gl("the light volume's radiance toward the eye");
@@ -307,6 +310,38 @@ CloudFrameStats frame_stats(GpuTimer& timer, int slices_drawn, const SliceAxis& 
   return st;
 }
 
+// The near pass's copies' radiance toward the eye (one texture per offset, at most
+// kMaxCopyRadiance), and which texture each copy reads. Each costs an evaluation per cell of the
+// light volume, where reading the volume per sample costs one per fragment: they are made when the
+// pass's fragments (at most slices x pixels) outnumber the cells by kCellsPerFragment, else (and
+// for more offsets) the pass reads the light volume per sample. Measured on the default view
+// (docs/volume.md, "To the horizon"): a full-quality frame's slices 944 -> 777 ms with them, and
+// the adaptive orbit's lowest level slower with them (the cells outweigh its fragments).
+constexpr std::size_t kMaxCopyRadiance = 16;
+constexpr double kCellsPerFragment = 4.0;
+void make_copy_radiance(CloudRenderer::Impl& s, PassClouds& near, const Camera& camera, int slices,
+                        const glm::vec3& phase) {
+  if (!near.moved) return;
+  std::vector<glm::dvec3> offsets;
+  std::vector<int> which;
+  for (const CloudInstance& i : near.instances) {
+    if (i.offset_m == glm::dvec3(0.0)) {
+      which.push_back(-1);
+      continue;
+    }
+    const auto it = std::find(offsets.begin(), offsets.end(), i.offset_m);
+    which.push_back(static_cast<int>(it - offsets.begin()));
+    if (it == offsets.end()) offsets.push_back(i.offset_m);
+  }
+  const double cells = static_cast<double>(s.lv_cells.x) * s.lv_cells.y * s.lv_cells.z;
+  const double fragments = static_cast<double>(slices) * camera.width * camera.height;
+  if (offsets.size() > kMaxCopyRadiance || fragments < kCellsPerFragment * cells * static_cast<double>(offsets.size())) return;
+  if (s.copy_radiance_tex.size() < offsets.size()) s.copy_radiance_tex.resize(offsets.size());
+  for (std::size_t k = 0; k < offsets.size(); ++k)
+    s.make_light_radiance(camera.eye - offsets[k], phase, s.copy_radiance_tex[k]);
+  near.radiance = std::move(which);
+}
+
 }  // namespace
 
 const ShaderProgram& CloudRenderer::Impl::composite_program_for(bool spots) {
@@ -374,7 +409,7 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
   const std::vector<int> order = lights_drawn(all_lights, centre, settings, light_volume);
   // The copies drawn (cloud_tiles.hpp): without periodic clouds, every cloud where it is.
   CloudTilePlan tiles = plan_cloud_tiles(s.clouds, camera, settings.repeat_to_m);
-  PassClouds near = pass_clouds(s, std::move(tiles.near));
+  PassClouds near = pass_clouds(s, std::move(tiles.near));  // (make_copy_radiance fills its radiance)
   PassClouds far = pass_clouds(s, std::move(tiles.far));
   far.far = true;
 
@@ -395,7 +430,8 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
   });
 
   // The light volume's radiance toward this eye, once for every slice, when the clouds share one
-  // phase (in a sky they do); clouds of several phases read the volume per sample.
+  // phase (in a sky they do); clouds of several phases read the volume per sample. The near
+  // pass's copies get theirs too (a few); the far ones read the volume per sample.
   bool light_radiance = false;
   if (light_volume && !s.clouds.empty()) {
     const DualLobePhase& g = s.clouds.front().optics.phase;
@@ -404,9 +440,10 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
              c.optics.phase.forward_weight == g.forward_weight;
     };
     if (std::all_of(s.clouds.begin(), s.clouds.end(), same)) {
+      const glm::vec3 phase(static_cast<float>(g.g_forward), static_cast<float>(g.g_back), static_cast<float>(g.forward_weight));
       timer.time(kLight, [&] {
-        s.make_light_radiance(camera.eye, glm::vec3(static_cast<float>(g.g_forward), static_cast<float>(g.g_back),
-                                                    static_cast<float>(g.forward_weight)));
+        s.make_light_radiance(camera.eye, phase, s.light_radiance_tex);
+        make_copy_radiance(s, near, camera, settings.slices, phase);
       });
       light_radiance = true;
     }

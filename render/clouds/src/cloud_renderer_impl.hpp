@@ -86,9 +86,12 @@ struct CloudRenderer::Impl {
   // The light volume's radiance toward this frame's eye at its cell centres, for clouds of phase
   // lr_phase (make_light_radiance; lib/cloud_light_volume.glsl's light_volume_radiance).
   GlTexture light_radiance_tex;
+  // The same for the near pass's copies of periodic tiles (cloud_tiles.hpp): copy i's texture is
+  // made toward the eye moved back by its offset, on the clouds' own grid.
+  std::vector<GlTexture> copy_radiance_tex;
   glm::ivec3 lr_cells{0};
   std::optional<ShaderProgram> radiance_program;
-  void make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase);
+  void make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase, GlTexture& target);
 
   // ms_volume: MS_VOLUME of cloud_slice.frag.glsl (0 none, 1 per sample, 2 the frame's radiance).
   const ShaderProgram& eye_program(bool underlay, int octaves, int ms_volume, bool lamp);

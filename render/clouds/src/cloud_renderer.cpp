@@ -175,9 +175,9 @@ void CloudRenderer::Impl::set_light_volume_uniforms(const ShaderProgram& program
 }
 
 void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase, GlTexture& target) {
-  if (lr_cells != lv_cells) {  // a new grid: every texture made again at its size
+  if (lr_cells != lv_cells) {  // a new grid: every texture made again at its size (`target` among them)
     light_radiance_tex.reset();
-    copy_radiance_tex.clear();
+    for (GlTexture& t : copy_radiance_tex) t.reset();
     lr_cells = lv_cells;
   }
   if (target.id() == 0)

@@ -38,12 +38,14 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   s.render_scale = 0.5;
   s.exposure_stops = -1.5;
   s.slices.jitter = false;
+  s.slices.repeat_to_m = 12500.0;
   const json j = view_state_to_json(s);
   const ViewState t = view_state_from_json(j, "state");
   EXPECT_EQ(view_state_to_json(t), j);
   EXPECT_EQ(t.camera.eye, s.camera.eye);
   EXPECT_EQ(t.paused, true);
   EXPECT_EQ(t.slices.jitter, false);
+  EXPECT_EQ(t.slices.repeat_to_m, 12500.0);
   EXPECT_EQ(t.optics.phase.g_back, -0.3);
   EXPECT_EQ(t.slices.multiple.method, MultipleScatteringMethod::Octaves);
   EXPECT_EQ(t.slices.multiple.light_volume.resolution, 64);
@@ -51,7 +53,9 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   // A state saved before the light volume reached the viewer gets its defaults.
   json old = j;
   for (const char* k : {"ms_method", "ms_grid", "ms_photons"}) old["optics"].erase(k);
+  old["renderer"].erase("repeat_to");  // and one saved before the sky reached the horizon, 32 km
   const ViewState u = view_state_from_json(old, "old state");
+  EXPECT_EQ(u.slices.repeat_to_m, 32000.0);
   EXPECT_EQ(u.slices.multiple.method, MultipleScatteringMethod::LightVolume);
   EXPECT_EQ(u.slices.multiple.light_volume.photons, ViewState{}.slices.multiple.light_volume.photons);
 }
@@ -104,6 +108,11 @@ TEST(ViewState, BadContentsNameTheKey) {
   j = good;
   j["renderer"]["slices"] = 3;
   EXPECT_NE(error_of(j).find("renderer.slices"), std::string::npos) << error_of(j);
+  for (const json& r : {json(-1.0), json(2e6), json("far"), json(nullptr)}) {
+    j = good;
+    j["renderer"]["repeat_to"] = r;
+    EXPECT_NE(error_of(j).find("renderer.repeat_to"), std::string::npos) << error_of(j);
+  }
   j = good;
   j["renderer"]["shafts"] = "reference";
   EXPECT_NE(error_of(j).find("renderer.shafts"), std::string::npos) << error_of(j);

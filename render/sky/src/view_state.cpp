@@ -87,6 +87,8 @@ void validate(const ViewState& s) {
     bad("view state optics.ms_photons: must be in [1024, 67108864]");
   if (s.slices.slices < 8 || s.slices.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
   if (s.slices.light_res < 32 || s.slices.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
+  if (!(s.slices.repeat_to_m >= 0.0 && s.slices.repeat_to_m <= 1e6))
+    bad("view state renderer.repeat_to: must be in [0, 1e6] metres");
   try {
     validate(s.slices);  // what the JSON does not hold: the defaults, or a program's own
   } catch (const std::invalid_argument& e) {

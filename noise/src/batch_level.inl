@@ -5,14 +5,61 @@
 
 #include "batch_level.hpp"
 #include "kernels.hpp"
+#include "row_axis.hpp"
 
 namespace nimbus::noise::level {
 namespace {
 
 using Lanes = simd::Batch<NIMBUS_WIDTH>;
 
+// Rows through the grid's RowAxis: the x axis split once, loaded by every row.
+template <class Bt, Kind K, bool Animated>
+void rows_from_axis(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
+  using F = typename Bt::F;
+  constexpr int W = Bt::width;
+  const int64_t nx = g.res[0], ny = g.res[1];
+  thread_local kernels::RowAxis ra;
+  thread_local std::vector<float> cells[kMaxOctaves];        // Worley: the row's cell tables
+  thread_local std::vector<uint32_t> lattice[kMaxOctaves];   // value, gradient: the row's tables
+  kernels::build_row_axis(fd, g, W, ra);
+  const int octaves = fd.fractal == Fractal::None ? 1 : fd.octaves;
+  kernels::RowContext rc;
+  const double x_lo = g.origin[0], x_hi = g.origin[0] + double(nx - 1) * g.spacing;
+  for (int64_t row = r0; row < r1; ++row) {
+    const int64_t j = row % ny, k = row / ny;
+    kernels::prepare_row<Bt>(fd, g.origin[1] + double(j) * g.spacing,
+                             g.origin[2] + double(k) * g.spacing, x_lo, x_hi, rc, nullptr);
+    for (int o = 0; o < octaves; ++o) {
+      kernels::RowOctave& ro = rc.oct[o];
+      ro.wcells = nullptr;
+      ro.lcells = nullptr;
+      if (!ra.cell_table[o]) continue;
+      if constexpr (K == Kind::Worley) {
+        kernels::worley_row_cells(fd, ra, o, ro, cells[o]);
+        ro.wcells = cells[o].data();
+      } else if (W == 1) {
+        // Lane groups measured faster hashing their corners than permuting a table's.
+        kernels::lattice_row_cells(fd, ra, o, ro, W, lattice[o], ro.lstride);
+        ro.lcells = lattice[o].data();
+      }
+    }
+    float* dst = out + row * nx;
+    for (int64_t i = 0; i < nx; i += W) {
+      const F v = kernels::field_row_axis<Bt, K, Animated>(fd, ra, i, rc);
+      const int64_t n = nx - i < W ? nx - i : W;
+      std::memcpy(dst + i, &v, sizeof(float) * size_t(n));
+    }
+  }
+}
+
 template <class Bt, Kind K>
 void rows_of_kind(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1, float* out) {
+  if constexpr (K != Kind::Wavelet) {
+    if (kernels::row_axis_pays(fd, g, r0, r1)) {
+      return fd.animated ? rows_from_axis<Bt, K, true>(fd, g, r0, r1, out)
+                         : rows_from_axis<Bt, K, false>(fd, g, r0, r1, out);
+    }
+  }
   using D = typename Bt::D;
   using F = typename Bt::F;
   constexpr int W = Bt::width;

@@ -167,13 +167,23 @@ NIMBUS_INLINE typename B::U corner_hash(const Axis<B>* a, int k, uint32_t seed) 
   return hash::mix<U>(h ^ seed);
 }
 
+// Value noise from the hashes of the 8 corners (corner_hash order) and the fractions.
 template <class B>
-NIMBUS_INLINE typename B::F value3(const Axis<B>* a, uint32_t seed) {
+NIMBUS_INLINE typename B::F value3_cell(const typename B::U* h, typename B::F tx, typename B::F ty,
+                                        typename B::F tz) {
   using F = typename B::F;
   F v[8];
 #pragma GCC unroll 16
-  for (int k = 0; k < 8; ++k) v[k] = lattice_value<B>(corner_hash<B>(a, k, seed));
-  return blend8(v, fade(a[0].t), fade(a[1].t), fade(a[2].t));
+  for (int k = 0; k < 8; ++k) v[k] = lattice_value<B>(h[k]);
+  return blend8(v, fade(tx), fade(ty), fade(tz));
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F value3(const Axis<B>* a, uint32_t seed) {
+  typename B::U h[8];
+#pragma GCC unroll 16
+  for (int k = 0; k < 8; ++k) h[k] = corner_hash<B>(a, k, seed);
+  return value3_cell<B>(h, a[0].t, a[1].t, a[2].t);
 }
 
 // Perlin's improved noise for given gradient indices at the 8 corners (raw, unscaled).
@@ -213,13 +223,22 @@ NIMBUS_INLINE typename B::U corner_hash4(const Axis<B>* a, int k, uint32_t seed)
 // by the fade s of the time fraction and divided by sqrt((1-s)^2 + s^2) so the variance is
 // the same at every time (time_norm also holds the 1/sqrt(2) that keeps |n| <= 1).
 template <class B>
-NIMBUS_INLINE typename B::F value4(const Axis<B>* a, uint32_t seed, float time_norm) {
+NIMBUS_INLINE typename B::F value4_cell(const typename B::U* h, typename B::F tx, typename B::F ty,
+                                        typename B::F tz, typename B::F tw, float time_norm) {
   using F = typename B::F;
   F v[16];
 #pragma GCC unroll 16
-  for (int k = 0; k < 16; ++k) v[k] = lattice_value<B>(corner_hash4<B>(a, k, seed));
-  const F sx = fade(a[0].t), sy = fade(a[1].t), sz = fade(a[2].t);
-  return lerp(fade(a[3].t), blend8(v, sx, sy, sz), blend8(v + 8, sx, sy, sz)) * time_norm;
+  for (int k = 0; k < 16; ++k) v[k] = lattice_value<B>(h[k]);
+  const F sx = fade(tx), sy = fade(ty), sz = fade(tz);
+  return lerp(fade(tw), blend8(v, sx, sy, sz), blend8(v + 8, sx, sy, sz)) * time_norm;
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F value4(const Axis<B>* a, uint32_t seed, float time_norm) {
+  typename B::U h[16];
+#pragma GCC unroll 16
+  for (int k = 0; k < 16; ++k) h[k] = corner_hash4<B>(a, k, seed);
+  return value4_cell<B>(h, a[0].t, a[1].t, a[2].t, a[3].t, time_norm);
 }
 
 template <class B>
@@ -445,34 +464,105 @@ NIMBUS_INLINE typename B::F cell_d2(const CellAxis<B>* a, int dx, int dy, int dz
   return ex * ex + ey * ey + ez * ez;
 }
 
-// 1 - F1. The 27 cells around the sample first; the 98 cells of the next shell only when some
-// lane's nearest point so far lies farther than that shell can begin (min over axes of
-// t + 1 and 2 - t, at least 1), which is rare. The minimum is exact, so searching the shell
-// for every lane of a batch gives each lane the bits the scalar path gives it.
-template <class B, class DY, class DZ>
-NIMBUS_INLINE typename B::F worley3(const detail::OctaveData& o, bool animated, typename B::D X, DY Y,
-                                    DZ Z) {
-  using F = typename B::F;
-  const CellAxis<B> a[3] = {cell_axis<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
-                            cell_axis_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
-                            cell_axis_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ)};
-  F best = splat<F>(16.0f);
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        best = simd::min(best, cell_d2<B>(a, dx, dy, dz, o.seed, animated, o.cell_time));
-  F shell = splat<F>(2.0f);
-  for (int k = 0; k < 3; ++k) shell = simd::min(shell, simd::min(a[k].t + 1.0f, 2.0f - a[k].t));
-  // The margin keeps lanes that skip the shell exact under rounding of the shell's distances.
-  if (simd::any(best > shell * shell * 0.9999f)) {
+// Lower bound of |e| on one axis for the cell d steps away (d in -2..2), e = (d + p) - t with
+// the point's coordinate p in [0, 1] and the sample's fraction t in [0, 1): |e| >= t - 1 - d
+// behind the sample, d - t ahead, 0 in its own cell.
+template <class F>
+NIMBUS_INLINE F axis_gap(F t, int d) {
+  if (d < 0) return t + float(-1 - d);
+  if (d > 0) return float(d) - t;
+  return splat<F>(0.0f);
+}
+
+// The cells (dx, dy, dz) of the search, nearest first: the own cell, the 6 faces, the 12 edges,
+// the 8 corners, then the 98 cells of the next shell. Visiting near cells first makes the
+// running minimum small early, so the bound below skips more of the later cells.
+struct CellOffsets {
+  int8_t d[125][3];
+  int inner;  // the first 27 are the 3x3x3 block
+};
+
+constexpr CellOffsets make_cell_offsets() {
+  CellOffsets c{};
+  int n = 0;
+  for (int ring = 0; ring <= 6; ++ring)  // |dx| + |dy| + |dz| for the inner block, then the shell
     for (int dz = -2; dz <= 2; ++dz)
       for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) {
-          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1) continue;
-          best = simd::min(best, cell_d2<B>(a, dx, dy, dz, o.seed, animated, o.cell_time));
+          const int adx = dx < 0 ? -dx : dx, ady = dy < 0 ? -dy : dy, adz = dz < 0 ? -dz : dz;
+          const bool inner = adx <= 1 && ady <= 1 && adz <= 1;
+          if (inner && adx + ady + adz == ring) {
+            c.d[n][0] = int8_t(dx), c.d[n][1] = int8_t(dy), c.d[n][2] = int8_t(dz);
+            ++n;
+          }
         }
+  c.inner = n;
+  for (int dz = -2; dz <= 2; ++dz)
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const int adx = dx < 0 ? -dx : dx, ady = dy < 0 ? -dy : dy, adz = dz < 0 ? -dz : dz;
+        if (adx <= 1 && ady <= 1 && adz <= 1) continue;
+        c.d[n][0] = int8_t(dx), c.d[n][1] = int8_t(dy), c.d[n][2] = int8_t(dz);
+        ++n;
+      }
+  return c;
+}
+
+inline constexpr CellOffsets kCellOffsets = make_cell_offsets();
+
+// 1 - F1 from the sample's cell axes. A cell is searched only when, for some lane, the lower
+// bound of its squared distance (axis_gap on each axis) is below that lane's nearest point so
+// far; the margin covers the rounding of the computed distances, so a skipped cell could never
+// have lowered any lane's minimum. The minimum of a set is the same in any order, so each lane
+// gets the bits of a search of all 125 cells (the 98 of the outer shell can matter only when F1
+// exceeds 1), whatever the lane width. The 27 inner cells are pruned only on the scalar path
+// (PruneInner): across lanes the test is taken about half the time, and the mispredicted branch
+// costs more than the cell. inner_d2(dx, dy, dz) gives the squared distances of the
+// 27 inner cells (cell_d2, or the same values from a row's cell table).
+template <bool PruneInner, class B, class InnerD2>
+NIMBUS_INLINE typename B::F worley_search(const CellAxis<B>* a, uint32_t seed, bool animated, float time,
+                                          InnerD2&& inner_d2) {
+  using F = typename B::F;
+  F gap2[3][5];
+  for (int k = 0; k < 3; ++k)
+    for (int d = -2; d <= 2; ++d) {
+      const F g = axis_gap(a[k].t, d);
+      gap2[k][d + 2] = g * g;
+    }
+  F best = inner_d2(0, 0, 0);
+  auto search = [&](int c) NIMBUS_INLINE_LAMBDA {
+    const int dx = kCellOffsets.d[c][0], dy = kCellOffsets.d[c][1], dz = kCellOffsets.d[c][2];
+    const F bound = (gap2[0][dx + 2] + gap2[1][dy + 2] + gap2[2][dz + 2]) * 0.9999f;
+    return simd::any(bound < best);
+  };
+  for (int c = 1; c < kCellOffsets.inner; ++c)
+    if (!PruneInner || search(c)) best = simd::min(best, inner_d2(kCellOffsets.d[c][0], kCellOffsets.d[c][1], kCellOffsets.d[c][2]));
+  // The shell begins at least min over axes of (t + 1, 2 - t) >= 1 away: most samples stop here.
+  F shell = splat<F>(2.0f);
+  for (int k = 0; k < 3; ++k) shell = simd::min(shell, simd::min(a[k].t + 1.0f, 2.0f - a[k].t));
+  if (simd::any(best > shell * shell * 0.9999f)) {
+    for (int c = kCellOffsets.inner; c < 125; ++c)
+      if (search(c))
+        best = simd::min(best, cell_d2<B>(a, kCellOffsets.d[c][0], kCellOffsets.d[c][1], kCellOffsets.d[c][2],
+                                          seed, animated, time));
   }
   return 1.0f - simd::sqrt(best);
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F worley3_cells(const CellAxis<B>* a, uint32_t seed, bool animated, float time) {
+  return worley_search<B::width == 1, B>(a, seed, animated, time, [&](int dx, int dy, int dz) NIMBUS_INLINE_LAMBDA {
+    return cell_d2<B>(a, dx, dy, dz, seed, animated, time);
+  });
+}
+
+template <class B, class DY, class DZ>
+NIMBUS_INLINE typename B::F worley3(const detail::OctaveData& o, bool animated, typename B::D X, DY Y,
+                                    DZ Z) {
+  const CellAxis<B> a[3] = {cell_axis<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
+                            cell_axis_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
+                            cell_axis_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ)};
+  return worley3_cells<B>(a, o.seed, animated, o.cell_time);
 }
 
 // ---- One sample of the whole field -----------------------------------------------------
@@ -548,6 +638,13 @@ NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, 
 // order wavelet3_slice adds them, so a sample needs 3 taps instead of 27 and the same bits.
 struct RowOctave {
   Axis<Batch<1>> y, z, w;
+  // Value, gradient: the y, z (and w) part of each corner's hash before mixing, with the seed:
+  // corner k hashes mix(hx[k & 1] ^ yzw[k >> 1]), the same bits as corner_hash(4).
+  uint32_t yzw[8];
+  CellAxis<Batch<1>> cy, cz;  // Worley: the row's y and z cell axes
+  const float* wcells = nullptr;  // Worley: the row's cell table (row_axis.hpp), or none
+  const uint32_t* lcells = nullptr;  // value, gradient: the row's lattice table, or none
+  int64_t lstride = 0;               // its entries per corner combination
   float* cols[3];
 };
 
@@ -619,11 +716,15 @@ inline void prepare_row(const detail::FieldData& fd, double y, double z, double 
     RowOctave& r = rc.oct[i];
     const double Y = y * o.freq, Z = z * o.freq;
     if (fd.kind == Kind::Worley) {
-      // Nothing to share: each sample searches its own cells.
+      r.cy = cell_axis<B1>(Y, o.period[1], o.iperiod[1], hash::kPrimeY);
+      r.cz = cell_axis<B1>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ);
     } else if (fd.kind != Kind::Wavelet) {
       r.y = split<B1>(Y, o.period[1], o.iperiod[1], hash::kPrimeY);
       r.z = split<B1>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ);
       if (fd.animated) r.w = split<B1>(o.time, 0.0, 0, hash::kPrimeW);
+      for (int j = 0; j < 8; ++j)
+        r.yzw[j] = ((j & 1) ? r.y.h1 : r.y.h0) ^ ((j & 2) ? r.z.h1 : r.z.h0) ^
+                   (fd.animated ? ((j & 4) ? r.w.h1 : r.w.h0) : 0u) ^ o.seed;
     } else if (!fd.projected) {
       // The taps reach one node either side of the nodes nearest to the row's ends.
       const int64_t lo = static_cast<int64_t>(std::floor(x_lo * o.freq + 0.5)) - 1;
@@ -675,6 +776,95 @@ NIMBUS_INLINE typename B::F field_row(const detail::FieldData& fd, typename B::D
         r = s == 0 ? sx * o.slice_weight[0] : r + o.slice_weight[s] * sx;
       }
       return r;
+    }
+  });
+}
+
+// One lane group of a grid row from the grid's RowAxis (row_axis.hpp): the x axis is loaded,
+// y, z and time come from the row context; no double arithmetic. Value, gradient and Worley.
+template <class T>
+NIMBUS_INLINE T load_lanes(const std::remove_reference_t<decltype(lane(T{}, 0))>* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return v;
+}
+
+template <class B, Kind K, bool Animated, class RowAxisT>
+NIMBUS_INLINE typename B::F field_row_axis(const detail::FieldData& fd, const RowAxisT& ra, int64_t i,
+                                           const RowContext& rc) {
+  using F = typename B::F;
+  using U = typename B::U;
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int oi) NIMBUS_INLINE_LAMBDA -> F {
+    const RowOctave& r = rc.oct[oi];
+    const F tx = load_lanes<F>(ra.frac(oi) + i);
+    if constexpr (K == Kind::Worley) {
+      CellAxis<B> a[3];
+      for (int s = 0; s < 5; ++s) {
+        a[0].h[s] = load_lanes<U>(ra.hash(oi, s) + i);
+        a[1].h[s] = splat<U>(r.cy.h[s]);
+        a[2].h[s] = splat<U>(r.cz.h[s]);
+      }
+      a[0].t = tx;
+      a[1].t = splat<F>(r.cy.t);
+      a[2].t = splat<F>(r.cz.t);
+      if (r.wcells) {
+        using I = typename B::I;
+        const I k = load_lanes<I>(ra.cell(oi) + i);
+        const int32_t k_lo = lane(k, 0), k_hi = lane(k, B::width - 1);  // x grows along the lanes
+        if (k_hi - k_lo <= 1) {  // the lanes lie in one or two cells: read the row's table
+          const auto first = k == splat<I>(k_lo);
+          return worley_search<false, B>(a, o.seed, Animated, o.cell_time,
+                                  [&](int dx, int dy, int dz) NIMBUS_INLINE_LAMBDA {
+                                    const float* e0 = r.wcells + (size_t(k_lo + 1 + dx) * 9 +
+                                                                  size_t((dy + 1) * 3 + (dz + 1))) * 3;
+                                    const float* e1 = e0 + 27;
+                                    const F px = select(first, splat<F>(e0[0]), splat<F>(e1[0]));
+                                    const F ey2 = select(first, splat<F>(e0[1]), splat<F>(e1[1]));
+                                    const F ez2 = select(first, splat<F>(e0[2]), splat<F>(e1[2]));
+                                    const F ex = (float(dx) + px) - tx;
+                                    return ex * ex + ey2 + ez2;
+                                  });
+        }
+      }
+      return worley3_cells<B>(a, o.seed, Animated, o.cell_time);
+    } else {
+      const U hx[2] = {load_lanes<U>(ra.hash(oi, 0) + i), load_lanes<U>(ra.hash(oi, 1) + i)};
+      const F ty = splat<F>(r.y.t), tz = splat<F>(r.z.t);
+      constexpr int corners = Animated ? 16 : 8;
+      U h[corners];
+      bool hashed = false;
+      if (r.lcells) {
+        using I = typename B::I;
+        const I k = load_lanes<I>(ra.cell(oi) + i);
+        const int32_t k_lo = lane(k, 0), k_hi = lane(k, B::width - 1);  // x grows along the lanes
+        if (B::width == 1 || k_hi - k_lo + 2 <= B::width) {
+          // The lanes' corners lie within one lane group of the row's table: load and permute.
+          const U rel = bitcast<U>(k - k_lo);
+#pragma GCC unroll 16
+          for (int j = 0; j < corners / 2; ++j) {
+            const uint32_t* e = r.lcells + size_t(j) * size_t(r.lstride) + size_t(k_lo);
+            h[2 * j] = permute(load_lanes<U>(e), rel);
+            h[2 * j + 1] = permute(load_lanes<U>(e + 1), rel);
+          }
+          hashed = true;
+        }
+      }
+      if (!hashed) {
+#pragma GCC unroll 16
+        for (int k = 0; k < corners; ++k) h[k] = hash::mix<U>(hx[k & 1] ^ r.yzw[k >> 1]);
+      }
+      if constexpr (Animated) {
+        const F tw = splat<F>(r.w.t);
+        if constexpr (K == Kind::Value) return value4_cell<B>(h, tx, ty, tz, tw, o.time_norm);
+#pragma GCC unroll 16
+        for (int k = 0; k < 16; ++k) h[k] = h[k] >> 27;
+        return gradient4_cell<B>(h, tx, ty, tz, tw) * kGradientScale4;
+      } else {
+        if constexpr (K == Kind::Value) return value3_cell<B>(h, tx, ty, tz);
+#pragma GCC unroll 16
+        for (int k = 0; k < 8; ++k) h[k] = edge_index3(h[k]);
+        return gradient3_cell<B>(h, tx, ty, tz) * kGradientScale3;
+      }
     }
   });
 }

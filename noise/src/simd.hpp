@@ -230,6 +230,17 @@ NIMBUS_INLINE F gather(const float* table, I idx) {
   }
 }
 
+// r[l] = v[idx[l]] for lane indices idx[l] < width (vpermd where the target has it).
+template <class U>
+NIMBUS_INLINE U permute(U v, U idx) {
+  if constexpr (std::is_arithmetic_v<U>) {
+    (void)idx;
+    return v;
+  } else {
+    return __builtin_shuffle(v, idx);
+  }
+}
+
 // Lane-wise minimum (a < b ? a : b; neither argument is ever NaN in the kernels).
 template <class F>
 NIMBUS_INLINE F min(F a, F b) {
@@ -244,6 +255,33 @@ NIMBUS_INLINE F sqrt(F x) {
   } else {
     constexpr int n = sizeof(F) / sizeof(float);
     F r;
+#if defined(__AVX512F__)
+    if constexpr (n == 16) {
+      __m512 v;
+      std::memcpy(&v, &x, sizeof v);
+      v = _mm512_sqrt_ps(v);
+      std::memcpy(&r, &v, sizeof v);
+      return r;
+    }
+#endif
+#if defined(__AVX__)
+    if constexpr (n == 8) {
+      __m256 v;
+      std::memcpy(&v, &x, sizeof v);
+      v = _mm256_sqrt_ps(v);
+      std::memcpy(&r, &v, sizeof v);
+      return r;
+    }
+#endif
+#if defined(__SSE4_1__)
+    if constexpr (n == 4) {
+      __m128 v;
+      std::memcpy(&v, &x, sizeof v);
+      v = _mm_sqrt_ps(v);
+      std::memcpy(&r, &v, sizeof v);
+      return r;
+    }
+#endif
     for (int i = 0; i < n; ++i) r[i] = std::sqrt(x[i]);
     return r;
   }
@@ -263,6 +301,28 @@ NIMBUS_INLINE bool any(M m) {
     return m;
   } else {
     constexpr int n = sizeof(M) / sizeof(m[0]);
+    static_assert(sizeof(m[0]) == 4, "any() takes 32-bit lane masks");
+#if defined(__AVX512F__)
+    if constexpr (n == 16) {
+      __m512i v;
+      std::memcpy(&v, &m, sizeof v);
+      return _mm512_test_epi32_mask(v, v) != 0;
+    }
+#endif
+#if defined(__AVX__)
+    if constexpr (n == 8) {
+      __m256 v;
+      std::memcpy(&v, &m, sizeof v);
+      return _mm256_movemask_ps(v) != 0;  // the sign bit of each lane of -1 / 0
+    }
+#endif
+#if defined(__SSE4_1__)
+    if constexpr (n == 4) {
+      __m128 v;
+      std::memcpy(&v, &m, sizeof v);
+      return _mm_movemask_ps(v) != 0;
+    }
+#endif
     bool r = false;
     for (int i = 0; i < n; ++i) r |= m[i] != 0;
     return r;

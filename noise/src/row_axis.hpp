@@ -1,0 +1,132 @@
+// The x axis of a grid's rows, split once per grid: every row of a GridSpec has the same x
+// coordinates, so the hashed lattice (or cell) coordinates and the fraction of each sample and
+// octave are computed once, in double precision, and loaded by every row; the row loop then
+// holds no double arithmetic. The values are those split() and cell_axis() give per sample.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "kernels.hpp"
+#include "nimbus/noise/batch.hpp"
+
+namespace nimbus::noise {
+inline namespace NIMBUS_KERNEL_NS {
+namespace kernels {
+
+struct RowAxis {
+  int64_t n = 0;                 // entries per array: the row's samples, padded to whole lane groups
+  int slots = 0;                 // hashes per sample: 2 corners (value, gradient) or 5 cells (Worley)
+  std::vector<uint32_t> hashes;  // [octave][slot][sample]
+  std::vector<float> fracs;      // [octave][sample]
+  // Each sample's cell relative to the row's first, and per octave the first cell and
+  // how many cells the row spans; a row's cell table (worley_row_cells, lattice_row_cells) pays
+  // when a cell holds several samples on average.
+  std::vector<int32_t> cells;  // [octave][sample]
+  int64_t first_cell[kMaxOctaves] = {};
+  int64_t span[kMaxOctaves] = {};
+  bool cell_table[kMaxOctaves] = {};
+
+  const uint32_t* hash(int octave, int slot) const {
+    return hashes.data() + (size_t(octave) * size_t(slots) + size_t(slot)) * size_t(n);
+  }
+  const float* frac(int octave) const { return fracs.data() + size_t(octave) * size_t(n); }
+  const int32_t* cell(int octave) const { return cells.data() + size_t(octave) * size_t(n); }
+};
+
+// Whether a row loop over rows [r0, r1) should use a RowAxis: it pays for itself when more than
+// one row shares it, and its size stays that of a few rows of output.
+inline bool row_axis_pays(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1) {
+  return fd.kind != Kind::Wavelet && r1 - r0 >= 2 && g.res[0] <= (int64_t(1) << 16);
+}
+
+// Sample i lies at x = origin + min(i, nx - 1) * spacing (GridSpec::point's doubles); octave o
+// splits x * freq, as the per-sample path does.
+inline void build_row_axis(const detail::FieldData& fd, const GridSpec& g, int width, RowAxis& ra) {
+  using B1 = simd::Batch<1>;
+  const int64_t nx = g.res[0];
+  ra.n = (nx + width - 1) / width * width;
+  ra.slots = fd.kind == Kind::Worley ? 5 : 2;
+  const int octaves = fd.fractal == Fractal::None ? 1 : fd.octaves;
+  ra.hashes.resize(size_t(octaves) * size_t(ra.slots) * size_t(ra.n));
+  ra.fracs.resize(size_t(octaves) * size_t(ra.n));
+  ra.cells.resize(size_t(octaves) * size_t(ra.n));
+  for (int o = 0; o < octaves; ++o) {
+    const detail::OctaveData& od = fd.oct[o];
+    uint32_t* h = ra.hashes.data() + size_t(o) * size_t(ra.slots) * size_t(ra.n);
+    float* t = ra.fracs.data() + size_t(o) * size_t(ra.n);
+    for (int64_t i = 0; i < ra.n; ++i) {
+      const double X = (g.origin[0] + double(std::min(i, nx - 1)) * g.spacing) * od.freq;
+      if (fd.kind == Kind::Worley) {
+        const CellAxis<B1> a = cell_axis<B1>(X, od.period[0], od.iperiod[0], hash::kPrimeX);
+        for (int s = 0; s < 5; ++s) h[s * ra.n + i] = a.h[s];
+        t[i] = a.t;
+      } else {
+        const Axis<B1> a = split<B1>(X, od.period[0], od.iperiod[0], hash::kPrimeX);
+        h[i] = a.h0;
+        h[ra.n + i] = a.h1;
+        t[i] = a.t;
+      }
+      // x grows with i, so the first sample's cell is the row's first (|X| < 2^51: exact).
+      const auto c = static_cast<int64_t>(floor_exact(X));
+      if (i == 0) ra.first_cell[o] = c;
+      ra.cells[size_t(o) * size_t(ra.n) + size_t(i)] = int32_t(std::min<int64_t>(c - ra.first_cell[o], 1 << 30));
+      ra.span[o] = c - ra.first_cell[o] + 1;
+    }
+    // A row's table costs 27 cell points (Worley) or 4 to 8 corner hashes (lattice) per cell;
+    // a sample without it costs 27 points or 8 to 16 hashes.
+    ra.cell_table[o] = (ra.span[o] + 2) * (fd.kind == Kind::Worley ? 4 : 2) <= nx;
+  }
+}
+
+// A row's lattice table for octave o: for the lattice points m = 0 .. span + 1 along x (the row's
+// first cell's lower corner onwards) and each y, z (and time) corner combination j, the mixed
+// corner hash mix(hx ^ yzw[j]) that corner_hash gives; `pad` zeros follow each combination, so
+// a lane group may load past the end. Layout: [j][m].
+inline void lattice_row_cells(const detail::FieldData& fd, const RowAxis& ra, int o, const RowOctave& r,
+                              int pad, std::vector<uint32_t>& table, int64_t& stride) {
+  using B1 = simd::Batch<1>;
+  const detail::OctaveData& od = fd.oct[o];
+  const int64_t points = ra.span[o] + 1;
+  const int combos = fd.animated ? 8 : 4;
+  stride = points + pad;
+  table.assign(size_t(combos) * size_t(stride), 0u);
+  for (int64_t m = 0; m < points; ++m) {
+    // The hashed corners of cell c are split(c).h0 and h1, so lattice point first + m is h0 of
+    // its own cell, or h1 of the cell before (which carries the period's wrap).
+    const double c = double(ra.first_cell[o] - 1 + m);
+    const uint32_t hx = split<B1>(c, od.period[0], od.iperiod[0], hash::kPrimeX).h1;
+    for (int j = 0; j < combos; ++j) table[size_t(j) * size_t(stride) + size_t(m)] = hash::mix<uint32_t>(hx ^ r.yzw[j]);
+  }
+}
+
+// A row's Worley cell table for octave o: for the cells m = 0 .. span + 1 (the row's cells with
+// one more on each side) and each (dy, dz) in [-1, 1]^2, the point's x offset px and the terms
+// ey^2, ez^2 of its squared distance, which y and z fix for the whole row. The values are
+// cell_point's and cell_d2's, so a sample reading them gets the same bits.
+inline void worley_row_cells(const detail::FieldData& fd, const RowAxis& ra, int o, const RowOctave& r,
+                             std::vector<float>& table) {
+  using B1 = simd::Batch<1>;
+  const detail::OctaveData& od = fd.oct[o];
+  const int64_t cells = ra.span[o] + 2;
+  table.resize(size_t(cells) * 27);
+  for (int64_t m = 0; m < cells; ++m) {
+    const double c = double(ra.first_cell[o] - 1 + m);
+    const uint32_t hx = cell_axis<B1>(c, od.period[0], od.iperiod[0], hash::kPrimeX).h[2];
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        float p[3];
+        cell_point<B1>(hx, r.cy.h[dy + 2], r.cz.h[dz + 2], od.seed, fd.animated, od.cell_time, p);
+        const float ey = (float(dy) + p[1]) - r.cy.t;
+        const float ez = (float(dz) + p[2]) - r.cz.t;
+        float* e = table.data() + (size_t(m) * 9 + size_t((dy + 1) * 3 + (dz + 1))) * 3;
+        e[0] = p[0];
+        e[1] = ey * ey;
+        e[2] = ez * ez;
+      }
+  }
+}
+
+}  // namespace kernels
+}  // inline namespace
+}  // namespace nimbus::noise

@@ -1,10 +1,12 @@
 // Grid rows and point blocks for NIMBUS_WIDTH lanes; included once per level source file,
 // each compiled with its own instruction-set flags.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
 #include "batch_level.hpp"
 #include "kernels.hpp"
+#include "point_axes.hpp"
 #include "row_axis.hpp"
 
 namespace nimbus::noise::level {
@@ -46,8 +48,10 @@ void rows_from_axis(const detail::FieldData& fd, const GridSpec& g, int64_t r0, 
     float* dst = out + row * nx;
     for (int64_t i = 0; i < nx; i += W) {
       const F v = kernels::field_row_axis<Bt, K, Animated>(fd, ra, i, rc);
-      const int64_t n = nx - i < W ? nx - i : W;
-      std::memcpy(dst + i, &v, sizeof(float) * size_t(n));
+      if (nx - i >= W)
+        std::memcpy(dst + i, &v, sizeof(F));  // a whole lane group: one store
+      else
+        std::memcpy(dst + i, &v, sizeof(float) * size_t(nx - i));
     }
   }
 }
@@ -104,8 +108,8 @@ void rows(const detail::FieldData& fd, const GridSpec& g, int64_t r0, int64_t r1
   }
 }
 
-template <class Bt>
-void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t count, float* out) {
+template <class Bt, Kind K>
+void points_of_kind(const detail::FieldData& fd, const std::array<double, 3>* p, size_t count, float* out) {
   using D = typename Bt::D;
   using F = typename Bt::F;
   constexpr int W = Bt::width;
@@ -123,9 +127,53 @@ void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t 
         z[l] = p[il][2];
       }
     }
-    const F v = kernels::field<Bt>(fd, x, y, z);
-    const size_t n = count - i < size_t(W) ? count - i : size_t(W);
-    std::memcpy(out + i, &v, sizeof(float) * n);
+    const F v = kernels::field<Bt, K>(fd, x, y, z);
+    if (count - i >= size_t(W))
+      std::memcpy(out + i, &v, sizeof(F));
+    else
+      std::memcpy(out + i, &v, sizeof(float) * (count - i));
+  }
+}
+
+// Points in blocks: each block's coordinates split first (point_axes.hpp), in lane groups of
+// half the width, so the kernel's lane loop holds no double arithmetic. Value, gradient, Worley.
+template <class Bt, Kind K>
+void points_from_axes(const detail::FieldData& fd, const std::array<double, 3>* p, size_t count, float* out) {
+  using F = typename Bt::F;
+  using Half = simd::Batch<(NIMBUS_WIDTH > 1 ? NIMBUS_WIDTH / 2 : 1)>;
+  constexpr size_t W = size_t(Bt::width);
+  constexpr size_t kBlock = kernels::PointAxes::kBlock;
+  static_assert(kBlock % W == 0, "a block holds whole lane groups");
+  thread_local kernels::PointAxes pa;
+  for (size_t b = 0; b < count; b += kBlock) {
+    const size_t m = std::min(kBlock, count - b);
+    kernels::split_points<Half>(fd, p + b, m, (m + W - 1) / W * W, pa);
+    for (size_t i = 0; i < m; i += W) {
+      const F v = kernels::fractal_sum<Bt>(fd, [&](const detail::OctaveData& o, int oi) NIMBUS_INLINE_LAMBDA {
+        return kernels::octave_from_axes<Bt, K>(fd, o, pa, oi, i);
+      });
+      if (m - i >= W)
+        std::memcpy(out + b + i, &v, sizeof(F));
+      else
+        std::memcpy(out + b + i, &v, sizeof(float) * (m - i));
+    }
+  }
+}
+
+template <class Bt>
+void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t count, float* out) {
+  if (count == 0) return;
+  switch (fd.kind) {
+    case Kind::Value: return points_from_axes<Bt, Kind::Value>(fd, p, count, out);
+    case Kind::Gradient: return points_from_axes<Bt, Kind::Gradient>(fd, p, count, out);
+    case Kind::Worley: return points_from_axes<Bt, Kind::Worley>(fd, p, count, out);
+    case Kind::Wavelet: break;
+  }
+  switch (fd.kind) {
+    case Kind::Value: return points_of_kind<Bt, Kind::Value>(fd, p, count, out);
+    case Kind::Gradient: return points_of_kind<Bt, Kind::Gradient>(fd, p, count, out);
+    case Kind::Wavelet: return points_of_kind<Bt, Kind::Wavelet>(fd, p, count, out);
+    case Kind::Worley: return points_of_kind<Bt, Kind::Worley>(fd, p, count, out);
   }
 }
 

@@ -132,7 +132,6 @@ template <class U>
 NIMBUS_INLINE U edge_index3(U h) {
   return ((h >> 8) * 12u) >> 24;
 }
-
 // g . (x, y, z, w) for the 32 tesseract-edge gradients: one component 0, three +-1.
 template <class B>
 NIMBUS_INLINE typename B::F edge_dot4(typename B::U idx, typename B::F x, typename B::F y,
@@ -186,20 +185,26 @@ NIMBUS_INLINE typename B::F value3(const Axis<B>* a, uint32_t seed) {
   return value3_cell<B>(h, a[0].t, a[1].t, a[2].t);
 }
 
-// Perlin's improved noise for given gradient indices at the 8 corners (raw, unscaled).
+// Perlin's improved noise for given gradient indices at the 8 corners (raw, unscaled), with
+// the fractions' fades given (a grid row computes those of y and z once). TY, TZ: a lane type,
+// or float for a value shared by every lane.
+template <class B, class TY, class TZ>
+NIMBUS_INLINE typename B::F gradient3_faded(const typename B::U* idx, typename B::F tx, TY ty, TZ tz,
+                                            typename B::F sx, TY sy, TZ sz) {
+  using F = typename B::F;
+  const F dy[2] = {splat<F>(ty), splat<F>(ty - 1.0f)};
+  const F dz[2] = {splat<F>(tz), splat<F>(tz - 1.0f)};
+  const F dx[2] = {tx, tx - 1.0f};
+  F g[8];
+#pragma GCC unroll 16
+  for (int k = 0; k < 8; ++k) g[k] = edge_dot3<B>(idx[k], dx[k & 1], dy[(k >> 1) & 1], dz[k >> 2]);
+  return blend8(g, sx, splat<F>(sy), splat<F>(sz));
+}
+
 template <class B>
 NIMBUS_INLINE typename B::F gradient3_cell(const typename B::U* idx, typename B::F tx,
                                            typename B::F ty, typename B::F tz) {
-  using F = typename B::F;
-  F g[8];
-#pragma GCC unroll 16
-  for (int k = 0; k < 8; ++k) {
-    const F dx = (k & 1) ? tx - 1.0f : tx;
-    const F dy = (k & 2) ? ty - 1.0f : ty;
-    const F dz = (k & 4) ? tz - 1.0f : tz;
-    g[k] = edge_dot3<B>(idx[k], dx, dy, dz);
-  }
-  return blend8(g, fade(tx), fade(ty), fade(tz));
+  return gradient3_faded<B>(idx, tx, ty, tz, fade(tx), fade(ty), fade(tz));
 }
 
 template <class B>
@@ -266,6 +271,37 @@ NIMBUS_INLINE typename B::F gradient4(const Axis<B>* a, uint32_t seed) {
 #pragma GCC unroll 16
   for (int k = 0; k < 16; ++k) idx[k] = corner_hash4<B>(a, k, seed) >> 27;
   return gradient4_cell<B>(idx, a[0].t, a[1].t, a[2].t, a[3].t) * kGradientScale4;
+}
+
+// At an integer time the second time slice has weight fade(0) = 0, and lerp(0, a, b) = a + 0 (b - a)
+// is a itself wherever a != 0: only the first slice's 8 corners are needed. Lane groups where
+// some a is +-0 take the full blend, which decides the sign of that zero. Same bits either way.
+template <class B>
+NIMBUS_INLINE typename B::F value4_integer_time(const Axis<B>* a, uint32_t seed, float time_norm) {
+  using F = typename B::F;
+  F v[8];
+#pragma GCC unroll 16
+  for (int k = 0; k < 8; ++k) v[k] = lattice_value<B>(corner_hash4<B>(a, k, seed));
+  const F first = blend8(v, fade(a[0].t), fade(a[1].t), fade(a[2].t));
+  if (simd::any(first == 0.0f)) return value4<B>(a, seed, time_norm);
+  return first * time_norm;
+}
+
+template <class B>
+NIMBUS_INLINE typename B::F gradient4_integer_time(const Axis<B>* a, uint32_t seed) {
+  using F = typename B::F;
+  const F tx = a[0].t, ty = a[1].t, tz = a[2].t, tw = a[3].t;
+  F g[8];
+#pragma GCC unroll 16
+  for (int k = 0; k < 8; ++k) {
+    const F dx = (k & 1) ? tx - 1.0f : tx;
+    const F dy = (k & 2) ? ty - 1.0f : ty;
+    const F dz = (k & 4) ? tz - 1.0f : tz;
+    g[k] = edge_dot4<B>(corner_hash4<B>(a, k, seed) >> 27, dx, dy, dz, tw);
+  }
+  const F first = blend8(g, fade(tx), fade(ty), fade(tz));
+  if (simd::any(first == 0.0f)) return gradient4<B>(a, seed);
+  return first * kGradientScale4;
 }
 
 // ---- Wavelet noise -------------------------------------------------------------------
@@ -496,7 +532,7 @@ constexpr CellOffsets make_cell_offsets() {
             ++n;
           }
         }
-  c.inner = n;
+  c.inner = n;  // 27
   for (int dz = -2; dz <= 2; ++dz)
     for (int dy = -2; dy <= 2; ++dy)
       for (int dx = -2; dx <= 2; ++dx) {
@@ -535,7 +571,8 @@ NIMBUS_INLINE typename B::F worley_search(const CellAxis<B>* a, uint32_t seed, b
     const F bound = (gap2[0][dx + 2] + gap2[1][dy + 2] + gap2[2][dz + 2]) * 0.9999f;
     return simd::any(bound < best);
   };
-  for (int c = 1; c < kCellOffsets.inner; ++c)
+#pragma GCC unroll 27
+  for (int c = 1; c < 27; ++c)
     if (!PruneInner || search(c)) best = simd::min(best, inner_d2(kCellOffsets.d[c][0], kCellOffsets.d[c][1], kCellOffsets.d[c][2]));
   // The shell begins at least min over axes of (t + 1, 2 - t) >= 1 away: most samples stop here.
   F shell = splat<F>(2.0f);
@@ -549,9 +586,9 @@ NIMBUS_INLINE typename B::F worley_search(const CellAxis<B>* a, uint32_t seed, b
   return 1.0f - simd::sqrt(best);
 }
 
-template <class B>
+template <class B, bool Prune = B::width == 1>
 NIMBUS_INLINE typename B::F worley3_cells(const CellAxis<B>* a, uint32_t seed, bool animated, float time) {
-  return worley_search<B::width == 1, B>(a, seed, animated, time, [&](int dx, int dy, int dz) NIMBUS_INLINE_LAMBDA {
+  return worley_search<Prune, B>(a, seed, animated, time, [&](int dx, int dy, int dz) NIMBUS_INLINE_LAMBDA {
     return cell_d2<B>(a, dx, dy, dz, seed, animated, time);
   });
 }
@@ -568,15 +605,27 @@ NIMBUS_INLINE typename B::F worley3(const detail::OctaveData& o, bool animated, 
 // ---- One sample of the whole field -----------------------------------------------------
 
 // One octave at x (per lane) and y, z (per lane, or shared by all lanes as doubles).
-template <class B, class DY, class DZ>
+// K: the field's kind, fixed at compile time where the caller knows it (each kind's loop is then
+// compiled on its own, without the others' registers), or Kind(-1) to read fd.kind.
+inline constexpr Kind kAnyKind = static_cast<Kind>(-1);
+
+template <class B, Kind K = kAnyKind, class DY, class DZ>
 NIMBUS_INLINE typename B::F octave_noise(const detail::FieldData& fd, const detail::OctaveData& o,
                                          typename B::D x, DY y, DZ z) {
+  if constexpr (K == kAnyKind) {
+    switch (fd.kind) {
+      case Kind::Value: return octave_noise<B, Kind::Value>(fd, o, x, y, z);
+      case Kind::Gradient: return octave_noise<B, Kind::Gradient>(fd, o, x, y, z);
+      case Kind::Wavelet: return octave_noise<B, Kind::Wavelet>(fd, o, x, y, z);
+      case Kind::Worley: return octave_noise<B, Kind::Worley>(fd, o, x, y, z);
+    }
+  }
   using F = typename B::F;
   using D = typename B::D;
   const D X = x * o.freq;
   const DY Y = y * o.freq;
   const DZ Z = z * o.freq;
-  if (fd.kind == Kind::Wavelet) {
+  if constexpr (K == Kind::Wavelet) {
     if (fd.projected) {
       F r;
       if constexpr (B::width == 1) {
@@ -589,16 +638,19 @@ NIMBUS_INLINE typename B::F octave_noise(const detail::FieldData& fd, const deta
     }
     return wavelet3<B>(fd, o, X, Y, Z);
   }
-  if (fd.kind == Kind::Worley) return worley3<B>(o, fd.animated, X, Y, Z);
+  if constexpr (K == Kind::Worley) return worley3<B>(o, fd.animated, X, Y, Z);
   Axis<B> a[4] = {split<B>(X, o.period[0], o.iperiod[0], hash::kPrimeX),
                   split_any<B>(Y, o.period[1], o.iperiod[1], hash::kPrimeY),
                   split_any<B>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ),
                   {}};
   if (fd.animated) {
     a[3] = split_any<B>(o.time, 0.0, 0, hash::kPrimeW);
-    return fd.kind == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
+    if (o.time == std::floor(o.time))  // the second time slice has weight 0 (see above)
+      return K == Kind::Value ? value4_integer_time<B>(a, o.seed, o.time_norm)
+                              : gradient4_integer_time<B>(a, o.seed);
+    return K == Kind::Value ? value4<B>(a, o.seed, o.time_norm) : gradient4<B>(a, o.seed);
   }
-  return fd.kind == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
+  return K == Kind::Value ? value3<B>(a, o.seed) : gradient3<B>(a, o.seed);
 }
 
 // The fractal sum over octaves; octave(o, i) evaluates one octave.
@@ -624,10 +676,10 @@ NIMBUS_INLINE typename B::F fractal_sum(const detail::FieldData& fd, OctaveFn&& 
   return acc * fd.inv_amp_sum;
 }
 
-template <class B, class DY, class DZ>
+template <class B, Kind K = kAnyKind, class DY, class DZ>
 NIMBUS_INLINE typename B::F field(const detail::FieldData& fd, typename B::D x, DY y, DZ z) {
   return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int) NIMBUS_INLINE_LAMBDA {
-    return octave_noise<B>(fd, o, x, y, z);
+    return octave_noise<B, K>(fd, o, x, y, z);
   });
 }
 
@@ -641,6 +693,7 @@ struct RowOctave {
   // Value, gradient: the y, z (and w) part of each corner's hash before mixing, with the seed:
   // corner k hashes mix(hx[k & 1] ^ yzw[k >> 1]), the same bits as corner_hash(4).
   uint32_t yzw[8];
+  float fy = 0.0f, fz = 0.0f;  // value, gradient: fade of the y and z fractions
   CellAxis<Batch<1>> cy, cz;  // Worley: the row's y and z cell axes
   const float* wcells = nullptr;  // Worley: the row's cell table (row_axis.hpp), or none
   const uint32_t* lcells = nullptr;  // value, gradient: the row's lattice table, or none
@@ -722,6 +775,8 @@ inline void prepare_row(const detail::FieldData& fd, double y, double z, double 
       r.y = split<B1>(Y, o.period[1], o.iperiod[1], hash::kPrimeY);
       r.z = split<B1>(Z, o.period[2], o.iperiod[2], hash::kPrimeZ);
       if (fd.animated) r.w = split<B1>(o.time, 0.0, 0, hash::kPrimeW);
+      r.fy = fade(r.y.t);
+      r.fz = fade(r.z.t);
       for (int j = 0; j < 8; ++j)
         r.yzw[j] = ((j & 1) ? r.y.h1 : r.y.h0) ^ ((j & 2) ? r.z.h1 : r.z.h0) ^
                    (fd.animated ? ((j & 4) ? r.w.h1 : r.w.h0) : 0u) ^ o.seed;
@@ -863,7 +918,7 @@ NIMBUS_INLINE typename B::F field_row_axis(const detail::FieldData& fd, const Ro
         if constexpr (K == Kind::Value) return value3_cell<B>(h, tx, ty, tz);
 #pragma GCC unroll 16
         for (int k = 0; k < 8; ++k) h[k] = edge_index3(h[k]);
-        return gradient3_cell<B>(h, tx, ty, tz) * kGradientScale3;
+        return gradient3_faded<B>(h, tx, r.y.t, r.z.t, fade(tx), r.fy, r.fz) * kGradientScale3;
       }
     }
   });

@@ -47,7 +47,9 @@ struct Batch<1> {
 
 template <class T>
 NIMBUS_INLINE T splat(auto s) {
-  if constexpr (std::is_arithmetic_v<T>) {
+  if constexpr (std::is_same_v<decltype(s), T>) {  // already lanes (or the scalar path's scalar)
+    return s;
+  } else if constexpr (std::is_arithmetic_v<T>) {
     return static_cast<T>(s);
   } else {
     using E = std::remove_reference_t<decltype(T{}[0])>;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_noise_fastnoise2.hpp"
 #include "bench_noise_harness.hpp"
 #include "cli/cli.hpp"
 #include "nimbus/noise/noise.hpp"
@@ -50,6 +51,8 @@ struct BenchOptions {
   int64_t res = 128;
   bool quick = false;
   bool all_levels = false;
+  std::string fastnoise2 = NIMBUS_FASTNOISE2_LIBRARY;  // libFastNoise.so, or "" for none
+  bool fastnoise2_only = false;
 };
 
 std::string spacing_name(double s) { return s == 1.0 / 16.0 ? "1/16" : fmt("%g", s); }
@@ -313,6 +316,11 @@ int run_bench_noise(BenchOptions o) {
     o.repeats = 1;
     o.res = 64;
   }
+  if (o.fastnoise2_only && o.fastnoise2.empty())
+    throw UsageError("--fastnoise2-only: needs --fastnoise2 PATH (or NIMBUS_FASTNOISE2_LIBRARY at configure time)");
+  // Loaded first, so that a bad path fails before minutes of timing.
+  std::unique_ptr<FastNoise2> fn2;
+  if (!o.fastnoise2.empty()) fn2 = std::make_unique<FastNoise2>(o.fastnoise2);
   const std::vector<SimdLevel> levels = simd_levels(o.all_levels);
   const int64_t res = o.res;
   const int64_t mt_res = std::max<int64_t>(res, std::min<int64_t>(2 * res, 256));
@@ -324,6 +332,11 @@ int run_bench_noise(BenchOptions o) {
   // timed block or field construction in the loop rebuilds it.
   const noise::NoiseField wavelet_keepalive(params(Kind::Wavelet, 1));
   print_preamble(o, load_before);
+  if (fn2) fastnoise2_rows(*fn2, res, o.repeats);
+  if (o.fastnoise2_only) {
+    std::printf("Load average at end: %s\n", load_average().c_str());
+    return 0;
+  }
   for (double spacing : {1.0 / 16.0, 1.37}) {
     const noise::GridSpec grid = cube(res, spacing);
     std::vector<Row> rows;
@@ -340,6 +353,9 @@ int run_bench_noise(BenchOptions o) {
 #if !NIMBUS_HAVE_GLM
   std::printf("(glm anchor not built: glm headers not found)\n\n");
 #endif
+  if (!fn2)
+    std::printf("(FastNoise2 anchor not given: --fastnoise2 PATH, or -DNIMBUS_FASTNOISE2_LIBRARY=PATH at configure "
+                "time; docs/bench-noise.md says how to build it)\n\n");
   wavelet_build_rows(o);
   threaded_rows(o, mt_res);
   std::printf("Load average at end: %s\n", load_average().c_str());
@@ -356,6 +372,10 @@ void add_bench_noise(CLI::App& bench, Action& action) {
   cmd->add_option("--res", o->res, "samples per axis of the cube (8..512)")->capture_default_str();
   cmd->add_flag("--quick", o->quick, "smoke test: overrides to --repeats 1 --res 64");
   cmd->add_flag("--all-levels", o->all_levels, "time every supported SIMD level, not only the best");
+  cmd->add_option("--fastnoise2", o->fastnoise2,
+                  "a FastNoise2 shared library (libFastNoise.so, built from its public source) to time beside nimbus")
+      ->capture_default_str();
+  cmd->add_flag("--fastnoise2-only", o->fastnoise2_only, "time only the FastNoise2 comparison");
   cmd->callback([&action, o] { action = [o] { return run_bench_noise(*o); }; });
 }
 

@@ -315,11 +315,17 @@ double CloudModel::calm(double z0) const {
   return smoothstep01(std::min(above_base, below_ceiling));
 }
 
-float CloudModel::finish(double s, double w, float billow_noise, float detail, float furrow, float cauli) const {
+double CloudModel::unbitten(double s, double w, float billow_noise) const {
   const double z = w * (double(billow_noise) - mean_) * inv_sd_ + (1.0 - w) * kBaseBillow;
+  return s * (1.0 + params_.billow * z) - threshold_;
+}
+
+float CloudModel::finish(double s, double w, float billow_noise, float detail, float furrow, float cauli) const {
+  // eaten >= 0 (erosion, furrows, cauliflower in [0, 1]; turbulence and ridged sums >= 0;
+  // Perlin-Worley in [0, 1]) and w >= 0, so f <= unbitten in floating point too.
   const double eaten = params_.erosion * double(detail) + params_.furrows * double(furrow) +
                        params_.cauliflower * (1.0 - double(cauli));
-  const double f = s * (1.0 + params_.billow * z) - threshold_ - w * eaten;
+  const double f = unbitten(s, w, billow_noise) - w * eaten;
   return gas_density(static_cast<float>(f), params_.gas);
 }
 
@@ -330,6 +336,7 @@ float CloudModel::density(const glm::dvec3& p) const {
   if (!(s > min_useful_coverage_)) return 0.0f;
   const glm::dvec3 m = noise_point(q);
   const float n = billow_->eval(m.x, m.y, m.z);
+  if (!(unbitten(s, calm(z0), n) > 0.0)) return 0.0f;  // nothing the other noises could leave
   const float d = detail_ ? detail_->eval(m.x, m.y, m.z) : 0.0f;
   const float r = furrow_ ? furrow_->eval(m.x, m.y, m.z) : 0.0f;
   const float c = cauli_ ? cauli_->eval(m.x, m.y, m.z) : 1.0f;
@@ -410,13 +417,26 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
   // density is 0, so it needs no displacement noise (and no other noise).
   std::vector<uint8_t> far(n, 0);
   if (disp_[0]) {
+    // The shapes near the whole batch are gathered once; each point then tests those its own
+    // box meets (ShapeIndex::visits), the same shapes a search of the index would give it.
+    std::vector<glm::dvec3> m(n);
+    Aabb outer{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (size_t i = 0; i < n; ++i) {
+      m[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
+      outer.lo = glm::min(outer.lo, m[i]);
+      outer.hi = glm::max(outer.hi, m[i]);
+    }
+    std::vector<uint32_t> near_shapes;
+    if (n > 0) index_->candidates(outer.expanded(params_.displacement), near_shapes);
     size_t kept = 0;
     for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 m = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
+      const Aabb box = Aabb{m[i], m[i]}.expanded(params_.displacement);
       bool is_far = true;
-      index_->visit(Aabb{m, m}.expanded(params_.displacement), [&](uint32_t k) {
-        is_far = is_far && shape_distance_bound(shapes_[k], m) > params_.displacement;
-      });
+      for (uint32_t k : near_shapes)
+        if (index_->visits(box, k) && !(shape_distance_bound(shapes_[k], m[i]) > params_.displacement)) {
+          is_far = false;
+          break;
+        }
       far[i] = is_far;
       kept += !is_far;
     }
@@ -450,14 +470,28 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     }
   }
   if (busy.empty()) return 0;
-  std::vector<float> nb(busy.size()), nd(busy.size(), 0.0f), nr(busy.size(), 0.0f), nc(busy.size(), 1.0f);
+  std::vector<float> nb(busy.size());
   noise::evaluate_points(*billow_, busy, nb, serial);
-  if (detail_) noise::evaluate_points(*detail_, busy, nd, serial);
-  if (furrow_) noise::evaluate_points(*furrow_, busy, nr, serial);
-  if (cauli_) cauli_->evaluate_points(busy, nc, serial);
+  // Erosion, furrows and cauliflower only take density away: points whose billow already
+  // leaves none (unbitten <= 0) stay 0 without them. The rest are evaluated in one batch.
+  std::vector<std::array<double, 3>> bitten;
+  std::vector<uint32_t> which;  // index into busy
+  bitten.reserve(busy.size());
+  which.reserve(busy.size());
   for (size_t k = 0; k < busy.size(); ++k) {
-    const uint32_t i = where[k];
-    out[i] = finish(s[i], calm(z0[i]), nb[k], nd[k], nr[k], nc[k]);
+    if (unbitten(s[where[k]], calm(z0[where[k]]), nb[k]) > 0.0) {
+      bitten.push_back(busy[k]);
+      which.push_back(static_cast<uint32_t>(k));
+    }
+  }
+  const size_t m = bitten.size();
+  std::vector<float> nd(m, 0.0f), nr(m, 0.0f), nc(m, 1.0f);
+  if (detail_) noise::evaluate_points(*detail_, bitten, nd, serial);
+  if (furrow_) noise::evaluate_points(*furrow_, bitten, nr, serial);
+  if (cauli_) cauli_->evaluate_points(bitten, nc, serial);
+  for (size_t j = 0; j < m; ++j) {
+    const uint32_t k = which[j], i = where[k];
+    out[i] = finish(s[i], calm(z0[i]), nb[k], nd[j], nr[j], nc[j]);
   }
   return static_cast<int64_t>(busy.size());
 }

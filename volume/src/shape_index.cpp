@@ -33,6 +33,13 @@ ShapeIndex::ShapeIndex(const std::vector<Shape>& shapes) {
   for (uint32_t s = 0; s < boxes_.size(); ++s) each(boxes_[s], [&](size_t c) { items_[count[c]++] = s; });
 }
 
+void ShapeIndex::candidates(const Aabb& outer, std::vector<uint32_t>& out) const {
+  out.clear();
+  visit(outer, [&](uint32_t s) { out.push_back(s); });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 int ShapeIndex::cell_x(double x) const {
   return std::clamp(int(std::floor((x - bounds_.lo.x) / cell_)), 0, nx_ - 1);
 }

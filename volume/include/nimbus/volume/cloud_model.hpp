@@ -163,7 +163,8 @@ class CloudModel {
   int octaves_used() const;
 
   // Batched: densities at n points (world metres), noise through the SIMD batch path. Points
-  // whose coverage is below min_useful_coverage() cost no noise evaluation. Returns how many
+  // whose coverage is below min_useful_coverage() cost no noise evaluation, and those whose
+  // billow noise leaves no density (unbitten) none of the other noises. Returns how many
   // points needed the billow noise.
   int64_t densities(const glm::dvec3* points, size_t n, float* out) const;
 
@@ -179,6 +180,10 @@ class CloudModel {
   // s: the shapes' coverage at q, with the base and the ceiling at the undisplaced altitude z0.
   double coverage_at(const glm::dvec3& q, double z0) const;
   double calm(double z0) const;  // w: the noise's share near the base and the ceiling
+  // The density function before erosion, furrows and cauliflower take their share: an upper
+  // bound of finish's argument (they only take away), so where it is <= 0 the density is 0
+  // whatever those noises give, and they need not be evaluated.
+  double unbitten(double s, double w, float billow_noise) const;
   float finish(double s, double w, float billow_noise, float detail, float furrow, float cauli) const;
 
   CloudParams params_;

@@ -43,6 +43,15 @@ class ShapeIndex {
   }
   const Aabb& bounds() const { return bounds_; }
 
+  // Many small boxes in one region: the shapes visit() could visit for any box inside `outer`
+  // (each once, in index order), gathered once; visits(box, s) then says, with visit()'s own
+  // tests, whether visit(box) visits s. A shape's box is in every bucket it touches, so
+  // visit(box) visits exactly the shapes that pass visits(box, s).
+  void candidates(const Aabb& outer, std::vector<uint32_t>& out) const;
+  bool visits(const Aabb& box, uint32_t s) const {
+    return !empty_ && box.lo.z < bounds_.hi.z && bounds_.lo.z < box.hi.z && boxes_[s].overlaps(box);
+  }
+
  private:
   int cell_x(double x) const;
   int cell_y(double y) const;

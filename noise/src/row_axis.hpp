@@ -127,6 +127,88 @@ inline void worley_row_cells(const detail::FieldData& fd, const RowAxis& ra, int
   }
 }
 
+// One lane group of a grid row from the grid's RowAxis: the x axis is loaded, y, z and time
+// come from the row context; no double arithmetic. Value, gradient and Worley.
+template <class B, Kind K, bool Animated, class RowAxisT>
+NIMBUS_INLINE typename B::F field_row_axis(const detail::FieldData& fd, const RowAxisT& ra, int64_t i,
+                                           const RowContext& rc) {
+  using F = typename B::F;
+  using U = typename B::U;
+  return fractal_sum<B>(fd, [&](const detail::OctaveData& o, int oi) NIMBUS_INLINE_LAMBDA -> F {
+    const RowOctave& r = rc.oct[oi];
+    const F tx = load_lanes<F>(ra.frac(oi) + i);
+    if constexpr (K == Kind::Worley) {
+      CellAxis<B> a[3];
+      for (int s = 0; s < 5; ++s) {
+        a[0].h[s] = load_lanes<U>(ra.hash(oi, s) + i);
+        a[1].h[s] = splat<U>(r.cy.h[s]);
+        a[2].h[s] = splat<U>(r.cz.h[s]);
+      }
+      a[0].t = tx;
+      a[1].t = splat<F>(r.cy.t);
+      a[2].t = splat<F>(r.cz.t);
+      if (r.wcells) {
+        using I = typename B::I;
+        const I k = load_lanes<I>(ra.cell(oi) + i);
+        const int32_t k_lo = lane(k, 0), k_hi = lane(k, B::width - 1);  // x grows along the lanes
+        if (k_hi - k_lo <= 1) {  // the lanes lie in one or two cells: read the row's table
+          const auto first = k == splat<I>(k_lo);
+          return worley_search<false, B>(a, o.seed, Animated, o.cell_time,
+                                  [&](int dx, int dy, int dz) NIMBUS_INLINE_LAMBDA {
+                                    const float* e0 = r.wcells + (size_t(k_lo + 1 + dx) * 9 +
+                                                                  size_t((dy + 1) * 3 + (dz + 1))) * 3;
+                                    const float* e1 = e0 + 27;
+                                    const F px = select(first, splat<F>(e0[0]), splat<F>(e1[0]));
+                                    const F ey2 = select(first, splat<F>(e0[1]), splat<F>(e1[1]));
+                                    const F ez2 = select(first, splat<F>(e0[2]), splat<F>(e1[2]));
+                                    const F ex = (float(dx) + px) - tx;
+                                    return ex * ex + ey2 + ez2;
+                                  });
+        }
+      }
+      return worley3_cells<B>(a, o.seed, Animated, o.cell_time);
+    } else {
+      const U hx[2] = {load_lanes<U>(ra.hash(oi, 0) + i), load_lanes<U>(ra.hash(oi, 1) + i)};
+      const F ty = splat<F>(r.y.t), tz = splat<F>(r.z.t);
+      constexpr int corners = Animated ? 16 : 8;
+      U h[corners];
+      bool hashed = false;
+      if (r.lcells) {
+        using I = typename B::I;
+        const I k = load_lanes<I>(ra.cell(oi) + i);
+        const int32_t k_lo = lane(k, 0), k_hi = lane(k, B::width - 1);  // x grows along the lanes
+        if (B::width == 1 || k_hi - k_lo + 2 <= B::width) {
+          // The lanes' corners lie within one lane group of the row's table: load and permute.
+          const U rel = bitcast<U>(k - k_lo);
+#pragma GCC unroll 16
+          for (int j = 0; j < corners / 2; ++j) {
+            const uint32_t* e = r.lcells + size_t(j) * size_t(r.lstride) + size_t(k_lo);
+            h[2 * j] = permute(load_lanes<U>(e), rel);
+            h[2 * j + 1] = permute(load_lanes<U>(e + 1), rel);
+          }
+          hashed = true;
+        }
+      }
+      if (!hashed) {
+#pragma GCC unroll 16
+        for (int k = 0; k < corners; ++k) h[k] = hash::mix<U>(hx[k & 1] ^ r.yzw[k >> 1]);
+      }
+      if constexpr (Animated) {
+        const F tw = splat<F>(r.w.t);
+        if constexpr (K == Kind::Value) return value4_cell<B>(h, tx, ty, tz, tw, o.time_norm);
+#pragma GCC unroll 16
+        for (int k = 0; k < 16; ++k) h[k] = h[k] >> 27;
+        return gradient4_cell<B>(h, tx, ty, tz, tw) * kGradientScale4;
+      } else {
+        if constexpr (K == Kind::Value) return value3_cell<B>(h, tx, ty, tz);
+#pragma GCC unroll 16
+        for (int k = 0; k < 8; ++k) h[k] = edge_index3(h[k]);
+        return gradient3_faded<B>(h, tx, r.y.t, r.z.t, fade(tx), r.fy, r.fz) * kGradientScale3;
+      }
+    }
+  });
+}
+
 }  // namespace kernels
 }  // inline namespace
 }  // namespace nimbus::noise

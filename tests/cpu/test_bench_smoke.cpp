@@ -40,6 +40,33 @@ TEST(BenchNoise, BadOptionsAreUsageErrors) {
   EXPECT_NE(r.output.find("--repeats"), std::string::npos) << r.output;
 }
 
+// The FastNoise2 anchor is a library the user names: a path that is missing, not a shared
+// library, or a library without FastNoise2's C API is a runtime error (exit 1) that names the
+// path and what is wrong, before any timing; an empty path is a usage error.
+TEST(BenchNoise, AFastNoise2PathThatIsNotTheLibraryIsNamed) {
+  const nimbus::test::TempDir dir;
+  const std::string missing = (dir / "no-such-libFastNoise.so").string();
+  Result r = run("bench noise --quick --fastnoise2 " + missing);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--fastnoise2 " + missing + ": cannot load it"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("nimbus gradient, 1 octave"), std::string::npos) << "timed before failing\n" << r.output;
+
+  const std::string text = (dir / "not-a-library.so").string();
+  nimbus::test::write_bytes(text, "not an ELF file\n");
+  r = run("bench noise --quick --fastnoise2 " + text);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--fastnoise2 " + text + ": cannot load it"), std::string::npos) << r.output;
+
+  // A real shared library that is not FastNoise2: the C math library.
+  r = run("bench noise --quick --fastnoise2 libm.so.6");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--fastnoise2 libm.so.6: no symbol fnGetMetadataCount"), std::string::npos) << r.output;
+
+  r = run("bench noise --quick --fastnoise2 ''");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fastnoise2"), std::string::npos) << r.output;
+}
+
 }  // namespace
 
 namespace {

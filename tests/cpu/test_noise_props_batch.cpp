@@ -50,6 +50,12 @@ std::vector<BatchCase> batch_cases() {
     out.push_back({k + "Animated", a});
     a.time = -7.65;
     out.push_back({k + "AnimatedNegativeTime", a});
+    // Integer times: the batch paths skip the second time slice (weight 0) except where the
+    // first gives +-0, as at lattice points (special_points); eval blends both.
+    a.time = 0.0;
+    out.push_back({k + "AnimatedTimeZero", a});
+    a.time = -3.0;
+    out.push_back({k + "AnimatedIntegerTime", a});
     NoiseParams f = p;
     f.fractal = Fractal::Fbm;
     f.octaves = 5;
@@ -103,7 +109,13 @@ std::vector<GridCase> grids(bool small) {
       {{1073741824.5, -1073741824.25, 7.0}, 0.37, {17, 1, 2}},  // near 2^30
       {{5.5, -2.5, 0.125}, 1.0, {1, 1, 1}},           // a single sample
   };
-  if (!small) g.push_back({{-20.0, -11.0, 3.0}, 0.29, {64, 16, 4}});  // whole vectors
+  if (!small) {
+    g.push_back({{-20.0, -11.0, 3.0}, 0.29, {64, 16, 4}});  // whole vectors
+    // Many samples per cell: grid rows read a table of the row's cells (Worley, and the scalar
+    // path's lattice hashes), lane groups within one cell or across two.
+    g.push_back({{-2.2, 0.4, 1.1}, 0.02, {83, 3, 2}});
+    g.push_back({{0.03, -0.6, 4.7}, 0.004, {150, 2, 1}});
+  }
   return g;
 }
 

@@ -496,6 +496,10 @@ struct RowOctave {
   // corner k hashes mix(hx[k & 1] ^ yzw[k >> 1]), the same bits as corner_hash(4).
   uint32_t yzw[8];
   float fy = 0.0f, fz = 0.0f;  // value, gradient: fade of the y and z fractions
+  // Gradient: for each y, z corner combination j (bit 0: y + 1, bit 1: z + 1) and gradient
+  // index g < 12, the second term v of edge_dot3, which only y and z give: +-dy for the xy
+  // gradients, +-dz for the others (sign: g & 2). Padded to 16 entries.
+  alignas(64) float vterm[4][16];
   CellAxis<Batch<1>> cy, cz;  // Worley: the row's y and z cell axes
   const float* wcells = nullptr;  // Worley: the row's cell table (row_axis.hpp), or none
   const uint32_t* lcells = nullptr;  // value, gradient: the row's lattice table, or none
@@ -579,6 +583,13 @@ inline void prepare_row(const detail::FieldData& fd, double y, double z, double 
       if (fd.animated) r.w = split<B1>(o.time, 0.0, 0, hash::kPrimeW);
       r.fy = fade(r.y.t);
       r.fz = fade(r.z.t);
+      for (int j = 0; j < 4; ++j) {
+        const float dy = (j & 1) ? r.y.t - 1.0f : r.y.t, dz = (j & 2) ? r.z.t - 1.0f : r.z.t;
+        for (uint32_t g = 0; g < 16; ++g) {
+          const float v = (g >> 2) == 0 ? dy : dz;
+          r.vterm[j][g] = g < 12 ? bitcast<float>(bitcast<uint32_t>(v) ^ ((g & 2u) << 30)) : 0.0f;
+        }
+      }
       for (int j = 0; j < 8; ++j)
         r.yzw[j] = ((j & 1) ? r.y.h1 : r.y.h0) ^ ((j & 2) ? r.z.h1 : r.z.h0) ^
                    (fd.animated ? ((j & 4) ? r.w.h1 : r.w.h0) : 0u) ^ o.seed;

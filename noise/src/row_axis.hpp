@@ -127,6 +127,29 @@ inline void worley_row_cells(const detail::FieldData& fd, const RowAxis& ra, int
   }
 }
 
+// gradient3_faded for 16 lanes along a grid row: edge_dot3's second term, which only the row's
+// y and z give, is looked up in the row's vterm table by a lane permute (the 12 gradient
+// indices fit one register of 16), instead of a compare, a blend and a sign flip per corner.
+// The same values, added in the same order: the same bits.
+template <class B>
+NIMBUS_INLINE typename B::F gradient3_row16(const typename B::U* idx, typename B::F tx, const RowOctave& r) {
+  using F = typename B::F;
+  using U = typename B::U;
+  using I = typename B::I;
+  const F dx[2] = {tx, tx - 1.0f};
+  const float dy[2] = {r.y.t, r.y.t - 1.0f};
+  F g[8];
+#pragma GCC unroll 16
+  for (int k = 0; k < 8; ++k) {
+    const int j = k >> 1;
+    F u = select(idx[k] >> 2 == 2u, splat<F>(dy[j & 1]), dx[k & 1]);
+    u = bitcast<F>(bitcast<U>(u) ^ ((idx[k] & 1u) << 31));
+    const F v = __builtin_shuffle(load_lanes<F>(r.vterm[j]), bitcast<I>(idx[k]));
+    g[k] = u + v;
+  }
+  return blend8(g, fade(tx), splat<F>(r.fy), splat<F>(r.fz));
+}
+
 // One lane group of a grid row from the grid's RowAxis: the x axis is loaded, y, z and time
 // come from the row context; no double arithmetic. Value, gradient and Worley.
 template <class B, Kind K, bool Animated, class RowAxisT>
@@ -203,6 +226,7 @@ NIMBUS_INLINE typename B::F field_row_axis(const detail::FieldData& fd, const Ro
         if constexpr (K == Kind::Value) return value3_cell<B>(h, tx, ty, tz);
 #pragma GCC unroll 16
         for (int k = 0; k < 8; ++k) h[k] = edge_index3(h[k]);
+        if constexpr (B::width == 16) return gradient3_row16<B>(h, tx, r) * kGradientScale3;
         return gradient3_faded<B>(h, tx, r.y.t, r.z.t, fade(tx), r.fy, r.fz) * kGradientScale3;
       }
     }

@@ -307,6 +307,44 @@ double CloudModel::coverage_at(const glm::dvec3& q_in, double z0) const {
   return s;
 }
 
+void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const std::vector<double>& z0,
+                           const std::vector<uint8_t>& skip, std::vector<double>& s) const {
+  const CloudParams& p = params_;
+  struct Entry {
+    uint32_t point, shape;
+    CoverageStart start;
+  };
+  // Each point's shapes, in the order coverage_at visits them, with the roughness noise they
+  // need gathered for one batch.
+  std::vector<Entry> entries;
+  std::vector<std::array<double, 3>> noise_points;
+  std::vector<glm::dvec3> w(q.size());
+  for (size_t i = 0; i < q.size(); ++i) {
+    if (skip[i]) continue;
+    w[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
+    index_->visit(w[i], [&](uint32_t k) {
+      entries.push_back({static_cast<uint32_t>(i), k, coverage_start(shapes_[k], w[i])});
+      if (!entries.back().start.zero && entries.back().start.needs_noise) noise_points.push_back(entries.back().start.noise_point);
+    });
+  }
+  std::vector<float> noise(noise_points.size());
+  if (!noise_points.empty())
+    noise::evaluate_points(shape_roughness_noise(), noise_points, noise, noise::BatchOptions{std::nullopt, false});
+  std::fill(s.begin(), s.end(), 0.0);
+  size_t m = 0;
+  for (const Entry& e : entries) {
+    const float nv = !e.start.zero && e.start.needs_noise ? noise[m++] : 0.0f;
+    const double c = coverage_finish(shapes_[e.shape], w[e.point], e.start, nv);
+    const double z = z0[e.point];
+    const bool under_ceiling = z > p.ceiling_altitude - p.ceiling_softness;
+    const double ceiling = under_ceiling ? smoothstep01((p.ceiling_altitude - z) / p.ceiling_softness) : 1.0;
+    s[e.point] = std::max(s[e.point], shapes_[e.shape].overshoot ? c : c * ceiling);
+  }
+  for (size_t i = 0; i < q.size(); ++i)
+    if (!skip[i] && s[i] > 0.0 && z0[i] < p.base_altitude + p.base_softness)
+      s[i] *= smoothstep01((z0[i] - p.base_altitude) / p.base_softness);
+}
+
 double CloudModel::calm(double z0) const {
   const CloudParams& p = params_;
   if (!(p.flat_layer > 0.0)) return 1.0;
@@ -456,12 +494,12 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     }
   }
   std::vector<double> s(n);
+  coverages(q, z0, far, s);
   std::vector<std::array<double, 3>> busy;
   std::vector<uint32_t> where;
   for (size_t i = 0; i < n; ++i) {
     out[i] = 0.0f;
     if (far[i]) continue;
-    s[i] = coverage_at({q[i][0], q[i][1], q[i][2]}, z0[i]);
     if (map_ && s[i] > 0.0) s[i] *= map_at(points[i]);  // the map: 0 leaves no cloud
     if (s[i] > min_useful_coverage_) {
       const glm::dvec3 m = noise_point({q[i][0], q[i][1], q[i][2]});

@@ -75,7 +75,7 @@ double shape_distance(const Shape& s, const glm::dvec3& point) {
 
 namespace {
 
-const noise::NoiseField& roughness_noise() {
+const noise::NoiseField& roughness_noise_field() {
   static const noise::NoiseField field = [] {
     noise::NoiseParams n;
     n.kind = noise::Kind::Gradient;
@@ -87,13 +87,18 @@ const noise::NoiseField& roughness_noise() {
   return field;
 }
 
-// The noise in [-1, 1]: fBm over two of its standard deviations, clamped.
-double roughness_at(const Shape& s, const glm::dvec3& p) {
-  static const double inv = 0.5 / roughness_noise().expected_sd();
+// Where the roughness noise of shape s is read for p: the shape's own units, offset per seed.
+std::array<double, 3> roughness_point(const Shape& s, const glm::dvec3& p) {
   const double r = std::max(s.size.x, s.size.y);
   const glm::dvec3 l = (p - s.center) * (kRoughnessFrequency / r);
   const double o = double(s.roughness_seed % 4096u) * 37.0;  // lattice offset per seed
-  return std::clamp(double(roughness_noise().eval(l.x + o, l.y - o, l.z + 0.5 * o)) * inv, -1.0, 1.0);
+  return {l.x + o, l.y - o, l.z + 0.5 * o};
+}
+
+// The noise in [-1, 1]: fBm over two of its standard deviations, clamped.
+double roughness_value(float n) {
+  static const double inv = 0.5 / roughness_noise_field().expected_sd();
+  return std::clamp(double(n) * inv, -1.0, 1.0);
 }
 
 }  // namespace
@@ -123,13 +128,29 @@ double shape_distance_bound(const Shape& shape, const glm::dvec3& p) {
   return 0.0;
 }
 
-double shape_coverage(const Shape& s, const glm::dvec3& p) {
-  double u = shape_distance(s, p);
+const noise::NoiseField& shape_roughness_noise() { return roughness_noise_field(); }
+
+CoverageStart coverage_start(const Shape& s, const glm::dvec3& p) {
+  CoverageStart c;
+  c.u = shape_distance(s, p);
   if (s.roughness > 0.0) {
-    if (!(u < 1.0 + s.roughness)) return 0.0;
+    if (!(c.u < 1.0 + s.roughness)) {
+      c.zero = true;
+      return c;
+    }
     // Only near the outline; a rooted shape's column has the outline of its pivot's section.
-    if (u > 1.0 - s.falloff - s.roughness) u += s.roughness * roughness_at(s, {p.x, p.y, rooted_z(s, p.z)});
+    if (c.u > 1.0 - s.falloff - s.roughness) {
+      c.needs_noise = true;
+      c.noise_point = roughness_point(s, {p.x, p.y, rooted_z(s, p.z)});
+    }
   }
+  return c;
+}
+
+double coverage_finish(const Shape& s, const glm::dvec3& p, const CoverageStart& start, float noise) {
+  if (start.zero) return 0.0;
+  double u = start.u;
+  if (start.needs_noise) u += s.roughness * roughness_value(noise);
   if (!(u < 1.0)) return 0.0;
   const double x = std::clamp((1.0 - u) / s.falloff, 0.0, 1.0);  // 0 at the boundary
   double c = s.weight * x * x * (3.0 - 2.0 * x);
@@ -139,6 +160,14 @@ double shape_coverage(const Shape& s, const glm::dvec3& p) {
     c *= std::pow(h, s.fade_up);
   }
   return c;
+}
+
+double shape_coverage(const Shape& s, const glm::dvec3& p) {
+  const CoverageStart start = coverage_start(s, p);
+  float n = 0.0f;
+  if (!start.zero && start.needs_noise)
+    n = roughness_noise_field().eval(start.noise_point[0], start.noise_point[1], start.noise_point[2]);
+  return coverage_finish(s, p, start, n);
 }
 
 namespace {

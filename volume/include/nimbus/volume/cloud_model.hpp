@@ -179,6 +179,10 @@ class CloudModel {
   Aabb lean(double z_lo, double z_hi) const;  // the shear's horizontal offsets over that height
   // s: the shapes' coverage at q, with the base and the ceiling at the undisplaced altitude z0.
   double coverage_at(const glm::dvec3& q, double z0) const;
+  // coverage_at at every point not skipped (s = 0 there), the shapes' roughness noise evaluated
+  // in one batch: the same values.
+  void coverages(const std::vector<std::array<double, 3>>& q, const std::vector<double>& z0,
+                 const std::vector<uint8_t>& skip, std::vector<double>& s) const;
   double calm(double z0) const;  // w: the noise's share near the base and the ceiling
   // The density function before erosion, furrows and cauliflower take their share: an upper
   // bound of finish's argument (they only take away), so where it is <= 0 the density is 0

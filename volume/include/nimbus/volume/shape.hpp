@@ -2,8 +2,13 @@
 // coverage in [0, 1] that is 1 well inside, falls smoothly to 0 at its boundary ("fuzzy
 // blobbies"), and is exactly 0 outside its bounding box. World units are metres, Z up.
 #pragma once
+#include <array>
 #include <glm/vec3.hpp>
 #include <string>
+
+namespace nimbus::noise {
+class NoiseField;
+}
 
 namespace nimbus::volume {
 
@@ -70,6 +75,21 @@ double shape_distance_bound(const Shape& s, const glm::dvec3& p);
 double shape_distance(const Shape& s, const glm::dvec3& p);
 // weight * smoothstep from 1 (at u = 1 - falloff) down to 0 (at u = 1).
 double shape_coverage(const Shape& s, const glm::dvec3& p);
+
+// shape_coverage in two halves around its roughness noise, so that a caller with many points
+// can evaluate that noise in one batch (noise::evaluate_points on shape_roughness_noise(),
+// which gives eval's bits): coverage_start says whether the coverage is 0 outright, gives u,
+// and, where the outline is rough near p, the point at which the noise is needed;
+// coverage_finish takes the noise's value there (ignored when none was needed).
+struct CoverageStart {
+  bool zero = false;          // the coverage is 0 whatever the noise
+  double u = 0.0;             // shape_distance
+  bool needs_noise = false;
+  std::array<double, 3> noise_point{};  // where, in the roughness noise's lattice
+};
+CoverageStart coverage_start(const Shape& s, const glm::dvec3& p);
+double coverage_finish(const Shape& s, const glm::dvec3& p, const CoverageStart& start, float noise);
+const noise::NoiseField& shape_roughness_noise();
 // The box outside which the coverage is exactly 0.
 Aabb shape_bounds(const Shape& s);
 

@@ -41,7 +41,7 @@ void rows_from_axis(const detail::FieldData& fd, const GridSpec& g, int64_t r0, 
         ro.wcells = cells[o].data();
       } else if (W == 1) {
         // Lane groups measured faster hashing their corners than permuting a table's.
-        kernels::lattice_row_cells(fd, ra, o, ro, W, lattice[o], ro.lstride);
+        kernels::lattice_row_cells(fd, ra, o, ro, 1, lattice[o], ro.lstride);
         ro.lcells = lattice[o].data();
       }
     }
@@ -167,13 +167,7 @@ void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t 
     case Kind::Value: return points_from_axes<Bt, Kind::Value>(fd, p, count, out);
     case Kind::Gradient: return points_from_axes<Bt, Kind::Gradient>(fd, p, count, out);
     case Kind::Worley: return points_from_axes<Bt, Kind::Worley>(fd, p, count, out);
-    case Kind::Wavelet: break;
-  }
-  switch (fd.kind) {
-    case Kind::Value: return points_of_kind<Bt, Kind::Value>(fd, p, count, out);
-    case Kind::Gradient: return points_of_kind<Bt, Kind::Gradient>(fd, p, count, out);
     case Kind::Wavelet: return points_of_kind<Bt, Kind::Wavelet>(fd, p, count, out);
-    case Kind::Worley: return points_of_kind<Bt, Kind::Worley>(fd, p, count, out);
   }
 }
 

@@ -195,24 +195,17 @@ NIMBUS_INLINE typename B::F field_row_axis(const detail::FieldData& fd, const Ro
       const F ty = splat<F>(r.y.t), tz = splat<F>(r.z.t);
       constexpr int corners = Animated ? 16 : 8;
       U h[corners];
-      bool hashed = false;
-      if (r.lcells) {
-        using I = typename B::I;
-        const I k = load_lanes<I>(ra.cell(oi) + i);
-        const int32_t k_lo = lane(k, 0), k_hi = lane(k, B::width - 1);  // x grows along the lanes
-        if (B::width == 1 || k_hi - k_lo + 2 <= B::width) {
-          // The lanes' corners lie within one lane group of the row's table: load and permute.
-          const U rel = bitcast<U>(k - k_lo);
+      if constexpr (B::width == 1) {
+        if (r.lcells) {  // the scalar path reads its corners' hashes from the row's table
+          const uint32_t* e = r.lcells + size_t(ra.cell(oi)[i]);
 #pragma GCC unroll 16
           for (int j = 0; j < corners / 2; ++j) {
-            const uint32_t* e = r.lcells + size_t(j) * size_t(r.lstride) + size_t(k_lo);
-            h[2 * j] = permute(load_lanes<U>(e), rel);
-            h[2 * j + 1] = permute(load_lanes<U>(e + 1), rel);
+            h[2 * j] = e[size_t(j) * size_t(r.lstride)];
+            h[2 * j + 1] = e[size_t(j) * size_t(r.lstride) + 1];
           }
-          hashed = true;
         }
       }
-      if (!hashed) {
+      if (B::width > 1 || !r.lcells) {
 #pragma GCC unroll 16
         for (int k = 0; k < corners; ++k) h[k] = hash::mix<U>(hx[k & 1] ^ r.yzw[k >> 1]);
       }

@@ -232,17 +232,6 @@ NIMBUS_INLINE F gather(const float* table, I idx) {
   }
 }
 
-// r[l] = v[idx[l]] for lane indices idx[l] < width (vpermd where the target has it).
-template <class U>
-NIMBUS_INLINE U permute(U v, U idx) {
-  if constexpr (std::is_arithmetic_v<U>) {
-    (void)idx;
-    return v;
-  } else {
-    return __builtin_shuffle(v, idx);
-  }
-}
-
 // Lane-wise minimum (a < b ? a : b; neither argument is ever NaN in the kernels).
 template <class F>
 NIMBUS_INLINE F min(F a, F b) {

@@ -135,6 +135,7 @@ CloudModel::CloudModel(const CloudParams& params, double voxel_size, double time
     if (s.rooted) s.root_z = shear_base_;  // turrets stand on the base
   if (tile_) replicate_shapes();
   index_ = std::make_unique<ShapeIndex>(shapes_);
+  for (const Shape& sh : shapes_) bound_shapes_.push_back(bound_shape(sh));
   fibre_dir_ = p.stretch_direction / std::hypot(p.stretch_direction.x, p.stretch_direction.y);
   if (p.cauliflower > 0) {
     noise::PerlinWorleyParams pw;
@@ -307,18 +308,45 @@ double CloudModel::coverage_at(const glm::dvec3& q_in, double z0) const {
   return s;
 }
 
+namespace {
+
+// One point's shape, in the order coverage_at visits them, with the start of its coverage.
+struct CoverageEntry {
+  uint32_t point, shape;
+  CoverageStart start;
+};
+
+// Per-thread working memory of densities() and coverages(), kept from one leaf block to the
+// next so that a block allocates nothing (a batch larger than kKeptPoints gives it back).
+struct DensityScratch {
+  std::vector<std::array<double, 3>> q, near, busy, bitten, noise_points;
+  std::vector<double> z0, s;
+  std::vector<uint8_t> far;
+  std::vector<glm::dvec3> m, w;
+  std::vector<uint32_t> near_shapes, where, which;
+  std::vector<float> d[3], nb, nd, nr, nc, noise;
+  std::vector<CoverageEntry> entries;
+};
+constexpr size_t kKeptPoints = 4096;
+
+DensityScratch& density_scratch() {
+  thread_local DensityScratch scratch;
+  return scratch;
+}
+
+}  // namespace
+
 void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const std::vector<double>& z0,
                            const std::vector<uint8_t>& skip, std::vector<double>& s) const {
   const CloudParams& p = params_;
-  struct Entry {
-    uint32_t point, shape;
-    CoverageStart start;
-  };
-  // Each point's shapes, in the order coverage_at visits them, with the roughness noise they
-  // need gathered for one batch.
-  std::vector<Entry> entries;
-  std::vector<std::array<double, 3>> noise_points;
-  std::vector<glm::dvec3> w(q.size());
+  DensityScratch& t = density_scratch();
+  // Each point's shapes, with the roughness noise they need gathered for one batch.
+  std::vector<CoverageEntry>& entries = t.entries;
+  std::vector<std::array<double, 3>>& noise_points = t.noise_points;
+  std::vector<glm::dvec3>& w = t.w;
+  entries.clear();
+  noise_points.clear();
+  w.resize(q.size());
   for (size_t i = 0; i < q.size(); ++i) {
     if (skip[i]) continue;
     w[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
@@ -327,12 +355,13 @@ void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const st
       if (!entries.back().start.zero && entries.back().start.needs_noise) noise_points.push_back(entries.back().start.noise_point);
     });
   }
-  std::vector<float> noise(noise_points.size());
+  std::vector<float>& noise = t.noise;
+  noise.resize(noise_points.size());
   if (!noise_points.empty())
     noise::evaluate_points(shape_roughness_noise(), noise_points, noise, noise::BatchOptions{std::nullopt, false});
-  std::fill(s.begin(), s.end(), 0.0);
+  s.assign(q.size(), 0.0);
   size_t m = 0;
-  for (const Entry& e : entries) {
+  for (const CoverageEntry& e : entries) {
     const float nv = !e.start.zero && e.start.needs_noise ? noise[m++] : 0.0f;
     const double c = coverage_finish(shapes_[e.shape], w[e.point], e.start, nv);
     const double z = z0[e.point];
@@ -442,61 +471,85 @@ bool CloudModel::may_touch(const Aabb& w) const {
   return false;
 }
 
+std::vector<uint8_t>& CloudModel::far_points(const std::vector<std::array<double, 3>>& q) const {
+  DensityScratch& t = density_scratch();
+  const size_t n = q.size();
+  std::vector<uint8_t>& far = t.far;
+  far.assign(n, 0);
+  if (!disp_[0] || n == 0) return far;
+  // A point farther than `displacement` from every shape cannot be displaced into one: its
+  // density is 0, so it needs no displacement noise (and no other noise). The shapes near the
+  // whole batch are gathered once; each point then tests those its own box meets
+  // (ShapeIndex::visits), the same shapes a search of the index would give it.
+  std::vector<glm::dvec3>& m = t.m;
+  m.resize(n);
+  Aabb outer{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+  for (size_t i = 0; i < n; ++i) {
+    m[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
+    outer.lo = glm::min(outer.lo, m[i]);
+    outer.hi = glm::max(outer.hi, m[i]);
+  }
+  std::vector<uint32_t>& near_shapes = t.near_shapes;
+  index_->candidates(outer.expanded(params_.displacement), near_shapes);
+  // A point is near when any shape is; neighbours are mostly near the same one, so the shape
+  // that made the last point near is tried first (the answer does not depend on the order).
+  size_t last = 0;
+  auto near_to = [&](size_t i, size_t j) {
+    const uint32_t k = near_shapes[j];
+    return index_->visits(Aabb{m[i], m[i]}.expanded(params_.displacement), k) &&
+           !(grown_distance_bound(bound_shapes_[k], m[i]) > params_.displacement);
+  };
+  for (size_t i = 0; i < n; ++i) {
+    bool is_far = true;
+    if (!near_shapes.empty() && near_to(i, last)) {
+      is_far = false;
+    } else {
+      for (size_t j = 0; j < near_shapes.size(); ++j)
+        if (j != last && near_to(i, j)) {
+          is_far = false;
+          last = j;
+          break;
+        }
+    }
+    far[i] = is_far;
+  }
+  return far;
+}
+
 int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
   const noise::BatchOptions serial{std::nullopt, false};  // callers parallelise over blocks
-  std::vector<std::array<double, 3>> q(n);
-  std::vector<double> z0(n);  // the undisplaced altitude, where the base and the ceiling are level
+  DensityScratch& t = density_scratch();
+  std::vector<std::array<double, 3>>& q = t.q;
+  std::vector<double>& z0 = t.z0;  // the undisplaced altitude, where the base and the ceiling are level
+  q.resize(n);
+  z0.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const glm::dvec3 m = sheared(points[i]);
     q[i] = {m.x, m.y, m.z};
     z0[i] = m.z;
   }
-  // A point farther than `displacement` from every shape cannot be displaced into one: its
-  // density is 0, so it needs no displacement noise (and no other noise).
-  std::vector<uint8_t> far(n, 0);
+  const std::vector<uint8_t>& far = far_points(q);
   if (disp_[0]) {
-    // The shapes near the whole batch are gathered once; each point then tests those its own
-    // box meets (ShapeIndex::visits), the same shapes a search of the index would give it.
-    std::vector<glm::dvec3> m(n);
-    Aabb outer{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
-    for (size_t i = 0; i < n; ++i) {
-      m[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
-      outer.lo = glm::min(outer.lo, m[i]);
-      outer.hi = glm::max(outer.hi, m[i]);
-    }
-    std::vector<uint32_t> near_shapes;
-    if (n > 0) index_->candidates(outer.expanded(params_.displacement), near_shapes);
-    size_t kept = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const Aabb box = Aabb{m[i], m[i]}.expanded(params_.displacement);
-      bool is_far = true;
-      for (uint32_t k : near_shapes)
-        if (index_->visits(box, k) && !(shape_distance_bound(shapes_[k], m[i]) > params_.displacement)) {
-          is_far = false;
-          break;
-        }
-      far[i] = is_far;
-      kept += !is_far;
-    }
-    std::vector<std::array<double, 3>> near;
-    near.reserve(kept);
+    std::vector<std::array<double, 3>>& near = t.near;
+    near.clear();
     for (size_t i = 0; i < n; ++i)
       if (!far[i]) near.push_back(q[i]);
-    std::vector<float> d[3];
     for (int a = 0; a < 3; ++a) {
-      d[a].resize(near.size());
-      noise::evaluate_points(*disp_[a], near, d[a], serial);
+      t.d[a].resize(near.size());
+      noise::evaluate_points(*disp_[a], near, t.d[a], serial);
     }
     for (size_t i = 0, k = 0; i < n; ++i) {
       if (far[i]) continue;
-      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(d[a][k]);
+      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(t.d[a][k]);
       ++k;
     }
   }
-  std::vector<double> s(n);
+  std::vector<double>& s = t.s;
   coverages(q, z0, far, s);
-  std::vector<std::array<double, 3>> busy;
-  std::vector<uint32_t> where;
+  std::vector<std::array<double, 3>>& busy = t.busy;
+  std::vector<uint32_t>& where = t.where;
+  busy.clear();
+  where.clear();
   for (size_t i = 0; i < n; ++i) {
     out[i] = 0.0f;
     if (far[i]) continue;
@@ -507,15 +560,26 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
       where.push_back(static_cast<uint32_t>(i));
     }
   }
-  if (busy.empty()) return 0;
-  std::vector<float> nb(busy.size());
+  const int64_t evaluated = static_cast<int64_t>(busy.size());
+  if (!busy.empty()) finish_busy(s, z0, out);
+  if (n > kKeptPoints) t = DensityScratch{};  // a large batch gives its memory back
+  return evaluated;
+}
+
+void CloudModel::finish_busy(const std::vector<double>& s, const std::vector<double>& z0, float* out) const {
+  const noise::BatchOptions serial{std::nullopt, false};
+  DensityScratch& t = density_scratch();
+  const std::vector<std::array<double, 3>>& busy = t.busy;
+  const std::vector<uint32_t>& where = t.where;
+  std::vector<float>& nb = t.nb;
+  nb.resize(busy.size());
   noise::evaluate_points(*billow_, busy, nb, serial);
   // Erosion, furrows and cauliflower only take density away: points whose billow already
   // leaves none (unbitten <= 0) stay 0 without them. The rest are evaluated in one batch.
-  std::vector<std::array<double, 3>> bitten;
-  std::vector<uint32_t> which;  // index into busy
-  bitten.reserve(busy.size());
-  which.reserve(busy.size());
+  std::vector<std::array<double, 3>>& bitten = t.bitten;
+  std::vector<uint32_t>& which = t.which;  // index into busy
+  bitten.clear();
+  which.clear();
   for (size_t k = 0; k < busy.size(); ++k) {
     if (unbitten(s[where[k]], calm(z0[where[k]]), nb[k]) > 0.0) {
       bitten.push_back(busy[k]);
@@ -523,15 +587,16 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     }
   }
   const size_t m = bitten.size();
-  std::vector<float> nd(m, 0.0f), nr(m, 0.0f), nc(m, 1.0f);
-  if (detail_) noise::evaluate_points(*detail_, bitten, nd, serial);
-  if (furrow_) noise::evaluate_points(*furrow_, bitten, nr, serial);
-  if (cauli_) cauli_->evaluate_points(bitten, nc, serial);
+  t.nd.assign(m, 0.0f);
+  t.nr.assign(m, 0.0f);
+  t.nc.assign(m, 1.0f);
+  if (detail_) noise::evaluate_points(*detail_, bitten, t.nd, serial);
+  if (furrow_) noise::evaluate_points(*furrow_, bitten, t.nr, serial);
+  if (cauli_) cauli_->evaluate_points(bitten, t.nc, serial);
   for (size_t j = 0; j < m; ++j) {
     const uint32_t k = which[j], i = where[k];
-    out[i] = finish(s[i], calm(z0[i]), nb[k], nd[j], nr[j], nc[j]);
+    out[i] = finish(s[i], calm(z0[i]), nb[k], t.nd[j], t.nr[j], t.nc[j]);
   }
-  return static_cast<int64_t>(busy.size());
 }
 
 }  // namespace nimbus::volume

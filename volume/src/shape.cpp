@@ -103,10 +103,14 @@ double roughness_value(float n) {
 
 }  // namespace
 
-double shape_distance_bound(const Shape& shape, const glm::dvec3& p) {
+Shape bound_shape(const Shape& shape) {
   Shape s = shape;  // a rough outline reaches u = 1 + roughness: bound the shape grown by that factor
   s.size *= 1.0 + s.roughness;
   s.roughness = 0.0;
+  return s;
+}
+
+double grown_distance_bound(const Shape& s, const glm::dvec3& p) {
   const double u = shape_distance(s, p);
   if (!(u > 1.0)) return 0.0;
   // A rooted column's taper divides horizontal offsets by up to 1 / (1 - root_taper): u changes
@@ -127,6 +131,8 @@ double shape_distance_bound(const Shape& shape, const glm::dvec3& p) {
   }
   return 0.0;
 }
+
+double shape_distance_bound(const Shape& shape, const glm::dvec3& p) { return grown_distance_bound(bound_shape(shape), p); }
 
 const noise::NoiseField& shape_roughness_noise() { return roughness_noise_field(); }
 

@@ -183,6 +183,12 @@ class CloudModel {
   // in one batch: the same values.
   void coverages(const std::vector<std::array<double, 3>>& q, const std::vector<double>& z0,
                  const std::vector<uint8_t>& skip, std::vector<double>& s) const;
+  // densities() in stages, on per-thread working memory. far_points: which of the points q0
+  // no displacement can move into a shape (all 0 without displacement).
+  std::vector<uint8_t>& far_points(const std::vector<std::array<double, 3>>& q) const;
+  // The billow, erosion, furrow and cauliflower noise of the points that densities() found
+  // coverage enough for, and their densities into out.
+  void finish_busy(const std::vector<double>& s, const std::vector<double>& z0, float* out) const;
   double calm(double z0) const;  // w: the noise's share near the base and the ceiling
   // The density function before erosion, furrows and cauliflower take their share: an upper
   // bound of finish's argument (they only take away), so where it is <= 0 the density is 0
@@ -192,6 +198,7 @@ class CloudModel {
 
   CloudParams params_;
   std::vector<Shape> shapes_;
+  std::vector<Shape> bound_shapes_;  // bound_shape of each: its distance bound's smooth shape
   std::unique_ptr<ShapeIndex> index_;
   double shear_base_ = 0.0;
   glm::dvec2 fibre_dir_{1.0, 0.0};

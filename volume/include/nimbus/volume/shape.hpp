@@ -70,6 +70,11 @@ inline constexpr double kRoughnessGain = 0.7;
 // A lower bound, in metres, of the distance from p to where the shape's coverage is non-zero
 // (0 when p may be inside, or when no cheap bound is known).
 double shape_distance_bound(const Shape& s, const glm::dvec3& p);
+// The same bound in two halves, for many points against one shape: bound_shape(s) is the smooth
+// shape that bounds s's rough outline (made once), and grown_distance_bound(bound_shape(s), p)
+// equals shape_distance_bound(s, p).
+Shape bound_shape(const Shape& s);
+double grown_distance_bound(const Shape& grown, const glm::dvec3& p);
 
 // Normalised distance u: < 1 inside, 1 on the boundary, > 1 outside.
 double shape_distance(const Shape& s, const glm::dvec3& p);

@@ -516,7 +516,18 @@ std::vector<uint8_t>& CloudModel::far_points(const std::vector<std::array<double
   return far;
 }
 
-int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) const {
+std::vector<double> CloudModel::far_test_key() const {
+  const glm::dvec3 drift = params_.wind * time_;
+  std::vector<double> key{drift.x, drift.y, drift.z, params_.shear.x, params_.shear.y, shear_base_, params_.displacement};
+  if (tile_) key.insert(key.end(), {tile_->lo_m.x, tile_->lo_m.y, tile_->size_m.x, tile_->size_m.y});
+  key.push_back(double(shapes_.size()));
+  for (const Shape& sh : shapes_)
+    key.insert(key.end(), {double(sh.kind), sh.center.x, sh.center.y, sh.center.z, sh.size.x, sh.size.y, sh.size.z,
+                           sh.end.x, sh.end.y, sh.end.z, sh.roughness, double(sh.rooted), sh.root_z, sh.root_taper});
+  return key;
+}
+
+int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out, uint8_t* far_io, bool far_known) const {
   const noise::BatchOptions serial{std::nullopt, false};  // callers parallelise over blocks
   DensityScratch& t = density_scratch();
   std::vector<std::array<double, 3>>& q = t.q;
@@ -528,7 +539,13 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out) co
     q[i] = {m.x, m.y, m.z};
     z0[i] = m.z;
   }
-  const std::vector<uint8_t>& far = far_points(q);
+  if (far_known) {
+    t.far.assign(far_io, far_io + n);
+  } else {
+    far_points(q);
+    if (far_io) std::copy(t.far.begin(), t.far.end(), far_io);
+  }
+  const std::vector<uint8_t>& far = t.far;
   if (disp_[0]) {
     std::vector<std::array<double, 3>>& near = t.near;
     near.clear();

@@ -21,6 +21,20 @@ namespace {
 using Leaf = openvdb::FloatTree::LeafNodeType;
 constexpr int kLeaf = 8;  // Leaf::DIM
 
+// A leaf block's far flags (CloudModel::densities) as bits, for a GenerationPlan.
+constexpr size_t kFarWords = kLeaf * kLeaf * kLeaf / 64;
+void pack_far(const uint8_t* far, uint64_t* words) {
+  for (size_t w = 0; w < kFarWords; ++w) {
+    uint64_t bits = 0;
+    for (int b = 0; b < 64; ++b) bits |= uint64_t(far[w * 64 + b] != 0) << b;
+    words[w] = bits;
+  }
+}
+void unpack_far(const uint64_t* words, uint8_t* far) {
+  for (size_t w = 0; w < kFarWords; ++w)
+    for (int b = 0; b < 64; ++b) far[w * 64 + b] = uint8_t((words[w] >> b) & 1u);
+}
+
 int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 int64_t to_index(double world, double voxel, bool up) {
@@ -90,6 +104,24 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   tbb::enumerable_thread_specific<std::vector<std::unique_ptr<Leaf>>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
   const int64_t blocks = voxels > 0 ? bn[0] * bn[1] * bn[2] : 0;
+  // A plan made for these inputs skips the block and far tests; otherwise one is made here.
+  GenerationPlan* plan = o.sparse ? o.plan : nullptr;
+  bool reuse = false;
+  std::vector<double> key;
+  if (plan) {
+    key = {vs, o.origin_m.x, o.origin_m.y, o.origin_m.z};
+    for (int a = 0; a < 3; ++a) key.insert(key.end(), {double(lo[a]), double(hi[a])});
+    const std::vector<double> model_key = model.far_test_key();
+    key.insert(key.end(), model_key.begin(), model_key.end());
+    reuse = plan->key == key && plan->touched.size() == size_t(blocks);
+    if (!reuse) {
+      plan->key.clear();  // set when the plan is whole: a generation stopped part-way leaves none
+      plan->touched.assign(size_t(blocks), 0);
+      plan->far.assign(size_t(blocks) * kFarWords, 0);
+    }
+    plan->reused_blocks = 0;
+  }
+  std::atomic<int64_t> reused{0};
   std::atomic<int64_t> done{0};
   const int64_t report_every = std::max<int64_t>(1, blocks / 100);
   tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
@@ -97,11 +129,23 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(blocks));
     const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
     const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
-    if (o.sparse) {
+    uint8_t far[kLeaf * kLeaf * kLeaf];
+    if (reuse) {
+      if (!plan->touched[size_t(id)]) return;
+      const uint64_t* words = &plan->far[size_t(id) * kFarWords];
+      if (std::all_of(words, words + kFarWords, [](uint64_t w) { return w == ~uint64_t(0); })) {
+        counts.local().voxels_visited += kLeaf * kLeaf * kLeaf;  // every voxel far: density 0
+        reused.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      unpack_far(words, far);
+      reused.fetch_add(1, std::memory_order_relaxed);
+    } else if (o.sparse) {
       // Voxel centres of this block span [origin, origin + 7] * vs; skip it if no shape is near.
       const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs - o.origin_m,
                      glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs - o.origin_m};
       if (!model.may_touch(box.expanded(1e-9 * vs))) return;
+      if (plan) plan->touched[size_t(id)] = 1;
     }
     glm::dvec3 p[kLeaf * kLeaf * kLeaf];
     float d[kLeaf * kLeaf * kLeaf];
@@ -113,7 +157,8 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     GenerateStats& c = counts.local();
     c.voxels_visited += n;
     if (o.sparse) {
-      c.noise_evaluations += model.densities(p, size_t(n), d);
+      c.noise_evaluations += model.densities(p, size_t(n), d, plan ? far : nullptr, reuse);
+      if (plan && !reuse) pack_far(far, &plan->far[size_t(id) * kFarWords]);
     } else {
       for (int i = 0; i < n; ++i) d[i] = model.density(p[i]);
       c.noise_evaluations += n;
@@ -133,6 +178,11 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     }
     if (leaf) leaves.local().emplace_back(leaf);
   });
+
+  if (plan) {
+    plan->reused_blocks = reused.load();
+    if (!reuse) plan->key = std::move(key);
+  }
 
   auto grid = openvdb::FloatGrid::create(0.0f);
   grid->setName("density");

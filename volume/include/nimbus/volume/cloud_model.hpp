@@ -166,7 +166,13 @@ class CloudModel {
   // whose coverage is below min_useful_coverage() cost no noise evaluation, and those whose
   // billow noise leaves no density (unbitten) none of the other noises. Returns how many
   // points needed the billow noise.
-  int64_t densities(const glm::dvec3* points, size_t n, float* out) const;
+  // `far`, when not null, holds n flags: which points no displacement moves into a shape (their
+  // density is 0). With far_known they are read from it (found at another time: they do not
+  // depend on time when the wind is 0), else they are found and written to it.
+  int64_t densities(const glm::dvec3* points, size_t n, float* out, uint8_t* far = nullptr, bool far_known = false) const;
+  // The inputs the far test depends on besides the points: the shapes, the displacement, the
+  // wind's drift at this time, the shear and the periodic tile, as numbers (GenerationPlan::key).
+  std::vector<double> far_test_key() const;
 
  private:
   glm::dvec3 sheared(const glm::dvec3& p) const;  // q0: wind and shear applied

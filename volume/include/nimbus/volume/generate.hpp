@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "nimbus/volume/cloud_model.hpp"
 
@@ -16,6 +17,19 @@ namespace nimbus::volume {
 // Below this a voxel is empty: half floats round densities under 2^-24 to 0, and a file should
 // never hold active voxels of value 0.
 inline constexpr float kMinDensity = 1e-6f;
+
+// What a generation finds that does not change with time when the wind is 0 (a sky's clouds, whose
+// drift is applied at render time): which leaf blocks no shape can reach, and which voxels of the
+// others no displacement can move into a shape (CloudModel's far test). Given to the next
+// generation of the same cloud at the same voxel size, origin and clip, at any time, it skips
+// those tests, and the voxels are the same bits. generate_density fills it; a plan made for
+// other inputs is remade, never misused, and one is neither made nor read while the wind blows.
+struct GenerationPlan {
+  std::vector<double> key;        // the inputs the tests depend on, as generate_density lists them
+  std::vector<uint8_t> touched;   // per leaf block: may a shape reach it
+  std::vector<uint64_t> far;      // per leaf block, 8 words: bit i set when voxel i is far
+  int64_t reused_blocks = 0;      // blocks of the last generation that took their tests from here
+};
 
 struct GenerateOptions {
   double voxel_size = 25.0;  // metres; voxel (i, j, k) is centred at (i, j, k) * voxel_size
@@ -31,6 +45,8 @@ struct GenerateOptions {
   // Called now and then with the share of leaf blocks done, from any thread (the callee
   // serialises); may be empty.
   std::function<void(double)> progress;
+  // Reused, or filled, as GenerationPlan says; null: every test is made.
+  GenerationPlan* plan = nullptr;
 };
 
 struct GenerateStats {

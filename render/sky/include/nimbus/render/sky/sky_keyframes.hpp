@@ -17,6 +17,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/render/sky/keyframe_worker.hpp"
+#include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {
@@ -77,6 +78,8 @@ class SkyKeyframes {
     std::vector<int> frames;             // a sequence's frame numbers, ascending; empty: one file
     // One file, read once (worker thread); for a sequence, its first frame, read for its fps.
     mutable openvdb::FloatGrid::ConstPtr file_grid;
+    // A preset's tests that do not change from keyframe to keyframe (worker thread).
+    mutable volume::GenerationPlan plan;
   };
   using Keyframe = std::vector<openvdb::FloatGrid::ConstPtr>;
   Keyframe make(int64_t k) const;

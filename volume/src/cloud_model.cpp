@@ -351,8 +351,11 @@ void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const st
     if (skip[i]) continue;
     w[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
     index_->visit(w[i], [&](uint32_t k) {
-      entries.push_back({static_cast<uint32_t>(i), k, coverage_start(shapes_[k], w[i])});
-      if (!entries.back().start.zero && entries.back().start.needs_noise) noise_points.push_back(entries.back().start.noise_point);
+      CoverageEntry& e = entries.emplace_back();
+      e.point = static_cast<uint32_t>(i);
+      e.shape = k;
+      coverage_start(shapes_[k], w[i], e.start);
+      if (!e.start.zero && e.start.needs_noise) noise_points.push_back(e.start.noise_point);
     });
   }
   std::vector<float>& noise = t.noise;

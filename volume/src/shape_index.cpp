@@ -40,11 +40,4 @@ void ShapeIndex::candidates(const Aabb& outer, std::vector<uint32_t>& out) const
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-int ShapeIndex::cell_x(double x) const {
-  return std::clamp(int(std::floor((x - bounds_.lo.x) / cell_)), 0, nx_ - 1);
-}
-int ShapeIndex::cell_y(double y) const {
-  return std::clamp(int(std::floor((y - bounds_.lo.y) / cell_)), 0, ny_ - 1);
-}
-
 }  // namespace nimbus::volume

@@ -1,6 +1,8 @@
 // Which shapes may be non-zero near a point or box: a 2-D bucket grid over the shapes' boxes,
 // so that a field of thousands of clouds costs each voxel a handful of shape tests.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -53,8 +55,8 @@ class ShapeIndex {
   }
 
  private:
-  int cell_x(double x) const;
-  int cell_y(double y) const;
+  int cell_x(double x) const { return std::clamp(int(std::floor((x - bounds_.lo.x) / cell_)), 0, nx_ - 1); }
+  int cell_y(double y) const { return std::clamp(int(std::floor((y - bounds_.lo.y) / cell_)), 0, ny_ - 1); }
 
   bool empty_ = true;
   Aabb bounds_;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench_volume_keyframes.hpp"
 #include "bench_volume_read.hpp"
 #include "cli/cli.hpp"
 #include "nimbus/volume/generate.hpp"
@@ -27,6 +28,8 @@ struct BenchVolumeArgs {
   std::string naive_always = "cumulus-mediocris";  // ... except for this preset
   bool quick = false;
   bool field = true;           // the cumulus field section
+  int keyframes = 6;           // the sky keyframe section's keyframes (0: none)
+  bool keyframes_only = false;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -125,6 +128,11 @@ void bench_field(bool quick, const std::filesystem::path& tmp) {
 }
 
 int run_bench_volume(const BenchVolumeArgs& a) {
+  if (a.keyframes_only) {
+    std::printf("## nimbus bench volume\n");
+    bench_sky_keyframes(std::max(a.keyframes, 1));
+    return 0;
+  }
   std::vector<std::string> names = split(a.presets);
   if (names.empty())
     for (const auto& p : volume::list_presets()) names.push_back(p.name);
@@ -227,6 +235,7 @@ int run_bench_volume(const BenchVolumeArgs& a) {
   bench_reading(written, tmp, a.quick ? 1 : 3);
   if (a.field) bench_field(a.quick, tmp);
   std::filesystem::remove_all(tmp);
+  if (a.keyframes > 0) bench_sky_keyframes(a.quick ? std::min(a.keyframes, 2) : a.keyframes);
   return 0;
 }
 
@@ -241,6 +250,10 @@ void add_bench_volume(CLI::App& bench, Action& action) {
   cmd->add_option("--naive-always", a->naive_always, "preset whose naive anchor runs at every resolution")->capture_default_str();
   cmd->add_flag("--quick", a->quick, "resolution 48, two presets, a 2 x 2 km field (smoke test)");
   cmd->add_flag("!--no-field", a->field, "skip the cumulus field section (10 x 10 km at 20 m)");
+  cmd->add_option("--keyframes", a->keyframes, "keyframes of the default sky made as the viewer makes them and plainly (0: skip)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_flag("--keyframes-only", a->keyframes_only, "only the sky keyframe section");
   cmd->callback([&action, a] { action = [a] { return run_bench_volume(*a); }; });
 }
 

@@ -4,6 +4,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -21,7 +23,7 @@ namespace {
 using Leaf = openvdb::FloatTree::LeafNodeType;
 constexpr int kLeaf = 8;  // Leaf::DIM
 
-// A leaf block's far flags (CloudModel::densities) as bits, for a GenerationPlan.
+// A leaf block's far flags (CloudModel::densities) as bits, for a GenerationReuse.
 constexpr size_t kFarWords = kLeaf * kLeaf * kLeaf / 64;
 void pack_far(const uint8_t* far, uint64_t* words) {
   for (size_t w = 0; w < kFarWords; ++w) {
@@ -80,6 +82,17 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   const double vs = o.voxel_size;
   int64_t lo[3], hi[3], voxels = 1;
   index_range(model, vs, o.origin_m, lo, hi);
+  if (o.y_up) {  // the same voxels turned: z-up (i, j, k) is y-up (i, k, -j)
+    const int64_t jlo = lo[1], jhi = hi[1];
+    lo[1] = lo[2];
+    hi[1] = hi[2];
+    lo[2] = -jhi;
+    hi[2] = -jlo;
+  }
+  // The model's (z-up) index of the grid's voxel (i, j, k).
+  auto model_index = [&](int64_t i, int64_t j, int64_t k) {
+    return o.y_up ? glm::dvec3(double(i), double(-k), double(j)) : glm::dvec3(double(i), double(j), double(k));
+  };
   for (int a = 0; a < 3; ++a) {
     if (o.clip) {  // a sub-box: the same voxels as the whole grid has there
       lo[a] = std::max<int64_t>(lo[a], o.clip->min()[a]);
@@ -104,22 +117,22 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   tbb::enumerable_thread_specific<std::vector<std::unique_ptr<Leaf>>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
   const int64_t blocks = voxels > 0 ? bn[0] * bn[1] * bn[2] : 0;
-  // A plan made for these inputs skips the block and far tests; otherwise one is made here.
-  GenerationPlan* plan = o.sparse ? o.plan : nullptr;
-  bool reuse = false;
+  // Tests saved for these inputs are read instead of made; otherwise they are saved here.
+  GenerationReuse* saved = o.sparse ? o.reuse : nullptr;
+  bool reading = false;
   std::vector<double> key;
-  if (plan) {
-    key = {vs, o.origin_m.x, o.origin_m.y, o.origin_m.z};
+  if (saved) {
+    key = {vs, o.origin_m.x, o.origin_m.y, o.origin_m.z, double(o.y_up)};
     for (int a = 0; a < 3; ++a) key.insert(key.end(), {double(lo[a]), double(hi[a])});
     const std::vector<double> model_key = model.far_test_key();
     key.insert(key.end(), model_key.begin(), model_key.end());
-    reuse = plan->key == key && plan->touched.size() == size_t(blocks);
-    if (!reuse) {
-      plan->key.clear();  // set when the plan is whole: a generation stopped part-way leaves none
-      plan->touched.assign(size_t(blocks), 0);
-      plan->far.assign(size_t(blocks) * kFarWords, 0);
+    reading = saved->key == key && saved->touched.size() == size_t(blocks);
+    if (!reading) {
+      saved->key.clear();  // set when the tests are whole: a generation stopped part-way leaves none
+      saved->touched.assign(size_t(blocks), 0);
+      saved->far.assign(size_t(blocks) * kFarWords, 0);
     }
-    plan->reused_blocks = 0;
+    saved->reused_blocks = 0;
   }
   std::atomic<int64_t> reused{0};
   std::atomic<int64_t> done{0};
@@ -130,9 +143,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
     const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
     uint8_t far[kLeaf * kLeaf * kLeaf];
-    if (reuse) {
-      if (!plan->touched[size_t(id)]) return;
-      const uint64_t* words = &plan->far[size_t(id) * kFarWords];
+    if (reading) {
+      if (!saved->touched[size_t(id)]) return;
+      const uint64_t* words = &saved->far[size_t(id) * kFarWords];
       if (std::all_of(words, words + kFarWords, [](uint64_t w) { return w == ~uint64_t(0); })) {
         counts.local().voxels_visited += kLeaf * kLeaf * kLeaf;  // every voxel far: density 0
         reused.fetch_add(1, std::memory_order_relaxed);
@@ -141,11 +154,13 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
       unpack_far(words, far);
       reused.fetch_add(1, std::memory_order_relaxed);
     } else if (o.sparse) {
-      // Voxel centres of this block span [origin, origin + 7] * vs; skip it if no shape is near.
-      const Aabb box{glm::dvec3(origin.x(), origin.y(), origin.z()) * vs - o.origin_m,
-                     glm::dvec3(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1) * vs - o.origin_m};
+      // Voxel centres of this block span [origin, origin + 7] * vs (turned, y-up); skip it if no
+      // shape is near.
+      const glm::dvec3 a = model_index(origin.x(), origin.y(), origin.z()),
+                       b = model_index(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1);
+      const Aabb box{glm::min(a, b) * vs - o.origin_m, glm::max(a, b) * vs - o.origin_m};
       if (!model.may_touch(box.expanded(1e-9 * vs))) return;
-      if (plan) plan->touched[size_t(id)] = 1;
+      if (saved) saved->touched[size_t(id)] = 1;
     }
     glm::dvec3 p[kLeaf * kLeaf * kLeaf];
     float d[kLeaf * kLeaf * kLeaf];
@@ -153,12 +168,12 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     for (int z = 0; z < kLeaf; ++z)
       for (int y = 0; y < kLeaf; ++y)
         for (int x = 0; x < kLeaf; ++x)
-          p[n++] = glm::dvec3(origin.x() + x, origin.y() + y, origin.z() + z) * vs - o.origin_m;
+          p[n++] = model_index(origin.x() + x, origin.y() + y, origin.z() + z) * vs - o.origin_m;
     GenerateStats& c = counts.local();
     c.voxels_visited += n;
     if (o.sparse) {
-      c.noise_evaluations += model.densities(p, size_t(n), d, plan ? far : nullptr, reuse);
-      if (plan && !reuse) pack_far(far, &plan->far[size_t(id) * kFarWords]);
+      c.noise_evaluations += model.densities(p, size_t(n), d, saved ? far : nullptr, reading);
+      if (saved && !reading) pack_far(far, &saved->far[size_t(id) * kFarWords]);
     } else {
       for (int i = 0; i < n; ++i) d[i] = model.density(p[i]);
       c.noise_evaluations += n;
@@ -179,9 +194,9 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
     if (leaf) leaves.local().emplace_back(leaf);
   });
 
-  if (plan) {
-    plan->reused_blocks = reused.load();
-    if (!reuse) plan->key = std::move(key);
+  if (saved) {
+    saved->reused_blocks = reused.load();
+    if (!reading) saved->key = std::move(key);
   }
 
   auto grid = openvdb::FloatGrid::create(0.0f);

@@ -107,8 +107,9 @@ CloudVolume generate_preset_cloud(const PresetCloud& preset, std::optional<doubl
   opt.voxel_size = voxel_size_m.value_or(preset.voxel_size_m);
   opt.time = time_s;
   opt.progress = progress;
+  opt.y_up = true;  // the renderer's axes, made directly
   const auto grid = volume::generate_density(preset.params, opt);
-  CloudVolume c = make_cloud_volume(*volume::rotate_z_up_to_y_up(*grid), optics, preset.name);
+  CloudVolume c = make_cloud_volume(*grid, optics, preset.name);
   c.period_m = render_period(preset.params);
   return c;
 }

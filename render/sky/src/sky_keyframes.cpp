@@ -18,7 +18,6 @@
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/volume/generate.hpp"
-#include "nimbus/volume/up_axis.hpp"
 #include "nimbus/volume/vdb_read.hpp"
 
 namespace nimbus::render {
@@ -134,8 +133,9 @@ SkyKeyframes::Keyframe SkyKeyframes::make(int64_t k) const {
   for (const CloudSlot& s : slots_) {
     if (worker_.stopping()) throw std::runtime_error("stopped");
     if (s.path.empty()) {
-      opt.plan = &s.plan;  // the sky's clouds do not drift in the model: the far tests carry over
-      grids.push_back(volume::rotate_z_up_to_y_up(*volume::generate_density(s.params, opt)));
+      opt.reuse = &s.reuse;  // the sky's clouds do not drift in the model: the far tests carry over
+      opt.y_up = true;
+      grids.push_back(volume::generate_density(s.params, opt));
     } else if (s.frames.empty()) {
       if (!s.file_grid) s.file_grid = load_cloud_grid(s.path, s.grid, static_cast<UpAxis>(s.up));
       grids.push_back(s.file_grid);

@@ -171,7 +171,7 @@ class CloudModel {
   // depend on time when the wind is 0), else they are found and written to it.
   int64_t densities(const glm::dvec3* points, size_t n, float* out, uint8_t* far = nullptr, bool far_known = false) const;
   // The inputs the far test depends on besides the points: the shapes, the displacement, the
-  // wind's drift at this time, the shear and the periodic tile, as numbers (GenerationPlan::key).
+  // wind's drift at this time, the shear and the periodic tile, as numbers (GenerationReuse::key).
   std::vector<double> far_test_key() const;
 
  private:

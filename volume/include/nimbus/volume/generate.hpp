@@ -18,17 +18,18 @@ namespace nimbus::volume {
 // never hold active voxels of value 0.
 inline constexpr float kMinDensity = 1e-6f;
 
-// What a generation finds that does not change with time when the wind is 0 (a sky's clouds, whose
-// drift is applied at render time): which leaf blocks no shape can reach, and which voxels of the
-// others no displacement can move into a shape (CloudModel's far test). Given to the next
-// generation of the same cloud at the same voxel size, origin and clip, at any time, it skips
-// those tests, and the voxels are the same bits. generate_density fills it; a plan made for
-// other inputs is remade, never misused, and one is neither made nor read while the wind blows.
-struct GenerationPlan {
-  std::vector<double> key;        // the inputs the tests depend on, as generate_density lists them
+// The tests of a generation that do not change with time when the wind is 0 (a sky's clouds,
+// whose drift the renderer applies), saved for the next one: which leaf blocks no shape can
+// reach, and which voxels of the others no displacement can move into a shape (CloudModel's far
+// test). A generation of the same cloud at the same voxel size, origin, clip and axes, at any
+// time, reads them instead of testing, and its voxels are the same bits. generate_density fills
+// it; saved for other inputs (another drift included), the tests are made and saved anew, never
+// read.
+struct GenerationReuse {
+  std::vector<double> key;        // the inputs the tests depend on (generate_density lists them)
   std::vector<uint8_t> touched;   // per leaf block: may a shape reach it
   std::vector<uint64_t> far;      // per leaf block, 8 words: bit i set when voxel i is far
-  int64_t reused_blocks = 0;      // blocks of the last generation that took their tests from here
+  int64_t reused_blocks = 0;      // blocks of the last generation that read their tests here
 };
 
 struct GenerateOptions {
@@ -42,11 +43,15 @@ struct GenerateOptions {
   // Where the model's origin goes in the grid's world (metres): voxel (i, j, k) holds the model's
   // density at (i, j, k) * voxel_size - origin_m. A sky's clouds at their positions (sky_volume.hpp).
   glm::dvec3 origin_m{0.0};
+  // The grid y-up (Houdini's, and the renderer's): voxel (i, j, k) holds what the z-up grid holds
+  // at (i, -k, j), so the grid equals rotate_z_up_to_y_up of the z-up one (up_axis.hpp), made
+  // directly; a clip is then a box of y-up indices.
+  bool y_up = false;
   // Called now and then with the share of leaf blocks done, from any thread (the callee
   // serialises); may be empty.
   std::function<void(double)> progress;
-  // Reused, or filled, as GenerationPlan says; null: every test is made.
-  GenerationPlan* plan = nullptr;
+  // Reused, or filled, as GenerationReuse says; null: every test is made.
+  GenerationReuse* reuse = nullptr;
 };
 
 struct GenerateStats {

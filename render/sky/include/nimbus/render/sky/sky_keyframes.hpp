@@ -79,7 +79,7 @@ class SkyKeyframes {
     // One file, read once (worker thread); for a sequence, its first frame, read for its fps.
     mutable openvdb::FloatGrid::ConstPtr file_grid;
     // A preset's tests that do not change from keyframe to keyframe (worker thread).
-    mutable volume::GenerationPlan plan;
+    mutable volume::GenerationReuse reuse;
   };
   using Keyframe = std::vector<openvdb::FloatGrid::ConstPtr>;
   Keyframe make(int64_t k) const;

@@ -522,6 +522,7 @@ std::vector<uint8_t>& CloudModel::far_points(const std::vector<std::array<double
 std::vector<double> CloudModel::far_test_key() const {
   const glm::dvec3 drift = params_.wind * time_;
   std::vector<double> key{drift.x, drift.y, drift.z, params_.shear.x, params_.shear.y, shear_base_, params_.displacement};
+  key.push_back(tile_ ? 1.0 : 0.0);
   if (tile_) key.insert(key.end(), {tile_->lo_m.x, tile_->lo_m.y, tile_->size_m.x, tile_->size_m.y});
   key.push_back(double(shapes_.size()));
   for (const Shape& sh : shapes_)

@@ -5,6 +5,8 @@
 // copied onto the union of their active boxes, so the two blend voxel for voxel
 // (CloudVolume::next_box). The wind is not in the keyframes: it moves the density field as a
 // whole (CloudModel: q = p - wind t), which is a translation of the cloud by wind * t (motion()).
+// A preset's keyframes after the first read the block and far tests the first saved
+// (volume::GenerationReuse: they do not depend on time without drift) and are made y-up directly.
 #pragma once
 #include <cstdint>
 #include <memory>

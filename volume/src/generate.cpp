@@ -71,6 +71,106 @@ openvdb::CoordBBox density_index_box(const CloudParams& params, double voxel_siz
   return {openvdb::Coord(int(lo[0]), int(lo[1]), int(lo[2])), openvdb::Coord(int(hi[0]), int(hi[1]), int(hi[2]))};
 }
 
+namespace {
+
+// The grid's index box (a clip's, or the model's bounds, turned y-up when asked) and the leaf
+// blocks that cover it.
+struct BlockLayout {
+  int64_t lo[3], hi[3];     // the index box, inclusive (hi < lo on an empty axis)
+  int64_t voxels = 1;       // in the box
+  int64_t blo[3], bn[3];    // first block and blocks per axis
+  int64_t blocks = 0;
+  openvdb::CoordBBox keep() const {
+    return {openvdb::Coord{int(lo[0]), int(lo[1]), int(lo[2])}, openvdb::Coord{int(hi[0]), int(hi[1]), int(hi[2])}};
+  }
+  openvdb::Coord block_origin(int64_t id) const {
+    const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
+    return {int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf)};
+  }
+};
+
+BlockLayout block_layout(const CloudModel& model, const GenerateOptions& o) {
+  BlockLayout l;
+  index_range(model, o.voxel_size, o.origin_m, l.lo, l.hi);
+  if (o.y_up) {  // the same voxels turned: z-up (i, j, k) is y-up (i, k, -j)
+    const int64_t jlo = l.lo[1], jhi = l.hi[1];
+    l.lo[1] = l.lo[2];
+    l.hi[1] = l.hi[2];
+    l.lo[2] = -jhi;
+    l.hi[2] = -jlo;
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (o.clip) {  // a sub-box: the same voxels as the whole grid has there
+      l.lo[a] = std::max<int64_t>(l.lo[a], o.clip->min()[a]);
+      l.hi[a] = std::min<int64_t>(l.hi[a], o.clip->max()[a]);
+    }
+    if (l.hi[a] < l.lo[a]) l.hi[a] = l.lo[a] - 1;  // nothing to do on this axis
+    l.voxels *= l.hi[a] - l.lo[a] + 1;
+    l.blo[a] = floor_div(l.lo[a], kLeaf);
+    l.bn[a] = floor_div(l.hi[a], kLeaf) - l.blo[a] + 1;
+  }
+  l.blocks = l.voxels > 0 ? l.bn[0] * l.bn[1] * l.bn[2] : 0;
+  return l;
+}
+
+// A GenerationReuse for one generation: read when its key is this generation's, else remade,
+// and keyed only once whole.
+class SavedTests {
+ public:
+  SavedTests(GenerationReuse* r, const CloudModel& model, const GenerateOptions& o, const BlockLayout& l) : r_(r) {
+    if (!r_) return;
+    key_ = {o.voxel_size, o.origin_m.x, o.origin_m.y, o.origin_m.z, double(o.y_up)};
+    for (int a = 0; a < 3; ++a) key_.insert(key_.end(), {double(l.lo[a]), double(l.hi[a])});
+    const std::vector<double> model_key = model.far_test_key();
+    key_.insert(key_.end(), model_key.begin(), model_key.end());
+    reading_ = r_->key == key_ && r_->touched.size() == size_t(l.blocks);
+    if (!reading_) {
+      r_->key.clear();  // set when the tests are whole: a generation stopped part-way saves none
+      r_->touched.assign(size_t(l.blocks), 0);
+      r_->far.assign(size_t(l.blocks) * kFarWords, 0);
+    }
+    r_->reused_blocks = 0;
+  }
+  bool saving() const { return r_ && !reading_; }
+  bool reading() const { return reading_; }
+  bool touched(int64_t id) const { return r_->touched[size_t(id)] != 0; }
+  void set_touched(int64_t id) { r_->touched[size_t(id)] = 1; }
+  const uint64_t* far(int64_t id) const { return &r_->far[size_t(id) * kFarWords]; }
+  uint64_t* far(int64_t id) { return &r_->far[size_t(id) * kFarWords]; }
+  void count_read() { reused_.fetch_add(1, std::memory_order_relaxed); }
+  // After every block: the count read, and the key of tests now whole.
+  void finish() {
+    if (!r_) return;
+    r_->reused_blocks = reused_.load();
+    if (!reading_) r_->key = std::move(key_);
+  }
+
+ private:
+  GenerationReuse* r_;
+  std::vector<double> key_;
+  bool reading_ = false;
+  std::atomic<int64_t> reused_{0};
+};
+
+// The voxels of block `origin` with density >= kMinDensity inside `keep`, as a new leaf (null
+// when none).
+Leaf* leaf_of(const openvdb::Coord& origin, const float* d, const openvdb::CoordBBox& keep, GenerateStats& c) {
+  Leaf* leaf = nullptr;
+  for (int i = 0; i < kLeaf * kLeaf * kLeaf; ++i) {
+    if (!(d[i] >= kMinDensity)) continue;
+    // Only the index box (a clip's, or one period of a periodic field, whose density goes on
+    // past it), though the leaf blocks reach beyond it.
+    const openvdb::Coord ijk(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf, origin.z() + i / (kLeaf * kLeaf));
+    if (!keep.isInside(ijk)) continue;
+    if (!leaf) leaf = new Leaf(origin, 0.0f, false);
+    leaf->setValueOn(ijk, d[i]);
+    ++c.active_voxels;
+  }
+  return leaf;
+}
+
+}  // namespace
+
 openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const GenerateOptions& o,
                                          GenerateStats* stats) {
   static std::once_flag once;
@@ -80,79 +180,37 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   // keeps them all.
   const CloudModel model(params, o.octave_limit ? o.voxel_size : 1e-12, o.time);
   const double vs = o.voxel_size;
-  int64_t lo[3], hi[3], voxels = 1;
-  index_range(model, vs, o.origin_m, lo, hi);
-  if (o.y_up) {  // the same voxels turned: z-up (i, j, k) is y-up (i, k, -j)
-    const int64_t jlo = lo[1], jhi = hi[1];
-    lo[1] = lo[2];
-    hi[1] = hi[2];
-    lo[2] = -jhi;
-    hi[2] = -jlo;
-  }
+  const BlockLayout layout = block_layout(model, o);
+  const openvdb::CoordBBox keep = layout.keep();
+  // The upper bound of what the grid could hold must fit in memory.
+  ensure_fits_in_memory(static_cast<uint64_t>(layout.voxels), sizeof(float), "the cloud's bounding box at this voxel size");
   // The model's (z-up) index of the grid's voxel (i, j, k).
   auto model_index = [&](int64_t i, int64_t j, int64_t k) {
     return o.y_up ? glm::dvec3(double(i), double(-k), double(j)) : glm::dvec3(double(i), double(j), double(k));
   };
-  for (int a = 0; a < 3; ++a) {
-    if (o.clip) {  // a sub-box: the same voxels as the whole grid has there
-      lo[a] = std::max<int64_t>(lo[a], o.clip->min()[a]);
-      hi[a] = std::min<int64_t>(hi[a], o.clip->max()[a]);
-    }
-    if (hi[a] < lo[a]) hi[a] = lo[a] - 1;  // nothing to do on this axis
-    voxels *= hi[a] - lo[a] + 1;
-  }
-  const openvdb::CoordBBox keep{openvdb::Coord{int(lo[0]), int(lo[1]), int(lo[2])},
-                                openvdb::Coord{int(hi[0]), int(hi[1]), int(hi[2])}};
-  // The upper bound of what the grid could hold must fit in memory.
-  ensure_fits_in_memory(static_cast<uint64_t>(voxels), sizeof(float), "the cloud's bounding box at this voxel size");
-
-  // Leaf blocks covering the bounds, and the shapes' boxes (moved like the model) to test them.
-  int64_t blo[3], bn[3];
-  for (int a = 0; a < 3; ++a) {
-    blo[a] = floor_div(lo[a], kLeaf);
-    bn[a] = floor_div(hi[a], kLeaf) - blo[a] + 1;
-  }
+  // Tests saved for these inputs are read instead of made; otherwise they are saved here.
+  SavedTests saved(o.sparse ? o.reuse : nullptr, model, o, layout);
 
   // Owned until the tree takes them: a stop (cancel.hpp) or an error part-way frees what was made.
   tbb::enumerable_thread_specific<std::vector<std::unique_ptr<Leaf>>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
-  const int64_t blocks = voxels > 0 ? bn[0] * bn[1] * bn[2] : 0;
-  // Tests saved for these inputs are read instead of made; otherwise they are saved here.
-  GenerationReuse* saved = o.sparse ? o.reuse : nullptr;
-  bool reading = false;
-  std::vector<double> key;
-  if (saved) {
-    key = {vs, o.origin_m.x, o.origin_m.y, o.origin_m.z, double(o.y_up)};
-    for (int a = 0; a < 3; ++a) key.insert(key.end(), {double(lo[a]), double(hi[a])});
-    const std::vector<double> model_key = model.far_test_key();
-    key.insert(key.end(), model_key.begin(), model_key.end());
-    reading = saved->key == key && saved->touched.size() == size_t(blocks);
-    if (!reading) {
-      saved->key.clear();  // set when the tests are whole: a generation stopped part-way leaves none
-      saved->touched.assign(size_t(blocks), 0);
-      saved->far.assign(size_t(blocks) * kFarWords, 0);
-    }
-    saved->reused_blocks = 0;
-  }
-  std::atomic<int64_t> reused{0};
   std::atomic<int64_t> done{0};
-  const int64_t report_every = std::max<int64_t>(1, blocks / 100);
-  tbb::parallel_for(int64_t(0), blocks, [&](int64_t id) {
+  const int64_t report_every = std::max<int64_t>(1, layout.blocks / 100);
+  tbb::parallel_for(int64_t(0), layout.blocks, [&](int64_t id) {
     throw_if_cancelled();
-    if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(blocks));
-    const int64_t bx = blo[0] + id % bn[0], by = blo[1] + (id / bn[0]) % bn[1], bz = blo[2] + id / (bn[0] * bn[1]);
-    const openvdb::Coord origin(int(bx * kLeaf), int(by * kLeaf), int(bz * kLeaf));
+    if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(layout.blocks));
+    const openvdb::Coord origin = layout.block_origin(id);
+    GenerateStats& c = counts.local();
     uint8_t far[kLeaf * kLeaf * kLeaf];
-    if (reading) {
-      if (!saved->touched[size_t(id)]) return;
-      const uint64_t* words = &saved->far[size_t(id) * kFarWords];
+    if (saved.reading()) {
+      if (!saved.touched(id)) return;
+      saved.count_read();
+      const uint64_t* words = saved.far(id);
       if (std::all_of(words, words + kFarWords, [](uint64_t w) { return w == ~uint64_t(0); })) {
-        counts.local().voxels_visited += kLeaf * kLeaf * kLeaf;  // every voxel far: density 0
-        reused.fetch_add(1, std::memory_order_relaxed);
+        c.voxels_visited += kLeaf * kLeaf * kLeaf;  // every voxel far: density 0
         return;
       }
       unpack_far(words, far);
-      reused.fetch_add(1, std::memory_order_relaxed);
     } else if (o.sparse) {
       // Voxel centres of this block span [origin, origin + 7] * vs (turned, y-up); skip it if no
       // shape is near.
@@ -160,7 +218,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
                        b = model_index(origin.x() + kLeaf - 1, origin.y() + kLeaf - 1, origin.z() + kLeaf - 1);
       const Aabb box{glm::min(a, b) * vs - o.origin_m, glm::max(a, b) * vs - o.origin_m};
       if (!model.may_touch(box.expanded(1e-9 * vs))) return;
-      if (saved) saved->touched[size_t(id)] = 1;
+      if (saved.saving()) saved.set_touched(id);
     }
     glm::dvec3 p[kLeaf * kLeaf * kLeaf];
     float d[kLeaf * kLeaf * kLeaf];
@@ -169,35 +227,18 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
       for (int y = 0; y < kLeaf; ++y)
         for (int x = 0; x < kLeaf; ++x)
           p[n++] = model_index(origin.x() + x, origin.y() + y, origin.z() + z) * vs - o.origin_m;
-    GenerateStats& c = counts.local();
     c.voxels_visited += n;
     if (o.sparse) {
-      c.noise_evaluations += model.densities(p, size_t(n), d, saved ? far : nullptr, reading);
-      if (saved && !reading) pack_far(far, &saved->far[size_t(id) * kFarWords]);
+      const bool keep_far = saved.reading() || saved.saving();
+      c.noise_evaluations += model.densities(p, size_t(n), d, keep_far ? far : nullptr, saved.reading());
+      if (saved.saving()) pack_far(far, saved.far(id));
     } else {
       for (int i = 0; i < n; ++i) d[i] = model.density(p[i]);
       c.noise_evaluations += n;
     }
-    Leaf* leaf = nullptr;
-    for (int i = 0; i < n; ++i) {
-      if (!(d[i] >= kMinDensity)) continue;
-      // Only the index box (a clip's, or one period of a periodic field, whose density goes on
-      // past it), though the leaf blocks reach beyond it.
-      if (!keep.isInside(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf, origin.z() + i / (kLeaf * kLeaf))))
-        continue;
-      if (!leaf) leaf = new Leaf(origin, 0.0f, false);
-      leaf->setValueOn(openvdb::Coord(origin.x() + i % kLeaf, origin.y() + (i / kLeaf) % kLeaf,
-                                      origin.z() + i / (kLeaf * kLeaf)),
-                       d[i]);
-      ++c.active_voxels;
-    }
-    if (leaf) leaves.local().emplace_back(leaf);
+    if (Leaf* leaf = leaf_of(origin, d, keep, c)) leaves.local().emplace_back(leaf);
   });
-
-  if (saved) {
-    saved->reused_blocks = reused.load();
-    if (!reading) saved->key = std::move(key);
-  }
+  saved.finish();
 
   auto grid = openvdb::FloatGrid::create(0.0f);
   grid->setName("density");
@@ -213,7 +254,7 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
       s.noise_evaluations += c.noise_evaluations;
       s.active_voxels += c.active_voxels;
     }
-    s.voxels_in_bounds = voxels;
+    s.voxels_in_bounds = layout.voxels;
     s.octaves_used = model.octaves_used();
     s.octaves_requested = params.octaves;
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -351,10 +351,7 @@ void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const st
     if (skip[i]) continue;
     w[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
     index_->visit(w[i], [&](uint32_t k) {
-      CoverageEntry& e = entries.emplace_back();
-      e.point = static_cast<uint32_t>(i);
-      e.shape = k;
-      coverage_start(shapes_[k], w[i], e.start);
+      const CoverageEntry& e = entries.emplace_back(CoverageEntry{static_cast<uint32_t>(i), k, coverage_start(shapes_[k], w[i])});
       if (!e.start.zero && e.start.needs_noise) noise_points.push_back(e.start.noise_point);
     });
   }

@@ -49,9 +49,7 @@ double shape_distance(const Shape& s, const glm::dvec3& point) {
   // A rooted column narrows towards its root: the pivot's section, scaled about the axis.
   const double k = root_taper(s, point.z);
   const glm::dvec3 axis = s.kind == ShapeKind::Capsule && s.end.z < s.center.z ? s.end : s.center;
-  // (Where k is 1 the scaling is the identity, bit for bit: axis + (x - axis) is not always x.)
-  const glm::dvec3 p = k == 1.0 ? glm::dvec3(axis.x + (point.x - axis.x), axis.y + (point.y - axis.y), rooted_z(s, point.z))
-                                : glm::dvec3(axis.x + (point.x - axis.x) / k, axis.y + (point.y - axis.y) / k, rooted_z(s, point.z));
+  const glm::dvec3 p(axis.x + (point.x - axis.x) / k, axis.y + (point.y - axis.y) / k, rooted_z(s, point.z));
   const glm::dvec3 d = p - s.center;
   switch (s.kind) {
     case ShapeKind::Ellipsoid: return glm::length(d / s.size);
@@ -138,13 +136,13 @@ double shape_distance_bound(const Shape& shape, const glm::dvec3& p) { return gr
 
 const noise::NoiseField& shape_roughness_noise() { return roughness_noise_field(); }
 
-void coverage_start(const Shape& s, const glm::dvec3& p, CoverageStart& c) {
-  c = CoverageStart{};
+CoverageStart coverage_start(const Shape& s, const glm::dvec3& p) {
+  CoverageStart c;
   c.u = shape_distance(s, p);
   if (s.roughness > 0.0) {
     if (!(c.u < 1.0 + s.roughness)) {
       c.zero = true;
-      return;
+      return c;
     }
     // Only near the outline; a rooted shape's column has the outline of its pivot's section.
     if (c.u > 1.0 - s.falloff - s.roughness) {
@@ -152,11 +150,6 @@ void coverage_start(const Shape& s, const glm::dvec3& p, CoverageStart& c) {
       c.noise_point = roughness_point(s, {p.x, p.y, rooted_z(s, p.z)});
     }
   }
-}
-
-CoverageStart coverage_start(const Shape& s, const glm::dvec3& p) {
-  CoverageStart c;
-  coverage_start(s, p, c);
   return c;
 }
 

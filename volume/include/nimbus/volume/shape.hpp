@@ -93,7 +93,6 @@ struct CoverageStart {
   std::array<double, 3> noise_point{};  // where, in the roughness noise's lattice
 };
 CoverageStart coverage_start(const Shape& s, const glm::dvec3& p);
-void coverage_start(const Shape& s, const glm::dvec3& p, CoverageStart& out);  // the same, written in place
 double coverage_finish(const Shape& s, const glm::dvec3& p, const CoverageStart& start, float noise);
 const noise::NoiseField& shape_roughness_noise();
 // The box outside which the coverage is exactly 0.

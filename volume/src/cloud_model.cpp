@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -277,11 +278,19 @@ glm::dvec3 CloudModel::noise_point(const glm::dvec3& q) const {
   return {q.x + (squeeze - 1.0) * along * fibre_dir_.x, q.y + (squeeze - 1.0) * along * fibre_dir_.y, q.z};
 }
 
+glm::dvec3 CloudModel::displacement(float x, float y, float z) const {
+  // Each component is in [-1, 1], so the vector could reach sqrt(3) displacements; the far
+  // test (far_points) bounds the reach by one, so a longer vector is shortened to that. None
+  // is in practice: 3-octave fBm has a standard deviation near 0.12 per component.
+  glm::dvec3 d(x, y, z);
+  const double len2 = glm::dot(d, d);
+  if (len2 > 1.0) d /= std::sqrt(len2);
+  return params_.displacement * d;
+}
+
 glm::dvec3 CloudModel::moved(const glm::dvec3& p) const {
   glm::dvec3 q = sheared(p);
-  if (disp_[0])
-    q += params_.displacement * glm::dvec3(disp_[0]->eval(q.x, q.y, q.z), disp_[1]->eval(q.x, q.y, q.z),
-                                           disp_[2]->eval(q.x, q.y, q.z));
+  if (disp_[0]) q += displacement(disp_[0]->eval(q.x, q.y, q.z), disp_[1]->eval(q.x, q.y, q.z), disp_[2]->eval(q.x, q.y, q.z));
   return q;
 }
 
@@ -558,7 +567,8 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out, ui
     }
     for (size_t i = 0, k = 0; i < n; ++i) {
       if (far[i]) continue;
-      for (int a = 0; a < 3; ++a) q[i][a] += params_.displacement * double(t.d[a][k]);
+      const glm::dvec3 d = displacement(t.d[0][k], t.d[1][k], t.d[2][k]);
+      for (int a = 0; a < 3; ++a) q[i][a] += d[a];
       ++k;
     }
   }

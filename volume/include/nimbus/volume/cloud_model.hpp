@@ -3,7 +3,7 @@
 // units are metres and seconds.
 //
 //   q0     = p - wind t - (shear_x, shear_y, 0) (z - base)          leaning with height
-//   q      = q0 + displacement * (fbm_x, fbm_y, fbm_z)(q0)
+//   q      = q0 + displacement * (fbm_x, fbm_y, fbm_z)(q0)   at most displacement metres long
 //   n      = q squeezed by 1/stretch along stretch_direction above stretch_altitude (noise)
 //   s      = max over shapes of coverage(q) * ceiling(q0.z) * base(q0.z)   in [0, 1]
 //   w      = calm(q0.z): 0 at the base and the ceiling, 1 flat_layer metres from them
@@ -177,6 +177,8 @@ class CloudModel {
  private:
   glm::dvec3 sheared(const glm::dvec3& p) const;  // q0: wind and shear applied
   glm::dvec3 moved(const glm::dvec3& p) const;    // q: and displacement
+  // The displacement in metres from the three noises' values, at most `displacement` long.
+  glm::dvec3 displacement(float x, float y, float z) const;
   glm::dvec3 noise_point(const glm::dvec3& q) const;  // n: stretched
   glm::dvec3 wrapped(const glm::dvec3& q) const;      // q moved into the periodic tile (x, y)
   void make_map();           // map_ from the parameters' image (or file) and extent

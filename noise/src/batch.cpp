@@ -4,10 +4,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "batch_level.hpp"
 
@@ -107,6 +109,58 @@ void evaluate_points(const NoiseField& field, std::span<const std::array<double,
                     [&](const tbb::blocked_range<size_t>& r) {
                       k.points(fd, points.data() + r.begin(), r.size(), out.data() + r.begin());
                     });
+}
+
+bool shares_lattice(const NoiseField& a, const NoiseField& b) {
+  const detail::FieldData& x = a.data();
+  const detail::FieldData& y = b.data();
+  if (x.kind != y.kind || x.kind == Kind::Wavelet || x.octaves != y.octaves) return false;
+  for (int o = 0; o < x.octaves; ++o)
+    for (int ax = 0; ax < 3; ++ax)
+      if (x.oct[o].freq != y.oct[o].freq || x.oct[o].period[ax] != y.oct[o].period[ax] ||
+          x.oct[o].iperiod[ax] != y.oct[o].iperiod[ax])
+        return false;
+  return true;
+}
+
+void evaluate_points(std::span<const NoiseField* const> fields, std::span<const std::array<double, 3>> points,
+                     std::span<const std::span<float>> outs, const BatchOptions& options) {
+  if (outs.size() != fields.size())
+    throw std::invalid_argument(std::to_string(outs.size()) + " outputs for " + std::to_string(fields.size()) + " fields");
+  for (size_t f = 0; f < fields.size(); ++f) {
+    if (!fields[f]) throw std::invalid_argument("field " + std::to_string(f) + " is null");
+    if (outs[f].size() != points.size())
+      throw std::invalid_argument("output " + std::to_string(f) + " holds " + std::to_string(outs[f].size()) +
+                                  " values for " + std::to_string(points.size()) + " points");
+  }
+  bool shared = !fields.empty();
+  for (size_t f = 1; f < fields.size() && shared; ++f) shared = shares_lattice(*fields[0], *fields[f]);
+  if (!shared) {
+    for (size_t f = 0; f < fields.size(); ++f) evaluate_points(*fields[f], points, outs[f], options);
+    return;
+  }
+  const level::Kernels k = kernels_for(options);
+  // Pointer tables on the stack for a few fields (callers evaluating leaf blocks serially call
+  // this often), else on the heap.
+  constexpr size_t kFew = 8;
+  const size_t nf = fields.size();
+  std::array<const detail::FieldData*, kFew> fd_few{};
+  std::vector<const detail::FieldData*> fd_many(nf > kFew ? nf : 0);
+  const detail::FieldData** fds = nf > kFew ? fd_many.data() : fd_few.data();
+  for (size_t f = 0; f < nf; ++f) fds[f] = &fields[f]->data();
+  auto run = [&](size_t begin, size_t n) {
+    std::array<float*, kFew> out_few{};
+    std::vector<float*> out_many(nf > kFew ? nf : 0);
+    float** out = nf > kFew ? out_many.data() : out_few.data();
+    for (size_t f = 0; f < nf; ++f) out[f] = outs[f].data() + begin;
+    k.shared_points(fds, nf, points.data() + begin, n, out);
+  };
+  if (!options.parallel) {
+    run(0, points.size());
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096),
+                    [&](const tbb::blocked_range<size_t>& r) { run(r.begin(), r.size()); });
 }
 
 }  // namespace nimbus::noise

@@ -171,8 +171,49 @@ void points(const detail::FieldData& fd, const std::array<double, 3>* p, size_t 
   }
 }
 
+// points_from_axes for fields on one lattice: each block is split once (the split depends on
+// the octaves' frequencies and periods only), then every field sums its octaves from it.
+template <class Bt, Kind K>
+void shared_points_from_axes(const detail::FieldData* const* fds, size_t nf, const std::array<double, 3>* p,
+                             size_t count, float* const* out) {
+  using F = typename Bt::F;
+  using Half = simd::Batch<(NIMBUS_WIDTH > 1 ? NIMBUS_WIDTH / 2 : 1)>;
+  constexpr size_t W = size_t(Bt::width);
+  constexpr size_t kBlock = kernels::PointAxes::kBlock;
+  thread_local kernels::PointAxes pa;
+  for (size_t b = 0; b < count; b += kBlock) {
+    const size_t m = std::min(kBlock, count - b);
+    kernels::split_points<Half>(*fds[0], p + b, m, (m + W - 1) / W * W, pa);
+    for (size_t i = 0; i < m; i += W)
+      for (size_t f = 0; f < nf; ++f) {
+        const detail::FieldData& fd = *fds[f];
+        const F v = kernels::fractal_sum<Bt>(fd, [&](const detail::OctaveData& o, int oi) NIMBUS_INLINE_LAMBDA {
+          return kernels::octave_from_axes<Bt, K>(fd, o, pa, oi, i);
+        });
+        if (m - i >= W)
+          std::memcpy(out[f] + b + i, &v, sizeof(F));
+        else
+          std::memcpy(out[f] + b + i, &v, sizeof(float) * (m - i));
+      }
+  }
+}
+
+template <class Bt>
+void shared_points(const detail::FieldData* const* fds, size_t nf, const std::array<double, 3>* p, size_t count,
+                   float* const* out) {
+  if (count == 0 || nf == 0) return;
+  switch (fds[0]->kind) {
+    case Kind::Value: return shared_points_from_axes<Bt, Kind::Value>(fds, nf, p, count, out);
+    case Kind::Gradient: return shared_points_from_axes<Bt, Kind::Gradient>(fds, nf, p, count, out);
+    case Kind::Worley: return shared_points_from_axes<Bt, Kind::Worley>(fds, nf, p, count, out);
+    case Kind::Wavelet:  // read from a tile, nothing to split: one field after the other
+      for (size_t f = 0; f < nf; ++f) points_of_kind<Bt, Kind::Wavelet>(*fds[f], p, count, out[f]);
+      return;
+  }
+}
+
 }  // namespace
 
-Kernels NIMBUS_LEVEL_FN() { return {&rows<Lanes>, &points<Lanes>}; }
+Kernels NIMBUS_LEVEL_FN() { return {&rows<Lanes>, &points<Lanes>, &shared_points<Lanes>}; }
 
 }  // namespace nimbus::noise::level

@@ -6,8 +6,10 @@
 
 #include <array>
 #include <cmath>
+#include <deque>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -198,6 +200,62 @@ TEST_P(NoisePropsBatch, GridAndPointsMatchScalarEvalAtEveryLevel) {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, NoisePropsBatch, ::testing::ValuesIn(batch_cases()),
                          [](const ::testing::TestParamInfo<BatchCase>& param_info) { return param_info.param.name; });
+
+// Several fields at the same points: fields on one lattice (seeds, gains and times differ) are
+// split once, and each must still get its own evaluate_points bits at every level, serial and
+// threaded, in whole lane groups and in tails; a set that is not on one lattice falls back to
+// one field after the other, with the same bits.
+TEST(NoisePropsBatchShared, FieldsOnOneLatticeGiveEachFieldsOwnBits) {
+  auto pts = special_points();
+  for (Kind kind : {Kind::Value, Kind::Gradient, Kind::Worley, Kind::Wavelet}) {
+    std::deque<NoiseField> fields;  // NoiseField does not move
+    for (int f = 0; f < 3; ++f) {
+      NoiseParams p;
+      p.kind = kind;
+      p.fractal = Fractal::Fbm;
+      p.octaves = 3;
+      p.frequency = 0.37;
+      p.gain = 0.5 + 0.1 * f;
+      p.seed = 11u + uint32_t(f);
+      if (f < 2) p.time = 1.3 + 1.7 * f;  // two animated, one static
+      fields.emplace_back(p);
+    }
+    NoiseParams other = fields[0].params();
+    other.frequency = 0.41;
+    fields.emplace_back(other);
+    EXPECT_EQ(shares_lattice(fields[0], fields[1]), kind != Kind::Wavelet) << int(kind);
+    EXPECT_EQ(shares_lattice(fields[0], fields[2]), kind != Kind::Wavelet) << int(kind);
+    EXPECT_FALSE(shares_lattice(fields[0], fields[3])) << "another frequency is another lattice";
+
+    std::vector<std::vector<float>> want(fields.size(), std::vector<float>(pts.size()));
+    for (size_t f = 0; f < fields.size(); ++f) evaluate_points(fields[f], pts, want[f], {SimdLevel::Scalar, false});
+    for (size_t nf : {size_t(3), size_t(4)}) {  // one lattice; and with a stranger
+      std::vector<const NoiseField*> set;
+      for (size_t f = 0; f < nf; ++f) set.push_back(&fields[f]);
+      for (SimdLevel level : supported_levels())
+        for (bool parallel : {false, true})
+          for (size_t len : {pts.size(), size_t(1), size_t(7), size_t(17)}) {
+            const auto part = std::span(pts).subspan(pts.size() - len);
+            std::vector<std::vector<float>> got(nf, std::vector<float>(len, std::numeric_limits<float>::quiet_NaN()));
+            std::vector<std::span<float>> outs(got.begin(), got.end());
+            evaluate_points(set, part, outs, {level, parallel});
+            for (size_t f = 0; f < nf; ++f)
+              for (size_t i = 0; i < len; ++i)
+                ASSERT_EQ(bits(got[f][i]), bits(want[f][pts.size() - len + i]))
+                    << to_string(level) << " kind " << int(kind) << " field " << f << " of " << nf << ", " << len
+                    << " points, point " << i;
+          }
+    }
+  }
+
+  NoiseParams p;
+  const NoiseField f(p);
+  std::vector<float> a(pts.size()), b(pts.size()), short_out(pts.size() - 1);
+  const std::vector<const NoiseField*> two{&f, &f}, with_null{&f, nullptr};
+  EXPECT_THROW(evaluate_points(two, pts, std::vector<std::span<float>>{a}), std::invalid_argument);
+  EXPECT_THROW(evaluate_points(two, pts, std::vector<std::span<float>>{a, short_out}), std::invalid_argument);
+  EXPECT_THROW(evaluate_points(with_null, pts, std::vector<std::span<float>>{a, b}), std::invalid_argument);
+}
 
 TEST(NoisePropsBatchLevels, ReportsLevels) {
   std::string s;

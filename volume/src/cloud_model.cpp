@@ -2,6 +2,8 @@
 #include "nimbus/volume/cloud_model.hpp"
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <cmath>
@@ -254,7 +256,12 @@ void CloudModel::replicate_shapes() {
 glm::dvec3 CloudModel::wrapped(const glm::dvec3& q) const {
   if (!tile_) return q;
   const glm::dvec2 P = tile_->size_m, lo = tile_->lo_m;
-  return {q.x - P.x * std::floor((q.x - lo.x) / P.x), q.y - P.y * std::floor((q.y - lo.y) / P.y), q.z};
+  // 0 <= d < P gives d / P < 1 after rounding too, so the floor is 0 and q stays as it is: the
+  // common case, without the divisions.
+  const double dx = q.x - lo.x, dy = q.y - lo.y;
+  const double x = dx >= 0.0 && dx < P.x ? q.x : q.x - P.x * std::floor(dx / P.x);
+  const double y = dy >= 0.0 && dy < P.y ? q.y : q.y - P.y * std::floor(dy / P.y);
+  return {x, y, q.z};
 }
 
 double CloudModel::map_at(const glm::dvec3& p) const {
@@ -301,13 +308,17 @@ double smoothstep01(double x) {
   return x * x * (3.0 - 2.0 * x);
 }
 
+// The ceiling's share at the undisplaced altitude z0: 1 below its soft layer, 0 above it.
+double ceiling_factor(const CloudParams& p, double z0) {
+  return z0 > p.ceiling_altitude - p.ceiling_softness ? smoothstep01((p.ceiling_altitude - z0) / p.ceiling_softness) : 1.0;
+}
+
 }  // namespace
 
 double CloudModel::coverage_at(const glm::dvec3& q_in, double z0) const {
   const CloudParams& p = params_;
   const glm::dvec3 q = wrapped(q_in);
-  const bool under_ceiling = z0 > p.ceiling_altitude - p.ceiling_softness;
-  const double ceiling = under_ceiling ? smoothstep01((p.ceiling_altitude - z0) / p.ceiling_softness) : 1.0;
+  const double ceiling = ceiling_factor(p, z0);
   double s = 0.0;
   index_->visit(q, [&](uint32_t i) {
     const double c = shape_coverage(shapes_[i], q);
@@ -319,7 +330,7 @@ double CloudModel::coverage_at(const glm::dvec3& q_in, double z0) const {
 
 namespace {
 
-// One point's shape, in the order coverage_at visits them, with the start of its coverage.
+// One point's shape whose coverage waits for its roughness noise, with the start of it.
 struct CoverageEntry {
   uint32_t point, shape;
   CoverageStart start;
@@ -349,34 +360,40 @@ void CloudModel::coverages(const std::vector<std::array<double, 3>>& q, const st
                            const std::vector<uint8_t>& skip, std::vector<double>& s) const {
   const CloudParams& p = params_;
   DensityScratch& t = density_scratch();
-  // Each point's shapes, with the roughness noise they need gathered for one batch.
+  // Each point's shapes: a coverage that needs no roughness noise is folded into the point's
+  // at once (a zero one leaves it as it is); the others wait for their noise, evaluated in one
+  // batch. s is a maximum, so the order does not change it.
   std::vector<CoverageEntry>& entries = t.entries;
   std::vector<std::array<double, 3>>& noise_points = t.noise_points;
   std::vector<glm::dvec3>& w = t.w;
   entries.clear();
   noise_points.clear();
   w.resize(q.size());
+  s.assign(q.size(), 0.0);
+  auto fold = [&](size_t i, uint32_t k, double c) {
+    s[i] = std::max(s[i], shapes_[k].overshoot ? c : c * ceiling_factor(p, z0[i]));
+  };
   for (size_t i = 0; i < q.size(); ++i) {
     if (skip[i]) continue;
     w[i] = wrapped(glm::dvec3(q[i][0], q[i][1], q[i][2]));
     index_->visit(w[i], [&](uint32_t k) {
-      const CoverageEntry& e = entries.emplace_back(CoverageEntry{static_cast<uint32_t>(i), k, coverage_start(shapes_[k], w[i])});
-      if (!e.start.zero && e.start.needs_noise) noise_points.push_back(e.start.noise_point);
+      const CoverageStart start = coverage_start(shapes_[k], w[i]);
+      if (start.zero) return;
+      if (!start.needs_noise) {
+        fold(i, k, coverage_finish(shapes_[k], w[i], start, 0.0f));
+        return;
+      }
+      entries.push_back(CoverageEntry{static_cast<uint32_t>(i), k, start});
+      noise_points.push_back(start.noise_point);
     });
   }
   std::vector<float>& noise = t.noise;
   noise.resize(noise_points.size());
   if (!noise_points.empty())
     noise::evaluate_points(shape_roughness_noise(), noise_points, noise, noise::BatchOptions{std::nullopt, false});
-  s.assign(q.size(), 0.0);
-  size_t m = 0;
-  for (const CoverageEntry& e : entries) {
-    const float nv = !e.start.zero && e.start.needs_noise ? noise[m++] : 0.0f;
-    const double c = coverage_finish(shapes_[e.shape], w[e.point], e.start, nv);
-    const double z = z0[e.point];
-    const bool under_ceiling = z > p.ceiling_altitude - p.ceiling_softness;
-    const double ceiling = under_ceiling ? smoothstep01((p.ceiling_altitude - z) / p.ceiling_softness) : 1.0;
-    s[e.point] = std::max(s[e.point], shapes_[e.shape].overshoot ? c : c * ceiling);
+  for (size_t m = 0; m < entries.size(); ++m) {
+    const CoverageEntry& e = entries[m];
+    fold(e.point, e.shape, coverage_finish(shapes_[e.shape], w[e.point], e.start, noise[m]));
   }
   for (size_t i = 0; i < q.size(); ++i)
     if (!skip[i] && s[i] > 0.0 && z0[i] < p.base_altitude + p.base_softness)
@@ -561,10 +578,11 @@ int64_t CloudModel::densities(const glm::dvec3* points, size_t n, float* out, ui
     near.clear();
     for (size_t i = 0; i < n; ++i)
       if (!far[i]) near.push_back(q[i]);
-    for (int a = 0; a < 3; ++a) {
-      t.d[a].resize(near.size());
-      noise::evaluate_points(*disp_[a], near, t.d[a], serial);
-    }
+    // The three noises share a lattice: each point is split into cells once for all three.
+    const std::array<const noise::NoiseField*, 3> fields{disp_[0].get(), disp_[1].get(), disp_[2].get()};
+    for (int a = 0; a < 3; ++a) t.d[a].resize(near.size());
+    const std::array<std::span<float>, 3> outs{std::span<float>(t.d[0]), std::span<float>(t.d[1]), std::span<float>(t.d[2])};
+    noise::evaluate_points(fields, near, outs, serial);
     for (size_t i = 0, k = 0; i < n; ++i) {
       if (far[i]) continue;
       const glm::dvec3 d = displacement(t.d[0][k], t.d[1][k], t.d[2][k]);

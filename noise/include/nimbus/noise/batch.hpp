@@ -45,4 +45,16 @@ void evaluate_grid(const NoiseField& field, const GridSpec& grid, std::span<floa
 void evaluate_points(const NoiseField& field, std::span<const std::array<double, 3>> points,
                      std::span<float> out, const BatchOptions& options = {});
 
+// Whether two fields read one lattice at every octave: the same kind (not wavelet), octave
+// count, octave frequencies and periods. Seeds, gains and times may differ.
+bool shares_lattice(const NoiseField& a, const NoiseField& b);
+
+// Several fields at the same points: outs[f] gets exactly evaluate_points(*fields[f], ...).
+// When every field shares_lattice with the first, each point is split into lattice cells once
+// for all of them (the three displacement noises of a cloud model, say); otherwise they are
+// evaluated one after the other. Throws std::invalid_argument on a null field, a count of outs
+// that is not the count of fields, or an out whose size is not the count of points.
+void evaluate_points(std::span<const NoiseField* const> fields, std::span<const std::array<double, 3>> points,
+                     std::span<const std::span<float>> outs, const BatchOptions& options = {});
+
 }  // namespace nimbus::noise

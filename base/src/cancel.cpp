@@ -1,18 +1,16 @@
-// The process's stop request (cancel.hpp): one atomic flag.
+// The current call's stop token (cancel.hpp): one per thread, set by StopScope.
 #include "nimbus/base/cancel.hpp"
 
-#include <atomic>
+#include <utility>
 
 namespace nimbus {
 namespace {
-std::atomic<bool> g_cancel{false};
+thread_local std::stop_token t_current;
 }  // namespace
 
-void request_cancel() { g_cancel.store(true, std::memory_order_relaxed); }
-void clear_cancel() { g_cancel.store(false, std::memory_order_relaxed); }
-bool cancel_requested() { return g_cancel.load(std::memory_order_relaxed); }
-void throw_if_cancelled() {
-  if (cancel_requested()) throw Cancelled();
-}
+std::stop_token current_stop_token() { return t_current; }
+
+StopScope::StopScope(std::stop_token token) : previous_(std::exchange(t_current, std::move(token))) {}
+StopScope::~StopScope() { t_current = std::move(previous_); }
 
 }  // namespace nimbus

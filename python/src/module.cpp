@@ -17,6 +17,7 @@ PYBIND11_MODULE(_nimbus, m) {
   m.doc() = "nimbus's compiled core; use the package nimbus, not this module";
   openvdb::initialize();
   nimbus::python::register_errors(m);
+  nimbus::python::register_exit_handler();
   nimbus::python::bind_volume(m);
   nimbus::python::bind_generate(m);
   nimbus::python::bind_render(m);

@@ -195,9 +195,10 @@ openvdb::FloatGrid::Ptr generate_density(const CloudParams& params, const Genera
   tbb::enumerable_thread_specific<std::vector<std::unique_ptr<Leaf>>> leaves;
   tbb::enumerable_thread_specific<GenerateStats> counts;
   std::atomic<int64_t> done{0};
+  const std::stop_token stop = current_stop_token();  // this call's, taken before the blocks fan out
   const int64_t report_every = std::max<int64_t>(1, layout.blocks / 100);
   tbb::parallel_for(int64_t(0), layout.blocks, [&](int64_t id) {
-    throw_if_cancelled();
+    throw_if_stopped(stop);
     if (o.progress && (done.fetch_add(1) + 1) % report_every == 0) o.progress(double(done.load()) / double(layout.blocks));
     const openvdb::Coord origin = layout.block_origin(id);
     GenerateStats& c = counts.local();

@@ -83,6 +83,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
     throw std::invalid_argument("cloud path tracer light: it traces the sun only; a lamp lights clouds through the slicer and the cloud reference");
   validate(settings);
   if (clouds.empty()) throw std::invalid_argument("path tracer clouds: the list is empty");
+  const std::stop_token stop = current_stop_token();  // this call's, taken before the pixels fan out
   const std::vector<TracedCloud> media = media_of(clouds);
   const auto start = std::chrono::steady_clock::now();
   const glm::dvec3 to_light = glm::normalize(light.direction_to_sun);
@@ -98,7 +99,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
     glm::dvec3 sum(0.0), sum_sq(0.0);
     double view_T = 0.0;
     for (int s = 0; s < n; ++s) {
-      if ((s & 63) == 63) throw_if_cancelled();  // a stop (cancel.hpp) between 64 paths, not only between rows
+      if ((s & 63) == 63) throw_if_stopped(stop);  // a stop (cancel.hpp) between 64 paths, not only between rows
       view_T += transmittance(media, camera.eye, ray, rng);
       glm::dvec3 L(0.0), beta(1.0);
       glm::dvec3 o = camera.eye, d = ray;

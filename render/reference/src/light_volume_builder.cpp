@@ -357,7 +357,7 @@ void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, c
 // own stream, the tallies are integers).
 Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
                       const LaunchRect& rect, const LightVolumeSettings& settings, const Handover& handover,
-                      tbb::task_arena& arena) {
+                      tbb::task_arena& arena, const std::stop_token& stop) {
   const double shortest = std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z});
   const double widest = std::max({v.cell_m.x, v.cell_m.y, v.cell_m.z});
   Tallies tallies;
@@ -376,7 +376,7 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
-                        throw_if_cancelled();  // a block of photons at a time (cancel.hpp)
+                        throw_if_stopped(stop);  // a block of photons at a time (cancel.hpp)
                         TallySink sink{tallies.sum.data(), tallies.source.data(), true, tallies.quantum};
                         if (!shared) {
                           Own& mine = own.local();
@@ -441,11 +441,11 @@ Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<
 // no lobe (it has scattered more often than the lobe orders).
 void add_diffused_light(const CellGrid& g, LightVolume& v, const CellMedium& medium,
                          const std::vector<std::int64_t>& source, double q_scale, const Coverage& cov,
-                         CellValues& values) {
+                         CellValues& values, const std::stop_token& stop) {
   std::vector<glm::dvec3> q(g.cells());
   for (std::size_t c = 0; c < g.cells(); ++c)
     for (int ch = 0; ch < 3; ++ch) q[c][ch] = q_scale * static_cast<double>(source[3 * c + ch]);
-  const DiffusedLight light = solve_diffusion(g, v.cell_m, medium, q);
+  const DiffusedLight light = solve_diffusion(g, v.cell_m, medium, q, 1e-6, 4000, stop);
   v.diffusion_iterations = light.iterations;
   for (std::size_t c = 0; c < g.cells(); ++c) {
     if (!values.known[c]) continue;
@@ -477,6 +477,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   raise_majorants(media, std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z}));
   const LaunchRect rect = launch_rect(v, light.direction_to_sun);
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)
 
   const Coverage coverage = coverage_of(v, g, media, arena);
   // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
@@ -487,7 +488,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
     handover.deep = cells_deeper_than(g, v.cell_m, medium, settings.diffusion_depth);
     handover.medium = &medium;
   }
-  const Tallies tallies = trace_photons(v, g, media, rect, settings, handover, arena);
+  const Tallies tallies = trace_photons(v, g, media, rect, settings, handover, arena, stop);
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
   const double scale = rect.area_m2() / static_cast<double>(settings.photons) * tallies.quantum /
                        (v.cell_m.x * v.cell_m.y * v.cell_m.z);
@@ -496,7 +497,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
     // Source per unit volume: q = (E A / N) sum(w) / V, per unit irradiance E.
     const double q_scale = rect.area_m2() / static_cast<double>(settings.photons) * kSourceQuantum /
                            (v.cell_m.x * v.cell_m.y * v.cell_m.z);
-    arena.execute([&] { add_diffused_light(g, v, medium, tallies.source, q_scale, coverage, values); });
+    arena.execute([&] { add_diffused_light(g, v, medium, tallies.source, q_scale, coverage, values, stop); });
   }
   clamp_spikes(g, values);
   smooth_anisotropy(g, values);

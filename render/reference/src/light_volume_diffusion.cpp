@@ -184,7 +184,7 @@ System build_system(const CellGrid& g, const glm::dvec3& h, const CellMedium& me
 // Jacobi-preconditioned conjugate gradients (A is symmetric positive definite: every component
 // of cells meets vacuum somewhere).
 int conjugate_gradients(const System& A, const std::vector<double>& b, std::vector<double>& x, double tolerance,
-                        int max_iterations, double& residual) {
+                        int max_iterations, double& residual, const std::stop_token& stop) {
   const std::size_t n = b.size();
   x.assign(n, 0.0);
   std::vector<double> r = b, z(n), p(n), Ap(n);
@@ -196,7 +196,7 @@ int conjugate_gradients(const System& A, const std::vector<double>& b, std::vect
   double rz = dot(r, z);
   int it = 0;
   for (; it < max_iterations; ++it) {
-    throw_if_cancelled();  // an iteration at a time (cancel.hpp)
+    throw_if_stopped(stop);  // an iteration at a time (cancel.hpp)
     multiply(A, p, Ap);
     const double pAp = dot(p, Ap);
     if (!(pAp > 0.0) || !std::isfinite(pAp)) break;  // converged to rounding (A is positive definite)
@@ -219,7 +219,8 @@ int conjugate_gradients(const System& A, const std::vector<double>& b, std::vect
 }  // namespace
 
 DiffusedLight solve_diffusion(const CellGrid& g, const glm::dvec3& cell_m, const CellMedium& medium,
-                              const std::vector<glm::dvec3>& q, double tolerance, int max_iterations) {
+                              const std::vector<glm::dvec3>& q, double tolerance, int max_iterations,
+                              const std::stop_token& stop) {
   DiffusedLight out;
   out.fluence.assign(g.cells(), glm::dvec3(0.0));
   for (auto& f : out.flux) f.assign(g.cells(), glm::dvec3(0.0));
@@ -239,7 +240,7 @@ DiffusedLight solve_diffusion(const CellGrid& g, const glm::dvec3& cell_m, const
     std::vector<double> b(A.cell.size()), x;
     for (std::size_t u = 0; u < A.cell.size(); ++u) b[u] = std::max(0.0, q[A.cell[u]][channel]);
     double residual = 0.0;
-    out.iterations = std::max(out.iterations, conjugate_gradients(A, b, x, tolerance, max_iterations, residual));
+    out.iterations = std::max(out.iterations, conjugate_gradients(A, b, x, tolerance, max_iterations, residual, stop));
     out.residual = std::max(out.residual, residual);
     for (std::size_t u = 0; u < A.cell.size(); ++u) {
       const std::size_t c = A.cell[u];

@@ -23,10 +23,11 @@ namespace nimbus::render::detail {
 inline void render_pixels(Image& image, int threads, const std::function<void(double)>& progress,
                           const std::string& what, const std::function<glm::dvec4(int, int)>& pixel) {
   int rows_done = 0;
+  const std::stop_token stop = current_stop_token();  // this call's, taken before the rows fan out
   std::mutex progress_mutex;
   const auto render_rows = [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
-      throw_if_cancelled();  // a row at a time (cancel.hpp)
+      throw_if_stopped(stop);  // a row at a time (cancel.hpp)
       for (int x = 0; x < image.width; ++x) {
         const glm::dvec4 v = pixel(x, y);
         float* out = image.pixel(x, y);

@@ -1,6 +1,7 @@
 // Batched evaluation of a NoiseField over regular grids and point arrays: one kernel source
 // compiled for the scalar path, SSE4.1, AVX2 and AVX-512, picked at run time, and spread
-// over threads with TBB. Every level gives the same bits as NoiseField::eval.
+// over threads with TBB. Every level gives the same bits as NoiseField::eval. evaluate_grid polls
+// the stop token of the call it runs in (nimbus/base/cancel.hpp) every block of about 4096 samples.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -12,6 +12,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <stop_token>
 #include <vector>
 
 #include "nimbus/render/core/cloud_volume.hpp"
@@ -51,8 +52,10 @@ struct DiffusedLight {
 
 // Solves eq. MS-5 with source q (RGB per cell, W m^-3 per unit irradiance) on cells of side
 // cell_m. Cells with sigma_t = 0 are vacuum, and so is everything past the grid's faces.
-// Converges to a relative residual of `tolerance` (at most `max_iterations`).
+// Converges to a relative residual of `tolerance` (at most `max_iterations`); throws Cancelled
+// between iterations once `stop` is requested (nimbus/base/cancel.hpp).
 DiffusedLight solve_diffusion(const CellGrid& g, const glm::dvec3& cell_m, const CellMedium& medium,
-                              const std::vector<glm::dvec3>& q, double tolerance = 1e-6, int max_iterations = 4000);
+                              const std::vector<glm::dvec3>& q, double tolerance = 1e-6, int max_iterations = 4000,
+                              const std::stop_token& stop = {});
 
 }  // namespace nimbus::render::light_volume

@@ -109,7 +109,11 @@ inline void worley_row_cells(const detail::FieldData& fd, const RowAxis& ra, int
   using B1 = simd::Batch<1>;
   const detail::OctaveData& od = fd.oct[o];
   const int64_t cells = ra.span[o] + 2;
-  table.resize(size_t(cells) * 27);
+  // One spare cell past the last: field_row_axis reads a lane group's first cell and the one after
+  // it, and selects the second only for lanes that lie in it, so the group whose lanes all lie in
+  // the last cell reads the spare (and never uses it). Without it that read ran past the table
+  // (seen as a segfault when the table ended at a page of a thread's heap).
+  table.resize(size_t(cells + 1) * 27);
   for (int64_t m = 0; m < cells; ++m) {
     const double c = double(ra.first_cell[o] - 1 + m);
     const uint32_t hx = cell_axis<B1>(c, od.period[0], od.iperiod[0], hash::kPrimeX).h[2];

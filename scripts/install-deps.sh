@@ -18,7 +18,7 @@ python=(pybind11-dev python3-dev python3-numpy)
 test=(
   git python3 libglfw3-dev libimgui-dev
   libgtest-dev libgmock-dev libkissfft-dev libnoise-dev glslang-tools
-  libopenvdb-tools python3-openvdb openexr python3-pytest blender
+  libopenvdb-tools python3-openvdb openexr python3-pytest python3-hypothesis blender
   xvfb xauth xdotool
   munge slurmctld slurmd slurm-client
 )

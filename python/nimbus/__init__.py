@@ -20,12 +20,14 @@ import json
 import math
 import numbers
 import os
+import re
+import stat
 import tempfile
 from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
 
 from . import _nimbus
 
-__all__ = ["Volume", "presets", "preset", "plan", "generate", "read", "render", "noise", "write_image", "read_image",
+__all__ = ["Volume", "VOXEL_SIZE_RANGE_M", "presets", "preset", "plan", "generate", "read", "render", "noise", "write_image", "read_image",
            "__version__"]
 __version__ = _nimbus.__version__
 
@@ -34,6 +36,8 @@ _nimbus._set_reader_program(os.path.join(os.path.dirname(os.path.abspath(__file_
 
 Volume = _nimbus.Volume
 Volume.__doc__ = """A density volume: a fog grid of voxels, its place in the world and its file metadata.
+
+Made by ``generate``, ``read`` and ``Volume.from_array`` (it has no constructor of its own).
 
 Attributes:
     density: NumPy float32 array indexed [x, y, z] (the order of OpenVDB's copyToArray), a view
@@ -46,6 +50,9 @@ Attributes:
     extra_grids: names of the other grids it carries (a hot gas's "temperature").
 """
 
+# The voxel sizes a Volume may have, in metres: the range generate takes (nimbus voxel-size range).
+VOXEL_SIZE_RANGE_M = tuple(_nimbus._voxel_size_range())
+
 
 def _volume_write(self: Volume, path: Union[str, os.PathLike], *, half_float: bool = True) -> None:
     """Write the volume as an OpenVDB fog volume, atomically, as ``nimbus generate`` does.
@@ -54,23 +61,39 @@ def _volume_write(self: Volume, path: Union[str, os.PathLike], *, half_float: bo
     Raises ValueError for a NaN, infinite or negative density, OSError/RuntimeError when the file
     cannot be written.
     """
-    self._write(_path(path, "path"), bool(half_float))
+    _call(self._write, _path(path, "path"), _bool(half_float, "half_float"), flags={})
 
 
 def _volume_from_array(array: Any, voxel_size: float, origin: Sequence[int] = (0, 0, 0), *,
                        up_axis: str = "z") -> Volume:
     """A volume from densities a user computed: ``array`` indexed [x, y, z] (3-D, any real dtype,
-    copied once as float32), voxels of ``voxel_size`` metres, element [0, 0, 0] at index ``origin``.
+    copied once as float32), voxels of ``voxel_size`` metres (within VOXEL_SIZE_RANGE_M), element
+    [0, 0, 0] at index ``origin``.
 
-    Raises ValueError for a NaN, infinite or negative density (naming the element), a shape that is
-    not 3-D, a voxel size that is not finite and > 0, or an origin beyond index +-2^30.
+    Raises TypeError for an array that is not of real numbers; ValueError for a NaN, infinite,
+    negative or float32-overflowing density (naming the element), a shape that is not 3-D, a voxel
+    size out of range, or an origin beyond index +-2^30.
     """
     import numpy
 
-    arr = numpy.asarray(array)
+    try:
+        arr = numpy.asarray(array)
+    except (ValueError, TypeError) as e:
+        raise TypeError(f"array: cannot be read as an array of numbers ({_short(str(e))})") from None
     if arr.dtype.kind not in "biuf":
-        raise ValueError(f"array: dtype {arr.dtype} is not a real number type")
-    return _nimbus._from_array(arr, _number(voxel_size, "voxel_size"), _int3(origin, "origin"), str(up_axis))
+        raise TypeError(f"array: expected real numbers, got dtype {arr.dtype}")
+    if arr.ndim != 3:
+        raise ValueError(f"array: must have 3 dimensions [x, y, z], got {arr.ndim}")
+    if arr.dtype.kind == "f" and arr.dtype.itemsize > 4 and arr.size:
+        big = numpy.abs(arr) > numpy.finfo(numpy.float32).max
+        big &= numpy.isfinite(arr)
+        if big.any():
+            i, j, k = (int(n) for n in numpy.argwhere(big)[0])
+            raise ValueError(f"array[{i}, {j}, {k}] is {float(arr[i, j, k]):g}, beyond float32's range "
+                             f"(3.40282e+38): a density is stored as float32")
+    if up_axis not in ("z", "y"):
+        raise ValueError(f"up_axis: must be 'z' or 'y', got {_short(up_axis)}")
+    return _call(_nimbus._from_array, arr, _number(voxel_size, "voxel_size"), _int3(origin, "origin"), up_axis, flags={})
 
 
 def _volume_repr(self: Volume) -> str:
@@ -94,7 +117,7 @@ def preset(name: str) -> dict:
 
     Raises ValueError naming an unknown preset (and listing the known ones).
     """
-    return json.loads(_nimbus._preset_json(_text(name, "name")))
+    return json.loads(_call(_nimbus._preset_json, _text(name, "name"), flags={}))
 
 
 def _sets(overrides: Optional[Mapping[str, Any]]) -> list[str]:
@@ -102,15 +125,22 @@ def _sets(overrides: Optional[Mapping[str, Any]]) -> list[str]:
     if overrides is None:
         return []
     if not isinstance(overrides, Mapping):
-        raise ValueError(f"overrides: must be a dict of parameter names to values, got {type(overrides).__name__}")
+        raise TypeError(f"overrides: expected a dict of parameter names to values, got {_type_name(overrides)}")
     out = []
     for key, value in overrides.items():
-        if not isinstance(key, str) or not key:
-            raise ValueError(f"overrides: key {key!r} must be a non-empty string (e.g. 'coverage' or 'shapes.0.size')")
+        if not isinstance(key, str):
+            raise TypeError(f"overrides: a key must be a string (e.g. 'coverage' or 'shapes.0.size'), got {_type_name(key)}")
+        if not key or "\0" in key:
+            raise ValueError(f"overrides: key {_short(key)} must be a non-empty string without NUL")
         try:
             text = json.dumps(value, allow_nan=False)
-        except (TypeError, ValueError) as e:
-            raise ValueError(f"overrides: {key}: {e}") from None
+        except TypeError:
+            raise TypeError(f"overrides: {key[:40]}: a value must be a number, string, bool or a list or dict "
+                            f"of them, got {_type_name(value)}") from None
+        except ValueError:
+            raise ValueError(f"overrides: {key[:40]}: NaN and infinity are not parameter values") from None
+        except RecursionError:
+            raise ValueError(f"overrides: {key[:40]}: nested too deeply") from None
         out.append(f"{key}={text}")
     return out
 
@@ -119,29 +149,38 @@ def _coverage_map(value: Any) -> Any:
     """coverage_map as the module takes it: None, a PNG path, or (float32 bytes, width, height)."""
     if value is None:
         return None
-    if isinstance(value, (str, os.PathLike)):
+    if isinstance(value, (str, bytes, os.PathLike)):
         return _path(value, "coverage_map")
     import numpy as np
 
-    a = np.asarray(value)
-    if a.ndim != 2 or a.dtype.kind not in "fiu":
-        raise ValueError(f"coverage_map: must be a PNG path or a 2-D array of numbers in [0, 1] (row 0 north), "
-                         f"got {type(value).__name__} of shape {getattr(a, 'shape', None)}")
-    a = np.ascontiguousarray(a, dtype=np.float32)
+    try:
+        a = np.asarray(value)
+    except (ValueError, TypeError):
+        a = None
+    if a is None or a.dtype.kind not in "fiub":
+        raise TypeError(f"coverage_map: expected a PNG path or a 2-D array of numbers in [0, 1] (row 0 north), "
+                        f"got {_type_name(value)}")
+    if a.ndim != 2 or a.size == 0:
+        raise ValueError(f"coverage_map: must be a 2-D array of numbers in [0, 1] (row 0 north), got shape {a.shape}")
+    if a.shape[0] > 16384 or a.shape[1] > 16384:
+        raise ValueError(f"coverage_map: {a.shape[1]}x{a.shape[0]} values, more than 16384 along an axis")
+    with np.errstate(over="ignore", invalid="ignore"):
+        a = np.ascontiguousarray(a, dtype=np.float32)
     return (a.tobytes(), int(a.shape[1]), int(a.shape[0]))
+
+
+# The flags of `nimbus generate` that generate's arguments stand for (their errors name them).
+_GENERATE_FLAGS = {"--preset": "preset", "--seed": "seed", "--voxel-size": "voxel_size", "--res": "res",
+                   "--time": "time", "--set": "overrides", "--params": "params_file",
+                   "--coverage-map": "coverage_map"}
 
 
 def _generate_request(preset: str, seed: Optional[int], voxel_size: Optional[float], res: Optional[int],
                       time: float, overrides: Optional[Mapping[str, Any]], params_file: Optional[str],
                       coverage_map: Any = None) -> tuple:
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)
-                             or not 0 <= int(seed) <= 0xFFFFFFFF):
-        raise ValueError(f"seed: must be an integer in [0, 4294967295], got {seed!r}")
-    if res is not None and (isinstance(res, bool) or not isinstance(res, numbers.Integral)
-                            or not 1 <= int(res) <= 4096):
-        raise ValueError(f"res: must be an integer in [1, 4096], got {res!r}")
-    return (_text(preset, "preset"), None if seed is None else int(seed),
-            None if voxel_size is None else _number(voxel_size, "voxel_size"), None if res is None else int(res),
+    return (_text(preset, "preset"), None if seed is None else _int(seed, "seed", 0, 0xFFFFFFFF),
+            None if voxel_size is None else _number(voxel_size, "voxel_size"),
+            None if res is None else _int(res, "res", 1, 4096),
             _number(time, "time"), _sets(overrides), "" if params_file is None else _path(params_file, "params_file"),
             _coverage_map(coverage_map))
 
@@ -155,7 +194,8 @@ def plan(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float]
 
     Raises ValueError exactly where ``generate`` would for its arguments.
     """
-    return _nimbus._plan(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map))
+    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map)
+    return _call(_nimbus._plan, *request, flags=_GENERATE_FLAGS)
 
 
 def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float] = None, res: Optional[int] = None,
@@ -171,16 +211,18 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     coverage_map: where clouds form (``--coverage-map``): a grey PNG path (red channel), or a 2-D
         array of values in [0, 1], row 0 the north edge, stretched over the field's area (or the
         preset's coverage_map_extent); 0 no cloud, 1 as without a map. docs/volume.md, Coverage maps.
-    progress: called now and then with the fraction done (0..1), on the calling thread.
+    progress: called now and then with the fraction done (0..1), on the calling thread; an
+        exception it raises stops this call (and no other) and is raised here.
 
-    Raises ValueError for bad arguments (an unknown preset or key, a bad value, a voxel size whose
-    box would not fit in memory), RuntimeError when the cloud has no voxel at this size, and
-    KeyboardInterrupt on Ctrl+C (the work stops within a fraction of a second).
+    Raises TypeError for an argument of the wrong type, ValueError for a bad value (an unknown
+    preset or key, a voxel size whose box would not fit in memory), RuntimeError when the cloud
+    has no voxel at this size, and KeyboardInterrupt on Ctrl+C (the work stops within a fraction of
+    a second).
     """
     if progress is not None and not callable(progress):
-        raise ValueError("progress: must be callable (it is called with the fraction done)")
-    return _nimbus._generate(*_generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map),
-                             progress)
+        raise TypeError(f"progress: expected a callable (it is called with the fraction done), got {_type_name(progress)}")
+    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map)
+    return _call(_nimbus._generate, *request, progress, flags=_GENERATE_FLAGS)
 
 
 def read(path: Union[str, os.PathLike], *, grid: Optional[str] = None) -> Volume:
@@ -189,15 +231,12 @@ def read(path: Union[str, os.PathLike], *, grid: Optional[str] = None) -> Volume
     program with a memory and time limit, so that a damaged or hostile file cannot crash Python.
     Negative values (which a density cannot hold) are read as 0, as ``nimbus render`` reads them.
 
-    Raises FileNotFoundError/OSError for a missing or unreadable path, ValueError for an unknown grid,
-    RuntimeError for a file that is not a readable fog volume (each naming the file).
+    Raises FileNotFoundError/OSError for a missing, unreadable or non-regular path (a directory, a
+    FIFO), ValueError for an unknown grid, RuntimeError for a file that is not a readable fog
+    volume (each naming the file).
     """
-    p = _path(path, "path")
-    if not os.path.exists(p):
-        raise FileNotFoundError(2, "no such file", p)
-    if os.path.isdir(p):
-        raise IsADirectoryError(21, "a directory, not a VDB file", p)
-    volume, negatives = _nimbus._read(p, None if grid is None else _text(grid, "grid"))
+    p = _regular_file(_path(path, "path"), "VDB")
+    volume, negatives = _call(_nimbus._read, p, None if grid is None else _text(grid, "grid"), flags={"--grid": "grid"})
     if negatives:
         import warnings
 
@@ -205,56 +244,81 @@ def read(path: Union[str, os.PathLike], *, grid: Optional[str] = None) -> Volume
     return volume
 
 
-_RENDER_FLAGS = frozenset(_nimbus._render_flags())
-
-
-def _flag_value(name: str, value: Any) -> str:
-    if isinstance(value, str):
-        return value
-    if isinstance(value, (bool,)):
-        raise ValueError(f"{name}: True/False is only for switches")
-    if isinstance(value, numbers.Real):
-        return repr(float(value)) if isinstance(value, float) else str(int(value))
+def _regular_file(path: str, kind: str) -> str:
+    """``path`` if it names a regular file; else the OSError that says what it is (before any open,
+    so that a FIFO cannot block the call)."""
     try:
-        items = list(value)
-    except TypeError:
-        raise ValueError(f"{name}: {value!r} is not a number, a text or a sequence of numbers") from None
-    return ",".join(_flag_value(name, v) for v in items)
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise FileNotFoundError(2, "no such file", path) from None
+    except OSError as e:
+        raise OSError(e.errno, f"cannot be read ({e.strerror})", path) from None
+    if stat.S_ISDIR(mode):
+        raise IsADirectoryError(21, f"a directory, not a {kind} file", path)
+    if not stat.S_ISREG(mode):
+        what = "a FIFO" if stat.S_ISFIFO(mode) else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else \
+            "a socket" if stat.S_ISSOCK(mode) else "not a regular file"
+        raise OSError(22, f"{what}, not a {kind} file", path)
+    return path
+
+
+# render's options: nimbus render's flags by name (dashes as underscores), and whether each takes
+# a value (a switch takes True or False).
+_RENDER_FLAGS = {flag: takes_value for flag, takes_value in _nimbus._render_flags()}
+_RENDER_NAMES = {flag: flag[2:].replace("-", "_") for flag in _RENDER_FLAGS} | {"--preset": "preset"}
+_RENDER_OWN = ("--eye", "--look-at", "--up", "--fov", "--res", "--sun", "--scene")
+
+
+def _flag_value(name: str, value: Any, depth: int = 0) -> str:
+    if isinstance(value, str):
+        if "\0" in value:
+            raise ValueError(f"{name}: must not contain a NUL character")
+        return value
+    if isinstance(value, bool):
+        raise TypeError(f"{name}: takes a value (a number, a text or a sequence of numbers), not True or False")
+    if isinstance(value, numbers.Integral):
+        return str(int(value)) if abs(int(value)) < 10 ** 18 else repr(_number(value, name))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    if depth == 0 and isinstance(value, Iterable) and not isinstance(value, (bytes, Mapping)):
+        return ",".join(_flag_value(name, v, 1) for v in _sequence(value, name))
+    raise TypeError(f"{name}: expected a number, a text or a sequence of numbers, got {_type_name(value)}")
+
+
+def _render_option(name: str, value: Any) -> list[str]:
+    if not isinstance(name, str) or not name.isidentifier():
+        raise TypeError(f"render: options are given by name, got {_short(name)}")
+    flag = "--" + name.replace("_", "-")
+    if flag not in _RENDER_FLAGS or flag in _RENDER_OWN:
+        raise ValueError(f"{name}: not an option of render (its options are nimbus render's flags, "
+                         f"e.g. slices=256 for --slices 256; see nimbus render --help)")
+    if value is None:
+        return []
+    if not _RENDER_FLAGS[flag]:  # a switch
+        return [flag] if _bool(value, name) else []
+    if isinstance(value, (list, tuple)) and value and isinstance(value[0], (list, tuple, str)):
+        # a repeatable flag: lamp=[(0, 1, 0), (5, 1, 0)], preset=["a", "b"]
+        return [f"{flag}={_flag_value(f'{name}[{i}]', v)}" for i, v in enumerate(_sequence(value, name))]
+    return [f"{flag}={_flag_value(name, value)}"]
 
 
 def _render_args(paths: list[str], scene: str, eye, look_at, up, fov, res, sun, options: Mapping[str, Any]) -> list[str]:
-    args = list(paths) + ["--scene", _text(scene, "scene")]
-    if eye is not None:
-        args += ["--eye", _flag_value("eye", eye)]
-    if look_at is not None:
-        args += ["--look-at", _flag_value("look_at", look_at)]
-    if up is not None:
-        args += ["--up", _flag_value("up", up)]
-    if fov is not None:
-        args += ["--fov", _flag_value("fov", fov)]
+    # Every value follows its flag after "=", and the paths come after "--": no value or path
+    # (a file named "--help") can be read as a flag.
+    args = ["--scene=" + _text(scene, "scene")]
+    for name, flag, value in (("eye", "--eye", eye), ("look_at", "--look-at", look_at), ("up", "--up", up),
+                              ("fov", "--fov", fov), ("sun", "--sun", sun)):
+        if value is not None:
+            args.append(f"{flag}={_flag_value(name, value)}")
     if res is not None:
-        try:
-            w, h = res
-        except (TypeError, ValueError):
-            raise ValueError(f"res: must be (width, height), got {res!r}") from None
-        args += ["--res", f"{_flag_value('res', w)}x{_flag_value('res', h)}"]
-    if sun is not None:
-        args += ["--sun", _flag_value("sun", sun)]
+        items = _sequence(res, "res")
+        if len(items) != 2:
+            raise ValueError(f"res: must be (width, height), got {len(items)} numbers")
+        w, h = (_int(v, f"res[{i}]") for i, v in enumerate(items))
+        args.append(f"--res={w}x{h}")
     for name, value in options.items():
-        flag = "--" + name.replace("_", "-")
-        if flag not in _RENDER_FLAGS or flag in ("--eye", "--look-at", "--up", "--fov", "--res", "--sun", "--scene"):
-            raise ValueError(f"{name}: not an option of render (its options are nimbus render's flags, "
-                             f"e.g. slices=256 for --slices 256; see nimbus render --help)")
-        if value is None or value is False:
-            continue
-        if value is True:
-            args.append(flag)
-        elif isinstance(value, (list, tuple)) and value and isinstance(value[0], (list, tuple, str)):
-            for v in value:  # a repeatable flag: lamp=[(0, 1, 0), (5, 1, 0)], preset=["a", "b"]
-                args += [flag, _flag_value(name, v)]
-        else:
-            args += [flag, _flag_value(name, value)]
-    return args
+        args += _render_option(name, value)
+    return args + ["--"] + list(paths)
 
 
 def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volume, str, os.PathLike]]], *,
@@ -274,27 +338,39 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
     and ``day_of_year``, as the program's flags). fov: degrees (horizontal). res: (width, height).
     options: the program's other flags by name, dashes as underscores: method="pathtrace",
     slices=256, spp=64, cloud_extinction=0.04, no_jitter=True, ms_photons=1 << 20, time=12.0 ...
+    A switch takes True or False; every other option a number, a text or a sequence of numbers.
 
-    Raises ValueError for a bad or unknown option (the program's message), RuntimeError when
-    rendering fails (no OpenGL, a file that cannot be read), KeyboardInterrupt on Ctrl+C.
+    Raises TypeError for an argument of the wrong type, ValueError for a bad or unknown option
+    (named as here), RuntimeError when rendering fails (no OpenGL, a file that cannot be read),
+    KeyboardInterrupt on Ctrl+C.
     """
     for name in ("output", "o", "preview", "exposure", "view_state", "frames"):
         if name in options:
             raise ValueError(f"{name}: render returns one image in memory; write it yourself "
                              f"(and call render once per time for a sequence)")
-    items = [volumes_or_paths] if isinstance(volumes_or_paths, (Volume, str, os.PathLike)) else list(volumes_or_paths)
+    single = isinstance(volumes_or_paths, (Volume, str, bytes, os.PathLike))
+    if single:
+        items = [volumes_or_paths]
+    elif isinstance(volumes_or_paths, Iterable):
+        items = _sequence(volumes_or_paths, "volumes_or_paths")
+    else:
+        raise TypeError(f"volumes_or_paths: expected a Volume, a VDB path or a list of them, "
+                        f"got {_type_name(volumes_or_paths)}")
+    args = _render_args([], scene, eye, look_at, up, fov, res, sun, options)  # every option checked first
     with tempfile.TemporaryDirectory(prefix="nimbus-render-") as tmp:
-        paths = []
+        paths, names = [], {}
         for i, item in enumerate(items):
+            argument = "volumes_or_paths" if single else f"volumes_or_paths[{i}]"
             if isinstance(item, Volume):
                 path = os.path.join(tmp, f"volume-{i}.vdb")
-                item.write(path, half_float=False)  # float: the very voxels, sealed, read back in-process
-                paths.append(path)
-            elif isinstance(item, (str, os.PathLike)):
-                paths.append(_path(item, f"volumes_or_paths[{i}]"))
+                _call(item._write, path, False, flags={})  # float: the very voxels, sealed, read back in-process
+                names[path] = f"{argument} (a Volume)"
+            elif isinstance(item, (str, bytes, os.PathLike)):
+                path = _regular_file(_path(item, argument), "VDB")
             else:
-                raise ValueError(f"volumes_or_paths[{i}]: {type(item).__name__} is neither a Volume nor a path")
-        return _nimbus._render(_render_args(paths, scene, eye, look_at, up, fov, res, sun, options))
+                raise TypeError(f"{argument}: {_type_name(item)} is neither a Volume nor a path")
+            paths.append(path)
+        return _call(_nimbus._render, args + paths, flags=_RENDER_NAMES, paths=names)
 
 
 def noise(kind: str, shape: Sequence[int], *, frequency: float = 1.0, fractal: str = "fbm", octaves: int = 6,
@@ -307,20 +383,28 @@ def noise(kind: str, shape: Sequence[int], *, frequency: float = 1.0, fractal: s
     kind: value, gradient, wavelet or worley. fractal: none, fbm, turbulence or ridged (octaves
     must be 1 with none). frequency: lattice cycles per input unit, first octave. time: animation
     time in lattice units (None: not animated). period: integer period in lattice units (0: none).
-    Raises ValueError for a bad argument (the program's message).
+    Raises TypeError for an argument of the wrong type, ValueError for a bad value, and
+    KeyboardInterrupt on Ctrl+C (polled every few thousand samples).
     """
     dims = _ints(shape, "shape")
     if len(dims) not in (2, 3):
         raise ValueError(f"shape: must have 2 or 3 sizes, got {len(dims)}")
     full = dims + [1] * (3 - len(dims))
+    for i, n in enumerate(full):
+        if not 1 <= n <= 4096:
+            raise ValueError(f"shape: every size must be in [1, 4096], got {n}")
     step = 1.0 / max(full) if spacing is None else _number(spacing, "spacing")
-    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= int(seed) <= 0xFFFFFFFF:
-        raise ValueError(f"seed: must be an integer in [0, 4294967295], got {seed!r}")
-    out = _nimbus._noise(_text(kind, "kind"), full, _number(frequency, "frequency"), _text(fractal, "fractal"),
-                         _int(octaves, "octaves"), int(seed), None if time is None else _number(time, "time"),
-                         _number(lacunarity, "lacunarity"), _number(gain, "gain"), _int(period, "period"),
-                         bool(projected), step)
+    out = _call(_nimbus._noise, _text(kind, "kind"), full, _number(frequency, "frequency"), _text(fractal, "fractal"),
+                _int(octaves, "octaves"), _int(seed, "seed", 0, 0xFFFFFFFF), None if time is None else _number(time, "time"),
+                _number(lacunarity, "lacunarity"), _number(gain, "gain"), _int(period, "period"),
+                _bool(projected, "projected"), step, flags=_NOISE_FLAGS)
     return out if len(dims) == 3 else out[:, :, 0]
+
+
+# The flags of `nimbus noise` that noise's arguments stand for.
+_NOISE_FLAGS = {"--kind": "kind", "--frequency": "frequency", "--fractal": "fractal", "--octaves": "octaves",
+                "--seed": "seed", "--time": "time", "--lacunarity": "lacunarity", "--gain": "gain",
+                "--period": "period", "--projected": "projected", "--spacing": "spacing"}
 
 
 def write_image(path: Union[str, os.PathLike], image: Any, *, preview: Optional[Union[str, os.PathLike]] = None,
@@ -329,32 +413,52 @@ def write_image(path: Union[str, os.PathLike], image: Any, *, preview: Optional[
     (values above 65504 clamp) and, if given, ``preview`` a filmic (AgX) sRGB PNG, exposed by
     ``exposure`` stops (None: automatic). Both are written together and atomically.
 
-    Raises ValueError for an image that is not (height, width, 4) finite, non-negative numbers,
-    a name that does not end in .exr/.png, or a bad exposure; OSError/RuntimeError when writing fails.
+    Raises TypeError for an image that is not an array of real numbers; ValueError for one that is
+    not (height, width, 4) finite, non-negative numbers, a name that does not end in .exr/.png, or
+    a bad exposure; OSError/RuntimeError when writing fails.
     """
+    import numpy as np
+
     exr = _path(path, "path")
     if not exr.lower().endswith(".exr"):
-        raise ValueError(f"path: '{exr}' must end in .exr (the image is a linear OpenEXR; a PNG: preview=)")
+        raise ValueError(f"path: '{_short(exr)}' must end in .exr (the image is a linear OpenEXR; a PNG: preview=)")
     png = "" if preview is None else _path(preview, "preview")
     if png and not png.lower().endswith(".png"):
-        raise ValueError(f"preview: '{png}' must end in .png")
-    meta = {} if metadata is None else {_text(k, "metadata key"): _text(v, f"metadata[{k}]") for k, v in metadata.items()}
-    _nimbus._write_image(exr, png, image, None if exposure is None else _number(exposure, "exposure"), meta)
+        raise ValueError(f"preview: '{_short(png)}' must end in .png")
+    if metadata is not None and not isinstance(metadata, Mapping):
+        raise TypeError(f"metadata: expected a dict of strings, got {_type_name(metadata)}")
+    meta = {} if metadata is None else {_text(k, "metadata key"): _text(v, f"metadata[{_short(k)}]")
+                                        for k, v in metadata.items()}
+    try:
+        pixels = np.asarray(image)
+    except (ValueError, TypeError):
+        pixels = None
+    if pixels is None or pixels.dtype.kind not in "biuf":
+        raise TypeError(f"image: expected a (height, width, 4) array of real numbers, got {_type_name(image)}")
+    if pixels.ndim != 3 or pixels.shape[2] != 4 or pixels.shape[0] < 1 or pixels.shape[1] < 1:
+        raise ValueError(f"image: must be a (height, width, 4) array of RGBA numbers, as render returns; "
+                         f"got shape {pixels.shape}")
+    _call(_nimbus._write_image, exr, png, pixels, None if exposure is None else _number(exposure, "exposure"), meta,
+          flags={"--exposure": "exposure", "--preview": "preview", "-o": "path"})
 
 
 def read_image(path: Union[str, os.PathLike]) -> tuple:
     """Read an OpenEXR image: ((height, width, 4) float32 RGBA, row 0 at the top; its header's text
-    attributes as a dict). Raises FileNotFoundError or RuntimeError naming the file."""
-    p = _path(path, "path")
-    if not os.path.exists(p):
-        raise FileNotFoundError(2, "no such file", p)
-    return _nimbus._read_image(p)
+    attributes as a dict). Raises FileNotFoundError or OSError for a missing or non-regular path (a
+    FIFO is refused, never opened), RuntimeError for a file that is not a readable EXR, naming it."""
+    return _call(_nimbus._read_image, _regular_file(_path(path, "path"), "EXR"), flags={})
 
 
-# Argument checks: each names the argument, as the program's messages name the flag.
+# Argument checks: each names the argument. A wrong type is a TypeError naming the type expected;
+# a value of the right type out of its range is a ValueError; numbers print as numbers (%g), and
+# no message repeats a whole argument.
+def _type_name(value: Any) -> str:
+    return type(value).__name__
+
+
 def _text(value: Any, name: str) -> str:
     if not isinstance(value, str):
-        raise ValueError(f"{name}: must be a string, got {type(value).__name__}")
+        raise TypeError(f"{name}: expected a string, got {_type_name(value)}")
     if "\0" in value:
         raise ValueError(f"{name}: must not contain a NUL character")
     return value
@@ -365,6 +469,8 @@ def _path(value: Any, name: str) -> str:
         value = os.fspath(value)
     if isinstance(value, bytes):
         value = os.fsdecode(value)
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: expected a path (str or os.PathLike), got {_type_name(value)}")
     text = _text(value, name)
     if not text:
         raise ValueError(f"{name}: the path is empty")
@@ -373,28 +479,47 @@ def _path(value: Any, name: str) -> str:
 
 def _number(value: Any, name: str) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"{name}: must be a number, got {value!r}")
-    v = float(value)
+        raise TypeError(f"{name}: expected a number, got {_type_name(value)}")
+    try:
+        v = float(value)
+    except OverflowError:  # an int beyond the float range
+        raise ValueError(f"{name}: {_short(value)} is beyond the range of a float") from None
     if not math.isfinite(v):
-        raise ValueError(f"{name}: must be finite, got {v}")
+        raise ValueError(f"{name}: must be finite, got {v:g}")
     return v
 
 
-def _int(value: Any, name: str) -> int:
+def _int(value: Any, name: str, lo: int = -(1 << 31), hi: int = (1 << 31) - 1) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise ValueError(f"{name}: must be an integer, got {value!r}")
+        raise TypeError(f"{name}: expected an integer, got {_type_name(value)}")
     v = int(value)
-    if not -(1 << 31) <= v < (1 << 31):
-        raise ValueError(f"{name}: {v} is out of range")
+    if not lo <= v <= hi:
+        raise ValueError(f"{name}: must be an integer in [{lo}, {hi}], got {_short(v)}")
     return v
+
+
+def _short(value: Any) -> str:
+    """A value as a message shows it: numbers as %g, anything else cut to 40 characters."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        text = str(int(value)) if abs(int(value)) < 10 ** 15 else f"{float(value):g}" if abs(int(value)) < 10 ** 300 else "a huge integer"
+    elif isinstance(value, numbers.Real) and not isinstance(value, bool):
+        text = f"{float(value):g}"
+    else:
+        text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _sequence(values: Any, name: str) -> list:
+    if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
+        raise TypeError(f"{name}: expected a sequence, got {_type_name(values)}")
+    items = list(values)
+    if len(items) > 1024:
+        raise ValueError(f"{name}: {len(items)} items, more than any argument takes")
+    return items
 
 
 def _ints(values: Any, name: str) -> list[int]:
-    try:
-        items = list(values)
-    except TypeError:
-        raise ValueError(f"{name}: must be a sequence of integers, got {values!r}") from None
-    return [_int(v, f"{name}[{i}]") for i, v in enumerate(items)]
+    return [_int(v, f"{name}[{i}]") for i, v in enumerate(_sequence(values, name))]
 
 
 def _int3(values: Any, name: str) -> list[int]:
@@ -402,3 +527,36 @@ def _int3(values: Any, name: str) -> list[int]:
     if len(items) != 3:
         raise ValueError(f"{name}: must have 3 integers (i, j, k), got {len(items)}")
     return items
+
+
+def _bool(value: Any, name: str) -> bool:
+    if isinstance(value, bool) or _type_name(value) == "bool_":  # NumPy's bool too
+        return bool(value)
+    if isinstance(value, numbers.Integral) and int(value) in (0, 1):
+        return bool(value)
+    raise TypeError(f"{name}: expected True or False, got {_type_name(value)}")
+
+
+# The program's words for a call's arguments, rewritten as Python's: its flags (--voxel-size) as
+# the argument names (voxel_size: `flags` names those that differ, such as --set for overrides),
+# and the temporary files render writes for Volumes as the arguments they came from. Applied to
+# every error the core raises, so that no message names a flag or a temporary file.
+_FLAG = re.compile(r"(?<![\w.-])--[a-z][a-z0-9-]*")
+
+
+def _python_words(message: str, flags: Mapping[str, str], paths: Mapping[str, str]) -> str:
+    for path, argument in paths.items():
+        message = message.replace(path, argument)
+    return _FLAG.sub(lambda m: flags.get(m.group(0), m.group(0)[2:].replace("-", "_")), message)
+
+
+def _call(function: Callable, *args: Any, flags: Mapping[str, str], paths: Mapping[str, str] = {}) -> Any:
+    try:
+        return function(*args)
+    except (ValueError, RuntimeError, OSError) as e:
+        text = str(e)
+        said = _python_words(text, flags, paths)
+        if said == text:
+            raise
+        error = type(e)(said) if not isinstance(e, OSError) or e.errno is None else type(e)(e.errno, said)
+        raise error from None

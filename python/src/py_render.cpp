@@ -26,7 +26,11 @@ py::array render(const std::vector<std::string>& args) {
 
 void bind_render(py::module_& m) {
   m.def("_render", &render);
-  m.def("_render_flags", &cli::render_image_flags);
+  m.def("_render_flags", [] {
+    py::list out;  // (flag, takes a value)
+    for (const cli::ImageFlag& f : cli::render_image_flags()) out.append(py::make_tuple(f.name, f.takes_value));
+    return out;
+  });
 }
 
 }  // namespace nimbus::python

@@ -11,6 +11,7 @@
 #include "calls.hpp"
 #include "outputs.hpp"
 #include "nimbus/volume/up_axis.hpp"
+#include "nimbus/volume/voxel_size.hpp"
 
 namespace nimbus::python {
 namespace {
@@ -82,8 +83,7 @@ py::tuple voxel_size_of(const openvdb::math::Transform& t) {
 // Volume.from_array: a user's densities (any float array, copied once into x-fastest order).
 Volume volume_from_array(const py::array& input, double voxel_size, const std::array<int64_t, 3>& origin,
                          const std::string& up_axis) {
-  if (!(std::isfinite(voxel_size) && voxel_size > 0.0))
-    throw std::invalid_argument("voxel_size: must be finite and > 0 (metres), got " + std::to_string(voxel_size));
+  volume::check_voxel_size(voxel_size, "voxel_size");
   if (up_axis != "z" && up_axis != "y") throw std::invalid_argument("up_axis: '" + up_axis + "' must be 'z' or 'y'");
   if (input.ndim() != 3)
     throw std::invalid_argument("array: must have 3 dimensions [x, y, z], got " + std::to_string(input.ndim()));
@@ -160,12 +160,33 @@ void write_volume(const Volume& v, const std::filesystem::path& path, bool half_
   volume::write_volume_vdb(path, grids, export_info(v), eo);
 }
 
+namespace {
+
+// The Volume behind a Python object. Volume.__new__ makes an object whose Volume was never
+// constructed (pybind11 leaves its value null): TypeError, never a null dereference.
+Volume& volume_of(const py::handle self) {
+  if (!py::isinstance<Volume>(self)) throw py::type_error("expected a nimbus.Volume");
+  auto* inst = reinterpret_cast<py::detail::instance*>(self.ptr());
+  const py::detail::value_and_holder vh = inst->get_value_and_holder(py::detail::get_type_info(typeid(Volume)));
+  Volume* v = vh ? vh.value_ptr<Volume>() : nullptr;
+  if (!v || !vh.holder_constructed() || !v->transform)
+    throw py::type_error("Volume: this one was never made (Volume.__new__); make one with nimbus.generate, "
+                         "nimbus.read or nimbus.Volume.from_array");
+  return *v;
+}
+
+}  // namespace
+
 void bind_volume(py::module_& m) {
   py::class_<Volume>(m, "Volume")
+      .def(py::init([]() -> Volume {
+        throw py::type_error("Volume: has no constructor of its own; make one with nimbus.generate, nimbus.read "
+                             "or nimbus.Volume.from_array");
+      }))
       .def_property_readonly(
           "density",
           [](py::object self) {
-            Volume& v = self.cast<Volume&>();
+            Volume& v = volume_of(self);
             const std::vector<py::ssize_t> shape{py::ssize_t(v.box.size[0]), py::ssize_t(v.box.size[1]),
                                                  py::ssize_t(v.box.size[2])};
             const py::ssize_t f = sizeof(float);
@@ -173,40 +194,47 @@ void bind_volume(py::module_& m) {
             return py::array_t<float>(shape, strides, v.box.values.data(), self);  // a view: no copy
           })
       .def_property_readonly("origin",
-                             [](const Volume& v) { return py::make_tuple(v.box.origin[0], v.box.origin[1], v.box.origin[2]); })
+                             [](py::object self) {
+                               const Volume& v = volume_of(self);
+                               return py::make_tuple(v.box.origin[0], v.box.origin[1], v.box.origin[2]);
+                             })
       .def_property_readonly("voxel_size",
-                             [](const Volume& v) -> py::object {
+                             [](py::object self) -> py::object {
+                               const Volume& v = volume_of(self);
                                const openvdb::Vec3d s = v.transform->voxelSize();
                                if (std::abs(s.x() - s.y()) <= 1e-9 * s.x() && std::abs(s.x() - s.z()) <= 1e-9 * s.x())
                                  return py::float_(s.x());
                                return voxel_size_of(*v.transform);  // not cubic: (x, y, z)
                              })
       .def_property_readonly("index_to_world",
-                             [](const Volume& v) -> py::object {
+                             [](py::object self) -> py::object {
+                               const Volume& v = volume_of(self);
                                if (!v.transform->isLinear()) return py::none();  // a frustum: no matrix
                                const openvdb::math::Mat4d mat = v.transform->baseMap()->getAffineMap()->getMat4();
                                py::list rows;  // OpenVDB's matrices act on row vectors: transpose to columns
                                for (int r = 0; r < 4; ++r) rows.append(py::make_tuple(mat(0, r), mat(1, r), mat(2, r), mat(3, r)));
                                return rows;
                              })
-      .def_property_readonly("linear", [](const Volume& v) { return v.transform->isLinear(); })
-      .def_property_readonly("up_axis", [](const Volume& v) { return std::string(1, v.up_axis); })
+      .def_property_readonly("linear", [](py::object self) { return volume_of(self).transform->isLinear(); })
+      .def_property_readonly("up_axis", [](py::object self) { return std::string(1, volume_of(self).up_axis); })
       .def_property_readonly("metadata",
-                             [](const Volume& v) {
+                             [](py::object self) {
                                py::dict d;
-                               for (const auto& [k, value] : v.metadata) d[py::str(k)] = meta_to_python(value);
+                               for (const auto& [k, value] : volume_of(self).metadata) d[py::str(k)] = meta_to_python(value);
                                return d;
                              })
       .def_property_readonly("extra_grids",
-                             [](const Volume& v) {
+                             [](py::object self) {
                                py::list names;
-                               for (const auto& g : v.extra) names.append(g->getName());
+                               for (const auto& g : volume_of(self).extra) names.append(g->getName());
                                return names;
                              })
-      .def("_write", [](const Volume& v, const std::filesystem::path& path, bool half_float) {
+      .def("_write", [](py::object self, const std::filesystem::path& path, bool half_float) {
+        const Volume& v = volume_of(self);
         run_interruptible([&] { write_volume(v, path, half_float); });
       });
   m.def("_from_array", &volume_from_array);
+  m.def("_voxel_size_range", [] { return py::make_tuple(volume::kMinVoxelSize_m, volume::kMaxVoxelSize_m); });
   m.def("_read", &read_volume);
 }
 

@@ -1,5 +1,6 @@
 # Shared fixtures of the Python module's tests: the nimbus program to compare with, and a runner.
 import os
+import re
 import subprocess
 
 import pytest
@@ -32,3 +33,10 @@ def cli_error(stderr):
         if line.startswith(prefix):
             return line[len(prefix):]
     return line
+
+
+def python_words(message, names=None):
+    """The program's message as the module says it: each flag (--voxel-size) as the argument it
+    stands for (voxel_size, or names[flag])."""
+    names = names or {}
+    return re.sub(r"(?<![\w.-])--[a-z][a-z0-9-]*", lambda m: names.get(m.group(0), m.group(0)[2:].replace("-", "_")), message)

@@ -1,12 +1,15 @@
-# Bad arguments raise ValueError, failures at run time RuntimeError or OSError, with the program's
-# one-line messages; no argument crashes the interpreter.
+# Bad values raise ValueError, wrong types TypeError, failures at run time RuntimeError or OSError,
+# with the program's one-line messages in Python's words (arguments, not flags); no argument
+# crashes the interpreter.
 import math
 
 import numpy as np
 import pytest
 
 import nimbus
-from conftest import cli_error
+from conftest import cli_error, python_words
+
+GENERATE_NAMES = {"--set": "overrides", "--params": "params_file"}
 
 
 @pytest.mark.parametrize("flags,kwargs", [
@@ -25,19 +28,35 @@ def test_generate_errors_are_the_programs_usage_errors(run, tmp_path, flags, kwa
     with pytest.raises(ValueError) as e:
         nimbus.generate(preset, **kwargs)
     # The program may add a hint about its own flags ("; cut the field into bricks with --brick").
-    assert cli_error(stderr).startswith(str(e.value))
-    assert "\n" not in str(e.value)
+    said = str(e.value)
+    assert python_words(cli_error(stderr), GENERATE_NAMES).startswith(said.split("; cut")[0])
+    assert "\n" not in said and "--" not in said
 
 
 @pytest.mark.parametrize("kwargs,message", [
-    (dict(seed=-1), "seed"), (dict(seed=2 ** 32), "seed"), (dict(seed=1.5), "seed"), (dict(seed=True), "seed"),
-    (dict(res=0), "res"), (dict(voxel_size="big"), "voxel_size"), (dict(voxel_size=math.nan), "voxel_size"),
-    (dict(time=math.inf), "time"), (dict(overrides=[1, 2]), "overrides"), (dict(overrides={"coverage": math.nan}), "coverage"),
-    (dict(overrides={"": 1}), "overrides"), (dict(progress=3), "progress"), (dict(params_file=""), "params_file"),
+    (dict(seed=-1), "seed"), (dict(seed=2 ** 32), "seed"),
+    (dict(res=0), "res"), (dict(voxel_size=math.nan), "voxel_size"), (dict(voxel_size=1e-300), "voxel_size"),
+    (dict(time=math.inf), "time"), (dict(overrides={"coverage": math.nan}), "overrides: coverage"),
+    (dict(overrides={"": 1}), "overrides"), (dict(params_file=""), "params_file"),
 ])
-def test_generate_refuses_bad_python_arguments(kwargs, message):
-    with pytest.raises(ValueError, match=message):
+def test_generate_refuses_bad_python_values(kwargs, message):
+    with pytest.raises(ValueError, match=f"^{message}") as e:
         nimbus.generate("cumulus-humilis", **kwargs)
+    assert "--" not in str(e.value)
+
+
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(seed=1.5), "seed: expected an integer, got float"), (dict(seed=True), "seed: expected an integer, got bool"),
+    (dict(voxel_size="big"), "voxel_size: expected a number, got str"),
+    (dict(overrides=[1, 2]), "overrides: expected a dict"), (dict(overrides={"a": object()}), "overrides: a: a value must be"),
+    (dict(progress=3), "progress: expected a callable"), (dict(params_file=3), "params_file: expected a path"),
+    (dict(coverage_map=object()), "coverage_map: expected a PNG path or a 2-D array"),
+])
+def test_generate_refuses_wrong_types_with_a_type_error_naming_the_argument(kwargs, message):
+    with pytest.raises(TypeError) as e:
+        nimbus.generate("cumulus-humilis", **kwargs)
+    assert str(e.value).startswith(message), str(e.value)
+    assert len(str(e.value)) < 160
 
 
 def test_the_programs_check_only_refuses_the_box_plan_refuses(run, tmp_path):
@@ -46,7 +65,8 @@ def test_the_programs_check_only_refuses_the_box_plan_refuses(run, tmp_path):
     assert code == 2
     with pytest.raises(ValueError) as e:
         nimbus.plan("cumulus-humilis", voxel_size=0.001)
-    assert cli_error(stderr).startswith(str(e.value)) and "memory" in str(e.value)
+    assert python_words(cli_error(stderr), GENERATE_NAMES).startswith(str(e.value).split("; cut")[0])
+    assert "memory" in str(e.value)
 
 
 def test_a_cloud_with_no_voxel_is_a_runtime_error(run, tmp_path):
@@ -86,7 +106,7 @@ def test_render_errors_are_the_programs_usage_errors(run, tmp_path, small, flags
     assert code == 2, stderr
     with pytest.raises(ValueError) as e:
         nimbus.render(small, **{**dict(up=None, fov=None, res=None), **kwargs})
-    assert str(e.value) == cli_error(stderr)
+    assert str(e.value) == python_words(cli_error(stderr)) and "--" not in str(e.value)
 
 
 @pytest.mark.parametrize("kwargs,message", [
@@ -105,8 +125,10 @@ def test_render_refuses_bad_python_arguments(small, kwargs, message):
 def test_render_with_nothing_to_render_is_refused():
     with pytest.raises(ValueError, match="nothing to render"):
         nimbus.render([])
-    with pytest.raises(ValueError, match="neither a Volume nor a path"):
+    with pytest.raises(TypeError, match=r"^volumes_or_paths\[0\]: int is neither a Volume nor a path"):
         nimbus.render([3])
+    with pytest.raises(TypeError, match="^volumes_or_paths: expected a Volume, a VDB path or a list of them, got NoneType"):
+        nimbus.render(None)
 
 
 def test_render_of_a_missing_file_is_a_runtime_error_naming_it(run, tmp_path):
@@ -117,6 +139,11 @@ def test_render_of_a_missing_file_is_a_runtime_error_naming_it(run, tmp_path):
 
 
 def test_write_image_refuses_what_is_not_an_image(tmp_path):
+    with pytest.raises(ValueError, match=r"^image: .*got shape \(9, 16, 1\)$") as e:  # was a TypeError of 3.4 kB
+        nimbus.write_image(tmp_path / "x.exr", [[[0.5]] * 16] * 9)
+    assert len(str(e.value)) < 200
+    with pytest.raises(TypeError, match="^image: expected a"):
+        nimbus.write_image(tmp_path / "x.exr", [[["a"] * 4] * 2] * 2)
     with pytest.raises(ValueError, match="height, width, 4"):
         nimbus.write_image(tmp_path / "a.exr", np.zeros((4, 4, 3)))
     with pytest.raises(ValueError, match="not finite|NaN"):

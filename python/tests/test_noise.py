@@ -37,8 +37,8 @@ def test_noise_is_animated_by_time_and_seeded():
 @pytest.mark.parametrize("kwargs,message", [
     (dict(kind="plasma"), "unknown noise kind"),
     (dict(fractal="none", octaves=3), "more than one octave"),
-    (dict(octaves=0), "--octaves"),
-    (dict(frequency=-1.0), "--frequency"),
+    (dict(octaves=0), "octaves"),
+    (dict(frequency=-1.0), "frequency"),
     (dict(shape=(0, 4, 4)), "shape"),
     (dict(shape=(4,)), "2 or 3"),
     (dict(seed=-1), "seed"),
@@ -48,5 +48,6 @@ def test_noise_refuses_bad_arguments(kwargs, message):
     args = dict(kind="gradient", shape=(4, 4, 4))
     args.update(kwargs)
     kind, shape = args.pop("kind"), args.pop("shape")
-    with pytest.raises(ValueError, match=message):
+    with pytest.raises(ValueError, match=message) as e:
         nimbus.noise(kind, shape, **args)
+    assert "--" not in str(e.value)

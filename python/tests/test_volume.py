@@ -93,13 +93,24 @@ def test_a_foreign_file_is_read_through_the_isolated_reader(tmp_path):
     (np.ones((2, 2), np.float32), 1.0, (0, 0, 0), "3 dimensions"),
     (np.ones((2, 2, 2), np.float32), 0.0, (0, 0, 0), "voxel_size"),
     (np.ones((2, 2, 2), np.float32), float("nan"), (0, 0, 0), "voxel_size"),
+    # was OpenVDB's "ArithmeticError: Non-zero scale values required", naming no argument
+    (np.ones((2, 2, 2), np.float32), 1e-300, (0, 0, 0), r"^voxel_size: must be within \[1e-06, 1e\+06\] metres, got 1e-300$"),
+    (np.ones((2, 2, 2), np.float32), 1e300, (0, 0, 0), r"^voxel_size: .* got 1e\+300$"),
+    # a finite float64 beyond float32: was called "infinite"
+    (np.full((2, 2, 2), 1e300), 1.0, (0, 0, 0), r"^array\[0, 0, 0\] is 1e\+300, beyond float32's range"),
     (np.ones((2, 2, 2), np.float32), 1.0, (0, 0, 2 ** 31), "origin"),
     (np.ones((2, 2, 2), np.float32), 1.0, (0, 0), "origin"),
-    (np.array([[["a"]]]), 1.0, (0, 0, 0), "dtype"),
 ])
 def test_from_array_refuses_what_is_not_a_density(array, voxel, origin, message):
     with pytest.raises(ValueError, match=message):
         nimbus.Volume.from_array(array, voxel, origin=origin)
+
+
+def test_from_array_refuses_an_array_of_what_is_not_a_number_with_a_type_error():
+    with pytest.raises(TypeError, match="^array: expected real numbers, got dtype <U1$"):
+        nimbus.Volume.from_array(np.array([[["a"]]]), 1.0)
+    with pytest.raises(TypeError, match="^voxel_size: expected a number, got str$"):
+        nimbus.Volume.from_array(np.ones((2, 2, 2)), "1")
 
 
 def test_write_refuses_a_density_made_nan_through_the_view(tmp_path):

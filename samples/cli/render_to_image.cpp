@@ -32,12 +32,13 @@ std::unique_ptr<CLI::App> image_command(ImageArgs& a) {
 
 }  // namespace
 
-std::vector<std::string> render_image_flags() {
+std::vector<ImageFlag> render_image_flags() {
   ImageArgs a;
   const auto cmd = image_command(a);
-  std::vector<std::string> flags;
+  std::vector<ImageFlag> flags;
   for (const CLI::Option* o : cmd->get_options())
-    if (o->get_name() != "--help" && o->get_name() != "file") flags.push_back(o->get_name());
+    if (o->get_name() != "--help" && o->get_name() != "file")
+      flags.push_back({o->get_name(), o->get_expected_max() != 0});
   return flags;
 }
 
@@ -47,6 +48,8 @@ render::Image render_clouds_image(const std::vector<std::string>& args) {
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
   try {
     cmd->parse(reversed);
+  } catch (const CLI::Success&) {  // --help or --version among the values: not a request for an image
+    throw UsageError("render: --help and --version are not options of an image render");
   } catch (const CLI::ParseError& e) {
     throw UsageError(e.what());
   }

@@ -14,7 +14,12 @@ namespace nimbus::cli {
 // one `nimbus render` would write to its EXR, in float (row 0 at the top, premultiplied).
 render::Image render_clouds_image(const std::vector<std::string>& args);
 
-// The flags it takes, as spelled on the command line ("--slices", "--eye", ...).
-std::vector<std::string> render_image_flags();
+// A flag it takes, as spelled on the command line ("--slices", "--eye", ...), and whether it takes
+// a value (a switch does not).
+struct ImageFlag {
+  std::string name;
+  bool takes_value = true;
+};
+std::vector<ImageFlag> render_image_flags();
 
 }  // namespace nimbus::cli

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How long Ctrl+C takes to stop the Python module's long calls: SIGINT is sent 0.5 s into a long
-generate and a long path-traced render, and the time from the signal to the KeyboardInterrupt is
+generate, render or noise grid, and the time from the signal to the KeyboardInterrupt is
 measured, 5 times each. Run with the package on the path (installed, or PYTHONPATH=<build>/python)."""
 import os
 import signal
@@ -40,6 +40,7 @@ def main():
                                                                    res=(64, 36), sun=(0, 1, 0)),
             "render, slices over the sky (light volume of 2^24 photons)": lambda: nimbus.render(
                 path, res=(320, 180), ms_photons=1 << 24),
+            "noise, Worley 512^3 at 8 octaves": lambda: nimbus.noise("worley", (512,) * 3, octaves=8),
         }
         print("| call | signal to KeyboardInterrupt, median | max |")
         print("|---|---:|---:|")

@@ -49,9 +49,9 @@ class ModuleBackend:
         volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size, time=time, overrides=overrides or None)
         _write_atomic(volume, path)
 
-    def generate_sequence(self, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
-        """Writes pattern % frame for frames first..last; frame n at time (n - start_frame) / fps."""
+    def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
+        """Writes folder/(pattern % frame) for frames first..last; frame n at time (n - start_frame) / fps."""
         for frame in range(first, last + 1):
             volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size,
                                           time=(frame - start_frame) / fps, overrides=overrides or None)
-            _write_atomic(volume, pattern % frame)
+            _write_atomic(volume, os.path.join(folder, pattern % frame))

@@ -34,16 +34,16 @@ class ProgramBackend:
         if not (os.path.isfile(program) and os.access(program, os.X_OK)):
             raise RuntimeError(f"nimbus program '{program}': not an executable file "
                                "(NIMBUS_PROGRAM or the add-on preference 'nimbus program')")
-        self.program = program
+        self.program = os.path.abspath(program)  # sequences run in the cache folder
         self._presets = {}
 
     def describe(self):
         return f"program {self.program}"
 
-    def _run(self, argv, timeout=PROBE_TIMEOUT_S, bad_input=True):
-        """Runs nimbus with argv; a non-zero exit raises ValueError (usage) or RuntimeError."""
+    def _run(self, argv, timeout=PROBE_TIMEOUT_S, bad_input=True, cwd=None):
+        """Runs nimbus with argv (in the folder cwd); a non-zero exit raises ValueError (usage) or RuntimeError."""
         try:
-            r = subprocess.run([self.program] + argv, capture_output=True, text=True, timeout=timeout,
+            r = subprocess.run([self.program] + argv, capture_output=True, text=True, timeout=timeout, cwd=cwd,
                                stdin=subprocess.DEVNULL)
         except subprocess.TimeoutExpired:
             raise RuntimeError(f"nimbus {argv[0]}: no answer after {timeout} s") from None
@@ -78,14 +78,14 @@ class ProgramBackend:
         """nimbus.plan's dict, from --check-only and a coarse probe (the box to within two coarse voxels)."""
         cloud = self._cloud_args(preset, seed, None, overrides)
         with tempfile.TemporaryDirectory(prefix="nimbus-plan-") as tmp:
-            out = os.path.join(tmp, "plan.vdb")
+            out = os.path.join(".", "plan.vdb")  # in tmp (cwd): a '%' in TMPDIR is no frame field
             check = (["generate"] + self._cloud_args(preset, seed, voxel_size, overrides) +
                      ["--time", repr(float(time)), "-o", out])
             if res is not None:
                 check += ["--res", str(int(res))]
-            self._run(["--check-only"] + check)
+            self._run(["--check-only"] + check, cwd=tmp)
             text = self._run(["generate"] + cloud + ["--time", repr(float(time)), "--res", str(PROBE_RES),
-                                                    "--brick", "0/1", "-o", out])
+                                                    "--brick", "0/1", "-o", out], cwd=tmp)
         box, voxel = _BOX.search(text), _VOXEL.search(text)
         if not box or not voxel:
             raise RuntimeError(f"nimbus generate: unexpected output for the plan probe: {text.strip()[:200]}")
@@ -105,11 +105,16 @@ class ProgramBackend:
                 "bounds_m": (tuple(b0), tuple(b1))}
 
     def generate_still(self, path, preset, *, seed, voxel_size, time, overrides):
+        """Writes path. The program runs in path's folder and is given the file's name alone (which
+        holds no '%'): it reads every '%' of -o as a frame field, and the folder may hold one."""
+        folder, name = os.path.split(os.path.abspath(path))
         self._run(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides) +
-                  ["--time", repr(float(time)), "-o", path], timeout=None)
+                  ["--time", repr(float(time)), "-o", os.path.join(".", name)], timeout=None, cwd=folder)
 
-    def generate_sequence(self, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
-        """Writes pattern % frame for frames first..last; frame n at time (n - start_frame) / fps."""
+    def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
+        """Writes folder/(pattern % frame) for frames first..last; frame n at time (n - start_frame) / fps.
+        The program runs in the folder and is given the name pattern alone: the program reads every
+        '%' of -o as a frame field, and the folder may hold one."""
         self._run(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides) +
                   ["--frames", f"{first}-{last}", "--fps", repr(float(fps)), "--start-frame", str(int(start_frame)),
-                   "-o", pattern], timeout=None)
+                   "-o", os.path.join(".", pattern)], timeout=None, cwd=folder)

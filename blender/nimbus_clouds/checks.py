@@ -4,6 +4,8 @@ import os
 
 SEED_MAX = 2**32 - 1       # nimbus seeds are uint32
 MAX_FRAMES = 10000         # nimbus generate --frames refuses more without --many-frames
+BLENDER_MAX_FRAME = 1048574  # Blender's last frame (MAXFRAME): a Volume's frames beyond it never play
+START_FRAME_MAX = 9999999    # nimbus's --start-frame range, +-9999999 (samples/cli/frame_range.hpp)
 GIB = 1024.0**3
 
 
@@ -61,11 +63,21 @@ def check_inputs(p):
             raise ValueError(f"first frame {p.frame_first}: must be >= 0 (files are numbered name.%04d.vdb)")
         if p.frame_last < p.frame_first:
             raise ValueError(f"last frame {p.frame_last}: must not be before the first frame {p.frame_first}")
+        if p.frame_last > BLENDER_MAX_FRAME:
+            raise ValueError(f"last frame {p.frame_last}: Blender's frames end at {BLENDER_MAX_FRAME}; "
+                             f"the files of later frames would never play")
         if p.frame_last - p.frame_first + 1 > MAX_FRAMES:
             raise ValueError(f"frames {p.frame_first}-{p.frame_last}: more than {MAX_FRAMES} frames")
         _finite("fps", p.fps)
         if not p.fps > 0:
             raise ValueError(f"fps {p.fps:g}: must be > 0")
+        # The first frame is at `time`: the frame at time 0 (nimbus's --start-frame) must be one the
+        # program takes, whichever backend runs, so that both make the same files.
+        start = p.frame_first - round(p.time * p.fps)
+        if abs(start) > START_FRAME_MAX:
+            raise ValueError(f"time {p.time:g} s: at {p.fps:g} fps time 0 would be frame {start:g}, beyond "
+                             f"nimbus's +-{START_FRAME_MAX} (an animation starts within {START_FRAME_MAX / p.fps:g} s "
+                             f"of time 0)")
 
 
 def check_plan(plan, limit_gib, voxel_size_text):

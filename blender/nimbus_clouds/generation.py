@@ -15,7 +15,8 @@ class Job:
     overrides: dict
     plan: dict
     paths: list = field(default_factory=list)  # one file, or one per frame
-    pattern: str = ""           # sequences: the printf pattern of the paths
+    folder: str = ""            # where the files go (any characters, '%' included)
+    pattern: str = ""           # sequences: the files' names in the folder, "stem.%04d.vdb" (stem: [A-Za-z0-9_-])
 
 
 def _file_stem(params, voxel_size, over):
@@ -44,12 +45,14 @@ def prepare(params, backend, limit_gib, folder):
     text = f"{voxel_size:g} m" if voxel_size else f"{float(plan['voxel_size']):g} m (the preset's)"
     checks.check_plan(plan, limit_gib, text)
     job = Job(params, backend, voxel_size, over, plan)
-    stem = os.path.join(folder, _file_stem(params, voxel_size, over))
+    # The frame field is formatted in the name only, never in the folder: a folder may hold a '%'.
+    stem = _file_stem(params, voxel_size, over)
+    job.folder = folder
     if params.animated:
         job.pattern = stem + ".%04d.vdb"
-        job.paths = [job.pattern % f for f in params.frames()]
+        job.paths = [os.path.join(folder, job.pattern % f) for f in params.frames()]
     else:
-        job.paths = [stem + ".vdb"]
+        job.paths = [os.path.join(folder, stem + ".vdb")]
     return job
 
 
@@ -57,7 +60,7 @@ def run(job):
     """Writes the job's file(s) with its backend."""
     p = job.params
     if p.animated:
-        job.backend.generate_sequence(job.pattern, p.preset, seed=p.seed, voxel_size=job.voxel_size,
+        job.backend.generate_sequence(job.folder, job.pattern, p.preset, seed=p.seed, voxel_size=job.voxel_size,
                                       overrides=job.overrides, first=p.frame_first, last=p.frame_last,
                                       fps=p.fps, start_frame=p.start_frame())
     else:

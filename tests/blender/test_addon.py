@@ -275,6 +275,8 @@ def check_refusals(label):
            ({"use_preset_seed": False, "seed": -1}, "seed"),
            ({"time": -1.0}, "time"),
            ({"animated": True, "frame_first": 5, "frame_last": 2}, "last frame"),
+           ({"animated": True, "frame_first": 2000000, "frame_last": 2000001}, "Blender's frames end at 1048574"),
+           ({"animated": True, "frame_first": 1, "frame_last": 2, "time": 5e8}, "time 5e+08 s"),
            ({"size": 0.0}, "size factor")]
     for given, name in bad:
         t = time.time()
@@ -381,7 +383,8 @@ def main():
     if not check(os.path.isfile(os.path.join(a.repo, "blender", "nimbus_clouds", "__init__.py")),
                  f"--repo {a.repo} holds blender/nimbus_clouds"):
         return
-    tmp = tempfile.mkdtemp(prefix="nimbus-blender-test-")
+    # A '%' in the cache folder's path: the sequences' frame field is formatted in their names alone.
+    tmp = tempfile.mkdtemp(prefix="nimbus-blender-test-100%d%-")
     os.environ["XDG_CACHE_HOME"] = tmp  # unsaved .blend: the add-on's cache goes to $XDG_CACHE_HOME/nimbus-blender
     os.environ["NIMBUS_PROGRAM"] = a.nimbus_program
     sys.path.insert(0, os.path.join(a.repo, "blender"))

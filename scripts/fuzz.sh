@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer harnesses (tests/fuzz, docs/reliability-fuzz.md) for a bounded time each.
 #
-#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; every target: params vdb sky view_state)
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; every target: params vdb sky view_state exr png)
 #
 # Installs clang and libclang-rt-14-dev when missing (Debian packages, as install-deps.sh does),
 # configures build-fuzz/ with clang, -DNIMBUS_FUZZ=ON and -DNIMBUS_SANITIZE=ON (AddressSanitizer
 # and UndefinedBehaviorSanitizer), builds only the harnesses (with base, noise, volume,
-# render_core and, for view_state, render_sky), and runs each one in libFuzzer's fork mode so that it keeps going after a finding:
+# render_core and, for view_state, render_sky, for exr, render_image), and runs each one in libFuzzer's fork mode so that it keeps going after a finding:
 #   - seeds: tests/fuzz/corpus/<corpus>/ (read, never written), with the dictionary
-#     tests/fuzz/<corpus>.dict (<corpus>: params_json, vdb, sky_json, view_state_json); new
+#     tests/fuzz/<corpus>.dict (<corpus>: params_json, vdb, sky_json, view_state_json, exr, png); new
 #     inputs go to build-fuzz/corpus/<target>/, kept between runs;
 #   - findings (crashes, broken contracts, out-of-memory, timeouts): build-fuzz/findings/<target>/,
 #     with the log in build-fuzz/findings/<target>.log. Record one in tests/fuzz/findings/<corpus>/
@@ -24,8 +24,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 seconds=${1:-60}
 [ $# -gt 0 ] && shift
 targets=("$@")
-declare -A seeds=([params]=params_json [vdb]=vdb [sky]=sky_json [view_state]=view_state_json)
-all_targets=(params vdb sky view_state)
+declare -A seeds=([params]=params_json [vdb]=vdb [sky]=sky_json [view_state]=view_state_json [exr]=exr [png]=png)
+all_targets=(params vdb sky view_state exr png)
 [ ${#targets[@]} -eq 0 ] && targets=("${all_targets[@]}")
 if ! [[ "$seconds" =~ ^[1-9][0-9]*$ ]]; then
   echo "fuzz.sh: SECONDS_PER_TARGET must be a whole number > 0, got '$seconds'" >&2

@@ -1,8 +1,12 @@
 // Coverage (weather) maps (coverage_map.hpp): PNGs read as untrusted files, sampled bilinearly,
 // and what they do to a field: no cloud voxel where the map is 0, the layout as without a map
 // where it is 1 everywhere.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <png.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "nimbus/base/memory.hpp"
 #include "nimbus/volume/coverage_map.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
@@ -103,6 +108,79 @@ TEST(CoverageMap, UntrustedFilesAreRefusedNamingThem) {
   EXPECT_THROW(coverage_from_values({0.5f, 1.5f}, 2, 1, "array"), std::invalid_argument);
   EXPECT_THROW(coverage_from_values({0.5f, NAN}, 2, 1, "array"), std::invalid_argument);
   EXPECT_THROW(coverage_from_values({0.5f}, 2, 1, "array"), std::invalid_argument);
+  fs::remove_all(dir);
+}
+
+// Hostile files: what is not a regular file is refused without being read, and a
+// header cannot make the reader allocate more than the file can hold.
+TEST(CoverageMap, AFifoIsRefusedWithoutReadingFromIt) {
+  const fs::path dir = temp_dir();
+  const fs::path fifo = dir / "f.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // Held open for writing with bytes in it: a reader that opened it would take them, not block.
+  const int fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, "not a PNG", 9), 9);
+  try {
+    read_coverage_png(fifo.string());
+    ADD_FAILURE() << "a FIFO was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(fifo.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is a FIFO"), std::string::npos) << e.what();
+  }
+  char buf[16];
+  EXPECT_EQ(::read(fd, buf, sizeof buf), 9) << "the reader took bytes from the FIFO";
+  ::close(fd);
+  fs::remove_all(dir);
+}
+
+TEST(CoverageMap, AHeaderDeclaringMorePixelsThanTheFileHoldsIsRefusedBeforeAllocating) {
+  const fs::path dir = temp_dir();
+  write_png(dir / "small.png", 64, 64, 1, std::vector<uint16_t>(64 * 64, 200), false);
+  std::string bytes;
+  {
+    std::ifstream in(dir / "small.png", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_LT(bytes.size(), 1024u);
+  // IHDR (PNG specification 11.2.2): width and height, big-endian, at bytes 16 and 20, then the
+  // chunk's CRC-32 over its type and 13 data bytes, at byte 29. 8192 x 8192 8-bit pixels are
+  // 64 MiB of image data, which deflate (1032:1 at most) cannot pack into under 1 KB; the reader
+  // would have allocated 448 MB for them (floats and decoded RGB).
+  for (int at : {16, 20}) {
+    const uint32_t v = 8192;
+    for (int i = 0; i < 4; ++i) bytes[at + i] = char((v >> (24 - 8 * i)) & 0xff);
+  }
+  const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17));
+  for (int i = 0; i < 4; ++i) bytes[29 + i] = char((crc >> (24 - 8 * i)) & 0xff);
+  {
+    std::ofstream out(dir / "big.png", std::ios::binary);
+    out << bytes;
+  }
+  const uint64_t peak_before = peak_resident_bytes();
+  try {
+    read_coverage_png((dir / "big.png").string());
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    for (const char* word : {"big.png", "8192 x 8192 pixels of 8 bits", "64 MiB", "deflate", "1032:1"})
+      EXPECT_NE(m.find(word), std::string::npos) << word << " not in: " << m;
+  }
+  EXPECT_LT(peak_resident_bytes(), peak_before + (uint64_t(64) << 20)) << "the reader allocated for the declared size";
+  fs::remove_all(dir);
+}
+
+TEST(CoverageMap, ALargeFlatMapStillReads) {
+  // A flat map is the most compressible there is, near deflate's 1032:1: the bound lets it through.
+  const fs::path dir = temp_dir();
+  write_png(dir / "flat.png", 4096, 4096, 1, std::vector<uint16_t>(size_t(4096) * 4096, 200), false);
+  const auto size = fs::file_size(dir / "flat.png");
+  const auto m = read_coverage_png((dir / "flat.png").string());
+  ASSERT_EQ(m->width, 4096);
+  ASSERT_EQ(m->height, 4096);
+  for (const float v : m->value) ASSERT_EQ(v, 200.0f / 255.0f);
+  std::printf("  [measured] flat 4096 x 4096 8-bit grey PNG: %ju bytes, %.0f:1\n", std::uintmax_t(size),
+              4096.0 * 4097.0 / double(size));
   fs::remove_all(dir);
 }
 

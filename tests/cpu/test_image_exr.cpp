@@ -1,13 +1,20 @@
 // EXR files: a round trip within half precision with the metadata, a header that an independent
 // tool (OpenEXR's exrheader) reads as ZIP with our attributes, refusals of bad pixels and names
-// before anything is written, and clear errors for unwritable, missing and corrupt files.
+// before anything is written, and clear errors for unwritable, missing and corrupt files; hostile
+// files (a FIFO, a header declaring more than the file holds) refused before opening or allocating.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <string>
 
+#include "nimbus/base/memory.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "support/run_nimbus.hpp"
 #include "support/vdb_fixtures.hpp"
@@ -155,6 +162,135 @@ TEST(ImageExr, MissingAndCorruptFilesNameThePath) {
   const std::string bytes = nimbus::test::read_bytes(dir / "a.exr");
   nimbus::test::write_bytes(dir / "cut.exr", bytes.substr(0, bytes.size() / 2));
   expect_error<std::runtime_error>([&] { read_exr(dir / "cut.exr"); }, {(dir / "cut.exr").string()});
+}
+
+// Hostile files: what is not a regular file is refused without being read, and a header cannot
+// make the reader allocate more than the file can hold.
+
+// The value of attribute `name` (whose type is `type`) in an EXR's bytes: its offset after the
+// name, the type name and the 4-byte size (OpenEXR file layout).
+std::size_t attribute_value(const std::string& exr, const std::string& name, const std::string& type) {
+  const std::string key = name + '\0' + type + '\0';
+  const std::size_t at = exr.find(key);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "no attribute " << name;
+    return 0;
+  }
+  return at + key.size() + 4;
+}
+
+void put_i32(std::string& bytes, std::size_t at, std::int32_t v) {
+  for (int i = 0; i < 4; ++i) bytes[at + i] = char((std::uint32_t(v) >> (8 * i)) & 0xff);  // little-endian
+}
+
+// A small valid file written by write_exr, with its dataWindow patched to (0, 0) - (x_max, y_max).
+std::string with_data_window(const std::filesystem::path& written, std::int32_t x_max, std::int32_t y_max) {
+  std::string bytes = nimbus::test::read_bytes(written);
+  const std::size_t at = attribute_value(bytes, "dataWindow", "box2i");
+  put_i32(bytes, at + 8, x_max);
+  put_i32(bytes, at + 12, y_max);
+  return bytes;
+}
+
+constexpr std::uint64_t kMiB = std::uint64_t(1) << 20;
+
+TEST(ImageExrHostile, AFifoIsRefusedWithoutReadingFromIt) {
+  TempDir dir;
+  const auto fifo = dir / "f.exr";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // The test holds the FIFO open for writing with bytes in it: a reader that opened it would not
+  // block (the test would hang instead of failing) but take the bytes, which must stay there.
+  const int fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, "not an EXR file", 15), 15);
+  expect_error<std::runtime_error>([&] { read_exr(fifo); }, {fifo.string(), "is a FIFO"});
+  char buf[32];
+  EXPECT_EQ(::read(fd, buf, sizeof buf), 15) << "the reader took bytes from the FIFO";
+  ::close(fd);
+}
+
+TEST(ImageExrHostile, DirectoriesAndDevicesAreRefusedByKind) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "d.exr");
+  expect_error<std::runtime_error>([&] { read_exr(dir / "d.exr"); }, {(dir / "d.exr").string(), "is a directory"});
+  expect_error<std::runtime_error>([&] { read_exr("/dev/zero"); }, {"/dev/zero", "is a character device"});
+}
+
+TEST(ImageExrHostile, AHeaderDeclaringMorePixelsThanTheFileHoldsIsRefusedBeforeAllocating) {
+  TempDir dir;
+  write_exr(dir / "small.exr", Image(8, 8));
+  // 4096 x 4096 pixels (256 MiB as float RGBA, 128 MiB of half RGBA data) in a file of under
+  // 8 KB: ZIP cannot pack them into it (1032:1 at most). The 4 KiB of zeros after the pixels
+  // give the header's 256 chunk offsets room in the file, as in the 4 KB file that made
+  // `nimbus compare` take 1.1 GB (before, OpenEXR read those offsets and read_exr allocated).
+  const std::string big = with_data_window(dir / "small.exr", 4095, 4095) + std::string(4096, '\0');
+  ASSERT_LT(big.size(), 8192u);
+  nimbus::test::write_bytes(dir / "big.exr", big);
+  const std::uint64_t peak_before = nimbus::peak_resident_bytes();
+  expect_error<std::runtime_error>([&] { read_exr(dir / "big.exr"); },
+                                   {(dir / "big.exr").string(), "4096x4096 pixels", "256.0 MiB as float RGBA",
+                                    "KiB", "ZIP", "1032:1"});
+  EXPECT_LT(nimbus::peak_resident_bytes(), peak_before + 64 * kMiB) << "the reader allocated for the declared window";
+
+  // Each side must hold a pixel; the data window may hold at most 2^28 pixels (4 GiB as floats).
+  nimbus::test::write_bytes(dir / "empty.exr", with_data_window(dir / "small.exr", -1, 7));
+  expect_error<std::runtime_error>([&] { read_exr(dir / "empty.exr"); },
+                                   {(dir / "empty.exr").string(), "holds no pixel"});
+  nimbus::test::write_bytes(dir / "huge.exr", with_data_window(dir / "small.exr", 65535, 65535));
+  expect_error<std::runtime_error>([&] { read_exr(dir / "huge.exr"); }, {"65536x65536", "larger than nimbus reads"});
+  nimbus::test::write_bytes(dir / "edge.exr", with_data_window(dir / "small.exr", 2147483647, 0));
+  expect_error<std::runtime_error>([&] { read_exr(dir / "edge.exr"); }, {"2147483648x1"});
+}
+
+TEST(ImageExrHostile, TheBoundFollowsTheDeclaredCompression) {
+  TempDir dir;
+  // 32 x 32 black pixels of half RGBA are 8 KiB of data, which this ZIP file holds in far less; called
+  // uncompressed (NONE, 1:1), the same file cannot hold them.
+  write_exr(dir / "zip.exr", Image(32, 32));
+  std::string bytes = nimbus::test::read_bytes(dir / "zip.exr");
+  ASSERT_LT(bytes.size(), 8192u);
+  bytes[attribute_value(bytes, "compression", "compression")] = 0;  // NO_COMPRESSION (ImfCompression.h)
+  nimbus::test::write_bytes(dir / "none.exr", bytes);
+  expect_error<std::runtime_error>([&] { read_exr(dir / "none.exr"); }, {"32x32 pixels", "8.0 KiB", "NONE", "1:1"});
+  bytes[attribute_value(bytes, "compression", "compression")] = 42;
+  nimbus::test::write_bytes(dir / "unknown.exr", bytes);
+  expect_error<std::runtime_error>([&] { read_exr(dir / "unknown.exr"); }, {"compression 42"});
+}
+
+TEST(ImageExrHostile, AnAttributeLongerThanTheFileIsRefusedBeforeAllocating) {
+  TempDir dir;
+  write_exr(dir / "small.exr", test_image(8, 8));
+  std::string bytes = nimbus::test::read_bytes(dir / "small.exr");
+  // The comments string says it holds 256 MiB: OpenEXR would size a string for it, then read.
+  put_i32(bytes, attribute_value(bytes, "comments", "string") - 4, 256 << 20);
+  nimbus::test::write_bytes(dir / "long.exr", bytes);
+  const std::uint64_t peak_before = nimbus::peak_resident_bytes();
+  expect_error<std::runtime_error>([&] { read_exr(dir / "long.exr"); },
+                                   {"attribute 'comments' (string)", "256.0 MiB", "beyond the end of the file"});
+  EXPECT_LT(nimbus::peak_resident_bytes(), peak_before + 64 * kMiB) << "the reader allocated for the attribute";
+}
+
+TEST(ImageExrHostile, LargeFlatImagesStillReadBackExactly) {
+  // A flat image is the most compressible a render gets: ZIP packs its 16-line chunks near
+  // deflate's 1032:1, and the bound must still let it through.
+  TempDir dir;
+  for (const float v : {0.0f, 0.25f}) {
+    Image im(2048, 2048);
+    for (std::size_t i = 0; i < im.rgba.size(); i += 4) {
+      im.rgba[i] = v;
+      im.rgba[i + 1] = 2 * v;
+      im.rgba[i + 2] = 3 * v;
+      im.rgba[i + 3] = 1.0f;
+    }
+    write_exr(dir / "flat.exr", im);
+    const auto size = std::filesystem::file_size(dir / "flat.exr");
+    const Image back = read_exr(dir / "flat.exr");
+    ASSERT_EQ(back.width, 2048);
+    ASSERT_EQ(back.height, 2048);
+    EXPECT_TRUE(back.rgba == im.rgba) << "value " << v;  // 0, 0.25, 0.5, 0.75 and 1 are exact in half
+    std::printf("  [measured] flat 2048x2048 half RGBA (value %g): %ju bytes, %.0f:1 of its 32 MiB\n", v,
+                std::uintmax_t(size), 32.0 * kMiB / double(size));
+  }
 }
 
 }  // namespace

@@ -1,4 +1,6 @@
-// OpenEXR writing and reading (half-float RGBA, ZIP, string metadata), through OpenEXR 3.1.
+// OpenEXR writing and reading (half-float RGBA, ZIP, string metadata), through OpenEXR 3.1. Reading
+// goes through ExrInputStream (regular files only) and check_exr_header (what the header declares,
+// against the file and memory) before OpenEXR or nimbus allocate anything from the header.
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -14,8 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/image/image_io.hpp"
+#include "exr_header_check.hpp"
+#include "exr_input_stream.hpp"
 #include "nimbus/base/atomic_file.hpp"
+#include "nimbus/base/input_limits.hpp"
+#include "nimbus/render/image/image_io.hpp"
 
 #ifndef NIMBUS_VERSION
 #define NIMBUS_VERSION "unknown"
@@ -31,7 +36,6 @@ constexpr std::array<const char*, 4> kChannels{"R", "G", "B", "A"};
 constexpr std::array<const char*, 7> kReserved{"type", "name", "version", "chunkCount", "tiles",
                                                "maxSamplesPerPixel", "view"};
 constexpr std::size_t kMaxAttributeName = 255;  // OpenEXR 2+ long attribute names
-constexpr long long kMaxPixels = 1LL << 28;     // a larger data window is taken as corruption
 
 bool is_reserved(const std::string& name) {
   return std::find_if(kReserved.begin(), kReserved.end(), [&](const char* r) { return name == r; }) !=
@@ -90,15 +94,19 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
 }
 
 Image read_exr(const std::filesystem::path& path) {
+  // A directory, FIFO, device or socket is refused before it is opened: a FIFO would block the
+  // open, a device feed the reader without end.
+  refuse_special_file(path.string(), "cannot read EXR");
+  const std::string name = echo(path.string(), 300);
   try {
-    Imf::InputFile file(path.c_str());
+    ExrInputStream stream(path.string());
+    const ExrWindow checked = check_exr_header(stream);  // before anything is allocated from the header
+    Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
-    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
-    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-    if (w <= 0 || h <= 0 || w * h > kMaxPixels) {
-      throw std::runtime_error("data window of " + std::to_string(w) + "x" + std::to_string(h) + " pixels");
-    }
-    Image image(static_cast<int>(w), static_cast<int>(h));
+    if (dw.min.x != checked.x_min || dw.min.y != checked.y_min || dw.max.x != checked.x_max ||
+        dw.max.y != checked.y_max)
+      throw std::runtime_error("OpenEXR read another data window than the header check did");
+    Image image(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1);
     Imf::FrameBuffer fb;
     const std::size_t xs = 4 * sizeof(float);
     const std::size_t ys = xs * image.width;
@@ -116,7 +124,8 @@ Image read_exr(const std::filesystem::path& path) {
     }
     return image;
   } catch (const std::exception& e) {
-    throw std::runtime_error("cannot read EXR " + path.string() + ": " + e.what());
+    // OpenEXR's messages may span lines and quote the file's bytes: one bounded line.
+    throw std::runtime_error("cannot read EXR " + name + ": " + echo(e.what(), 1000));
   }
 }
 

@@ -26,9 +26,10 @@ struct CoverageImage {
 
 // A PNG (8 or 16 bit; grey, grey + alpha, RGB or RGBA): the red channel (the grey of a grey
 // image), 0..max onto 0..1; alpha is ignored. The file is untrusted: a path that is not a regular
-// file, an image larger than kMaxCoverageMapSide a side or kMaxCoverageMapPixels in all (refused
-// from its header, before decoding), or anything libpng cannot read is a std::runtime_error
-// naming the file.
+// file (refused before it is opened), an image larger than kMaxCoverageMapSide a side or
+// kMaxCoverageMapPixels in all, or declaring more pixels than its bytes can hold (deflate's
+// 1032:1) or than memory takes (all refused from its header, before decoding), or anything libpng
+// cannot read is a std::runtime_error naming the file.
 std::shared_ptr<const CoverageImage> read_coverage_png(const std::string& path);
 
 // From values in memory (row-major, row 0 north): std::invalid_argument naming `where` unless

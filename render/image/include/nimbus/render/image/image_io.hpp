@@ -22,8 +22,12 @@ void write_exr(const std::filesystem::path& path, const Image& image);
 // Reads any single-part scanline or tiled OpenEXR file into float RGBA (a missing alpha channel
 // reads as 1, missing colour channels as 0), the top row of the data window first. Every string
 // attribute of the header goes into Image::metadata, except those EXR reserves for its own use
-// ("type", "name", ...: write_exr refuses them). Missing or corrupt files throw
-// std::runtime_error naming `path`.
+// ("type", "name", ...: write_exr refuses them). The file is untrusted: a directory, FIFO, device
+// or socket is refused before it is opened, and nothing is allocated from the header before it is
+// checked against the file (src/exr_header_check.hpp): a data window of 1 to 2^28 pixels, at least
+// one of R, G, B, A, no more pixel data than the file's size times the largest ratio its
+// compression reaches (1032:1 for ZIP), attributes within the file, and memory for the image.
+// Missing, corrupt or refused files throw std::runtime_error naming `path` in one line.
 Image read_exr(const std::filesystem::path& path);
 
 struct PreviewOptions {

@@ -96,10 +96,13 @@ void evaluate_grid(const NoiseField& field, const GridSpec& grid, std::span<floa
     }
     return;
   }
+  // TBB's auto partitioner hands a task many grains at once: the poll is per grain inside it.
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, rows, grain),
                     [&](const tbb::blocked_range<int64_t>& r) {
-                      throw_if_stopped(stop);
-                      k.rows(fd, grid, r.begin(), r.end(), out.data());
+                      for (int64_t b = r.begin(); b < r.end(); b += grain) {
+                        throw_if_stopped(stop);
+                        k.rows(fd, grid, b, std::min(r.end(), b + grain), out.data());
+                      }
                     });
 }
 

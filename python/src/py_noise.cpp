@@ -5,6 +5,7 @@
 
 #include <array>
 #include <memory>
+#include <span>
 
 #include "calls.hpp"
 #include "nimbus/app/usage_error.hpp"
@@ -25,19 +26,20 @@ py::array sample(const cli::NoiseOptions& o, const std::array<int64_t, 3>& shape
   const noise::NoiseParams p = cli::plan_noise(o);
   const uint64_t count = uint64_t(shape[0]) * uint64_t(shape[1]) * uint64_t(shape[2]);
   ensure_fits_in_memory(count, sizeof(float), "a noise grid of " + std::to_string(count) + " samples");
-  auto* values = new std::vector<float>();
-  py::capsule owner(values, [](void* v) { delete static_cast<std::vector<float>*>(v); });
+  std::unique_ptr<float[]> values;
   run_interruptible([&] {
-    values->resize(count);
+    values.reset(new float[count]);  // not zero-filled first (half a second at 512^3): every sample is written
     const noise::NoiseField field(p);
     noise::GridSpec grid;
     grid.spacing = spacing;
     grid.res = {shape[0], shape[1], shape[2]};
-    noise::evaluate_grid(field, grid, *values, {});
+    noise::evaluate_grid(field, grid, std::span<float>(values.get(), count), {});
   });
+  float* data = values.release();
+  py::capsule owner(data, [](void* v) { delete[] static_cast<float*>(v); });
   const py::ssize_t f = sizeof(float);
   return py::array_t<float>({py::ssize_t(shape[0]), py::ssize_t(shape[1]), py::ssize_t(shape[2])},
-                            {f, f * shape[0], f * shape[0] * shape[1]}, values->data(), owner);
+                            {f, f * shape[0], f * shape[0] * shape[1]}, data, owner);
 }
 
 }  // namespace

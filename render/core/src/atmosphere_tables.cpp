@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/base/cancel.hpp"
+
 namespace nimbus::render {
 namespace glsl {
 using namespace glm;
@@ -62,7 +64,9 @@ void march(const AtmosphereTables& t, double h, double mu, double mu_s, double n
 void build_transmittance(AtmosphereTables& t) {
   const Atmosphere& a = t.atmosphere;
   t.transmittance = make_table(glsl::ATM_TRANSMITTANCE_W, glsl::ATM_TRANSMITTANCE_H);
+  const std::stop_token stop = current_stop_token();  // this call's, polled a row at a time (cancel.hpp)
   tbb::parallel_for(0, t.transmittance.height, [&](int y) {
+    throw_if_stopped(stop);
     for (int x = 0; x < t.transmittance.width; ++x) {
       const TransmittanceTexel q = transmittance_texel(a, x, y);
       const double d = distance_to_top(a, q.altitude_m, q.mu);
@@ -84,7 +88,9 @@ void build_multiple_scattering(AtmosphereTables& t) {
   const Atmosphere& a = t.atmosphere;
   t.multiple_scattering = make_table(glsl::ATM_MS_W, glsl::ATM_MS_H);
   const double thickness = a.top_radius_m - a.bottom_radius_m;
+  const std::stop_token stop = current_stop_token();  // this call's, polled a row at a time (cancel.hpp)
   tbb::parallel_for(0, t.multiple_scattering.height, [&](int y) {
+    throw_if_stopped(stop);
     for (int x = 0; x < t.multiple_scattering.width; ++x) {
       const double w = 2.0 * x / (t.multiple_scattering.width - 1) - 1.0;  // sign(mu_s) sqrt|mu_s|
       const double mu_s = std::clamp(w * std::abs(w), -1.0, 1.0);
@@ -129,7 +135,9 @@ void build_sky_view(AtmosphereTables& t) {
   const double mu_s = glm::normalize(t.view.direction_to_sun).y;
   const glm::dvec3 E = a.solar_irradiance_w_m2;
   t.sky_view = make_table(glsl::ATM_SKY_W, glsl::ATM_SKY_H);
+  const std::stop_token stop = current_stop_token();  // this call's, polled a row at a time (cancel.hpp)
   tbb::parallel_for(0, t.sky_view.height, [&](int y) {
+    throw_if_stopped(stop);
     for (int x = 0; x < t.sky_view.width; ++x) {
       const ViewTexel q = view_texel(a, h, static_cast<double>(x) / (t.sky_view.width - 1), static_cast<double>(y) / (t.sky_view.height - 1));
       const double sin_s = std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0));
@@ -156,7 +164,9 @@ void build_aerial_perspective(AtmosphereTables& t) {
   t.aerial_scattering = make_table(glsl::ATM_AP_W, glsl::ATM_AP_H, glsl::ATM_AP_D);
   t.aerial_transmittance = make_table(glsl::ATM_AP_W, glsl::ATM_AP_H, glsl::ATM_AP_D);
   const int W = glsl::ATM_AP_W, H = glsl::ATM_AP_H, D = glsl::ATM_AP_D;
+  const std::stop_token stop = current_stop_token();  // this call's, polled a row at a time (cancel.hpp)
   tbb::parallel_for(0, H, [&](int y) {
+    throw_if_stopped(stop);
     for (int x = 0; x < W; ++x) {
       const ViewTexel q = view_texel(a, h, static_cast<double>(x) / (W - 1), static_cast<double>(y) / (H - 1));
       const double sin_s = std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0));

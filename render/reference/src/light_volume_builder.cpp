@@ -376,7 +376,6 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
-                        throw_if_stopped(stop);  // a block of photons at a time (cancel.hpp)
                         TallySink sink{tallies.sum.data(), tallies.source.data(), true, tallies.quantum};
                         if (!shared) {
                           Own& mine = own.local();
@@ -387,8 +386,12 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
                           sink = TallySink{mine.sum.data(), mine.source.data(), false, tallies.quantum};
                         }
                         std::vector<Tentative> points;
-                        for (std::int64_t i = r.begin(); i < r.end(); ++i)
+                        for (std::int64_t i = r.begin(); i < r.end(); ++i) {
+                          // Every 1024 photons (cancel.hpp): the auto partitioner hands a task many
+                          // grains of 1024 at once, so a poll per task could wait for seconds.
+                          if (((i - r.begin()) & 1023) == 0) throw_if_stopped(stop);
                           trace_photon(i, sink, v, g, media, rect, shift_u, shift_v, widest, settings, handover, points);
+                        }
                       });
   });
   // Integer sums: the same whatever thread tallied what.

@@ -1,14 +1,15 @@
 // Output-path checks before the work (output_path.hpp).
 #include "nimbus/base/output_path.hpp"
 
-#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+#include <system_error>
 
+#include "nimbus/base/atomic_file.hpp"
 #include "nimbus/base/file_kind.hpp"
 
 namespace nimbus {
@@ -30,11 +31,15 @@ void check_output_path(const fs::path& path, const std::string& what) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (::stat(parent.c_str(), &st) == 0) {
     if (!S_ISDIR(st.st_mode)) throw std::runtime_error(where + ": " + parent.string() + " is not a directory");
-    // The same name pattern as write_atomically's temporary, so a name too long for it fails here.
-    const fs::path probe = parent / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + ".probe");
-    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-    if (fd < 0) throw std::runtime_error(where + ": cannot be written (" + error_text(errno) + ")");
-    ::close(fd);
+    // A probe named as write_atomically names its temporary (so a name too long for it fails
+    // here), unique to this call: checks of one path at once, from threads or processes, and
+    // leftover files never collide with it.
+    fs::path probe;
+    try {
+      probe = create_file_beside(path);
+    } catch (const std::system_error& e) {
+      throw std::runtime_error(where + ": cannot be written (" + error_text(e.code().value()) + ")");
+    }
     ::unlink(probe.c_str());
     return;
   }
@@ -51,10 +56,16 @@ void check_output_path(const fs::path& path, const std::string& what) {
   }
   if (!S_ISDIR(st.st_mode))
     throw std::runtime_error(where + ": cannot create its directory, " + ancestor.string() + " is not a directory");
-  const fs::path probe = ancestor / (".nimbus-probe" + std::to_string(::getpid()));
-  if (::mkdir(probe.c_str(), 0700) != 0)
-    throw std::runtime_error(where + ": cannot create its directory in " + ancestor.string() + " (" + error_text(errno) + ")");
-  ::rmdir(probe.c_str());
+  // A probe folder of a name no other check draws; should one exist, another is drawn.
+  for (int attempt = 0;; ++attempt) {
+    const fs::path probe = unique_name_beside(ancestor / "nimbus-probe", "");
+    if (::mkdir(probe.c_str(), 0700) == 0) {
+      ::rmdir(probe.c_str());
+      return;
+    }
+    if (errno != EEXIST || attempt == 100)
+      throw std::runtime_error(where + ": cannot create its directory in " + ancestor.string() + " (" + error_text(errno) + ")");
+  }
 }
 
 std::string file_identity(const fs::path& path) {

@@ -1,21 +1,17 @@
 // All-or-nothing writes of several files (staged_files.hpp).
 #include "nimbus/base/staged_files.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <stdexcept>
+
+#include "nimbus/base/atomic_file.hpp"
 
 namespace nimbus {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path beside(const fs::path& target, const std::string& tag) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  return parent / ("." + target.filename().string() + tag + std::to_string(::getpid()) + "." + std::to_string(counter++));
-}
+// A name beside `target` that no other writer draws (atomic_file.hpp).
+fs::path beside(const fs::path& target, const std::string& tag) { return unique_name_beside(target, tag); }
 
 // `text` with every `from` replaced by `to`: messages name the target, not its temporary.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

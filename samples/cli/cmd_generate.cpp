@@ -27,6 +27,7 @@
 #include "nimbus/volume/sky.hpp"
 #include "nimbus/volume/sky_volume.hpp"
 #include "nimbus/volume/vdb_io.hpp"
+#include "nimbus/volume/voxel_size.hpp"
 
 namespace nimbus::cli {
 
@@ -81,8 +82,13 @@ int run_generate_sky(const GenerateArgs& a) {
       throw UsageError(std::string(flag) + ": not with --sky (the sky file names each cloud's preset, seed and "
                                            "overrides; a cloud's coverage map goes in its overrides)");
   if (a.up != "y" && a.up != "z") throw UsageError("--up: '" + a.up + "' must be y or z");
-  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
-    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  if (a.voxel_size) {
+    try {
+      volume::check_voxel_size(*a.voxel_size, "--voxel-size");  // the one range of voxel sizes
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
   const FrameRange range = parse_frames(a.frame);
   check_sequence_pattern("-o", a.output);
   if (!range.sequence && has_frame_field(a.output))
@@ -110,7 +116,7 @@ int run_generate_sky(const GenerateArgs& a) {
   std::vector<PathArg> outputs;
   for (int frame = range.first; frame <= range.last; ++frame)
     outputs.push_back({"-o", range.sequence ? sequence_path(a.output, frame) : a.output});
-  check_outputs(outputs, {{"--sky", a.sky}});
+  check_outputs(outputs, RunInputs().file("--sky", a.sky).sky(sky, "--sky '" + a.sky + "'"));
   checks_done();
 
   volume::ExportInfo info;
@@ -196,7 +202,9 @@ int run_generate(const GenerateArgs& a) {
   }
   std::vector<PathArg> outputs;
   for (int frame = first; frame <= last; ++frame) outputs.push_back({"-o", sequence ? sequence_path(a.output, frame) : a.output});
-  check_outputs(outputs, {{"--params", a.params}, {"--coverage-map", a.coverage_map}});
+  // Every file the parameters came from or name, however it was named (--params, --set, the
+  // preset, --coverage-map), is an input.
+  check_outputs(outputs, RunInputs().file("--params", a.params).file("--coverage-map", a.coverage_map).cloud(params, "cloud"));
   checks_done();
   if (tag) {
     const openvdb::Coord d = opt.clip->dim();

@@ -20,8 +20,8 @@ struct MergeArgs {
 int run_merge(const MergeArgs& a) {
   if (a.bricks.empty()) throw UsageError("BRICKS: give the brick files (e.g. bricks/*.vdb)");
   if (a.output.empty()) throw UsageError("-o: an output file is required");
-  std::vector<PathArg> inputs;
-  for (const std::string& b : a.bricks) inputs.push_back({"BRICKS", b});
+  RunInputs inputs;
+  for (const std::string& b : a.bricks) inputs.file("BRICKS", b);
   check_outputs({{"-o", a.output}}, inputs);
   checks_done();
   const auto t0 = std::chrono::steady_clock::now();

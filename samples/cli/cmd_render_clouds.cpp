@@ -168,16 +168,19 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
 namespace {
 
 // Every file of every frame: outputs writable, none of them an input, before any work.
-void check_cloud_render_files(const CloudRenderArgs& a, const FrameRange& range, const std::string& output,
+void check_cloud_render_files(const CloudRenderArgs& a, const CloudRenderPlan& plan, const std::string& output,
                               const std::string& preview) {
-  std::vector<PathArg> outputs, inputs;
+  const FrameRange& range = plan.range;
+  std::vector<PathArg> outputs;
+  RunInputs inputs;
+  for (const render::PresetCloud& preset : plan.presets) inputs.cloud(preset.params, "--preset " + preset.name + " cloud");
   for (int frame = range.first; frame <= range.last; ++frame) {
     if (!output.empty()) outputs.push_back({"-o", frame_path(output, frame, range.sequence)});
     if (!preview.empty()) outputs.push_back({"--preview", frame_path(preview, frame, range.sequence)});
     for (const std::string& pattern : a.files)
-      inputs.push_back({"FILE", frame_path(pattern, frame, range.sequence && has_frame_field(pattern))});
+      inputs.file("FILE", frame_path(pattern, frame, range.sequence && has_frame_field(pattern)));
   }
-  for (const PathArg& in : inputs) refuse_special_file(in.path, in.flag);
+  for (const PathArg& in : inputs.paths()) refuse_special_file(in.path, in.flag);
   check_outputs(outputs, inputs);
 }
 
@@ -238,7 +241,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   // Flags first, then every file: every usage error before any work (render_clouds_plan.cpp).
   CloudRenderPlan plan =
       plan_cloud_render(a, scene_name, scene_given, method_text, method_given, output, preview, exposure);
-  check_cloud_render_files(a, plan.range, output, preview);
+  check_cloud_render_files(a, plan, output, preview);
   checks_done();
 
   render::FrameSettings& fs = plan.frame.settings;

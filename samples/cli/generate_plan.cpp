@@ -9,13 +9,19 @@
 #include "nimbus/base/memory.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
+#include "nimbus/volume/voxel_size.hpp"
 
 namespace nimbus::cli {
 
 GeneratePlan plan_generate(const GenerateRequest& r) {
   if (r.voxel_size && r.res) throw UsageError("--voxel-size and --res: give one, not both");
-  if (r.voxel_size && !(std::isfinite(*r.voxel_size) && *r.voxel_size > 0))
-    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  if (r.voxel_size) {
+    try {
+      volume::check_voxel_size(*r.voxel_size, "--voxel-size");
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
   if (r.res && (*r.res < 1 || *r.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
   GeneratePlan plan;
   try {
@@ -46,6 +52,7 @@ GeneratePlan plan_generate(const GenerateRequest& r) {
 }
 
 void check_generate_time(const GeneratePlan& plan, double time_s) {
+  app::check_sky_time(time_s);  // the one range of times, for the program's --time and Python's time alike
   try {
     (void)volume::CloudModel(plan.params, plan.voxel_size_m, time_s).bounds();
   } catch (const std::invalid_argument& e) {

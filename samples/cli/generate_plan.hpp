@@ -35,8 +35,10 @@ struct GeneratePlan {
 // std::invalid_argument when the model refuses the parameters (densities beyond the float range).
 GeneratePlan plan_generate(const GenerateRequest& request);
 
-// The model at `time_s` (what generate_density would refuse at that time: a cloud moved beyond
-// the noise's range): UsageError "at t = ... s (--time, --frames/--fps): ...".
+// A time outside the one range of sky times (volume::kSkyTimeRangeS): UsageError "--time: t = ...
+// is outside ..." (app::check_sky_time); the model at `time_s` (what generate_density would refuse
+// at that time: a cloud moved beyond the noise's range): UsageError "at t = ... s (--time,
+// --frames/--fps): ...".
 void check_generate_time(const GeneratePlan& plan, double time_s);
 
 // The cloud's index box at `time_s` (what generate_density fills), which as dense floats must fit

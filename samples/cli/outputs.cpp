@@ -13,17 +13,16 @@
 
 namespace nimbus::cli {
 
-void check_outputs(const std::vector<PathArg>& outputs, const std::vector<PathArg>& inputs) {
+void check_outputs(const std::vector<PathArg>& outputs, const RunInputs& inputs) {
   std::map<std::string, const PathArg*> seen;  // file identity -> the argument that names it
-  for (const PathArg& in : inputs)
-    if (!in.path.empty()) seen.emplace(file_identity(in.path), &in);
+  for (const PathArg& in : inputs.paths()) seen.emplace(file_identity(in.path), &in);
   for (const PathArg& out : outputs) {
     if (out.path.empty()) continue;  // not asked for (an empty flag value is refused earlier)
     const auto [at, fresh] = seen.emplace(file_identity(out.path), &out);
     if (!fresh) {
       const PathArg& other = *at->second;
-      throw UsageError(out.flag + " '" + out.path + "': is also " + other.flag +
-                       (other.path == out.path ? "" : " '" + other.path + "'") + "; write the result to another file");
+      throw UsageError(out.flag + " '" + echo(out.path, 200) + "': is also " + other.flag +
+                       (other.path == out.path ? "" : " '" + echo(other.path, 200) + "'") + "; write the result to another file");
     }
   }
   for (const PathArg& out : outputs)
@@ -31,7 +30,7 @@ void check_outputs(const std::vector<PathArg>& outputs, const std::vector<PathAr
 }
 
 void warn_half_float_clipping(const render::Image& image, const std::string& output, const std::string& sources) {
-  constexpr float kHalfMax = 65504.0f;
+  constexpr auto kHalfMax = static_cast<float>(kExrHalfMax);
   std::size_t clipped = 0;
   float brightest = 0.0f;
   for (std::size_t i = 0; i < image.rgba.size(); ++i) {

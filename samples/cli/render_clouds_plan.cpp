@@ -10,6 +10,7 @@
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/sun_setup.hpp"
+#include "nimbus/volume/voxel_size.hpp"
 #include "outputs.hpp"
 
 namespace nimbus::cli {
@@ -114,9 +115,19 @@ void plan_method_and_scene(CloudRenderPlan& p, const std::string& scene_name, bo
 void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const std::string& output,
                            const std::string& preview, std::optional<double> exposure) {
   if (a.up != "auto" && a.up != "y" && a.up != "z") throw UsageError("--up-axis: '" + a.up + "' must be auto, y or z");
-  if (a.voxel_size && !(std::isfinite(*a.voxel_size) && *a.voxel_size > 0))
-    throw UsageError("--voxel-size: must be finite and > 0 (metres)");
+  if (a.voxel_size) {
+    try {
+      volume::check_voxel_size(*a.voxel_size, "--voxel-size");  // the one range of voxel sizes
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
   p.range = parse_frames(a.frame);
+  // A file's clouds are the same at any time: only presets are generated at --time (the picture
+  // of FILE.vdb --time 1e300 was the one of time 0, to the byte).
+  if (a.frame.time && a.presets.empty())
+    throw UsageError("--time: FILE clouds are the same at any time (a file holds one moment); --time applies to --preset "
+                     "clouds, generated at that time");
   if (p.range.whole_last > p.range.whole_first && a.presets.empty() &&
       std::none_of(a.files.begin(), a.files.end(), [](const std::string& f) { return f.find('%') != std::string::npos; }))
     throw UsageError("--frames: every frame would render the same FILE with the same camera; give a sequence "
@@ -159,10 +170,19 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
 
 // Stage 4a: the lamps (--lamp, shaped by --spot), each validated.
 void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
+  const glm::dvec3 intensity = a.lamps.empty() ? glm::dvec3(0.0) : parse_colour("--lamp-intensity", a.lamp_intensity);
+  // In a scene its bulb shows (a 5 cm sphere, of radiance I / (pi r^2)); clouds never see bulbs. A
+  // bulb brighter than the EXR's half floats hold would be clipped in every picture of it.
+  const double bulb_radiance = std::max({intensity.x, intensity.y, intensity.z}) / (kPi * kLampBulbRadiusM * kLampBulbRadiusM);
+  if (p.frame.scene && bulb_radiance > kExrHalfMax)
+    throw UsageError("--lamp-intensity: '" + echo(a.lamp_intensity) + "' W/sr makes each --lamp's bulb, seen in the scene, " +
+                     number_text(bulb_radiance) + " W/(m^2 sr), beyond the " + number_text(kExrHalfMax) +
+                     " the EXR's half floats hold; at most " +
+                     number_text(kExrHalfMax * kPi * kLampBulbRadiusM * kLampBulbRadiusM) +
+                     " W/sr with a scene (with --scene none no bulb is drawn)");
   for (const std::string& text : a.lamps) {
     const glm::dvec3 at = parse_world_vec3("--lamp", text);
-    // In a scene its bulb shows (a 5 cm sphere); clouds never see bulbs.
-    p.frame.lights.push_back(render::bulb_light(at, parse_colour("--lamp-intensity", a.lamp_intensity), kLampBulbRadiusM));
+    p.frame.lights.push_back(render::bulb_light(at, intensity, kLampBulbRadiusM));
   }
   refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
   refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
@@ -235,12 +255,18 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
   slices.multiple.occlusion = a.ms_occlusion;
   slices.multiple.contribution = a.ms_contribution;
   slices.multiple.eccentricity = a.ms_eccentricity;
+  // Only the slicer draws a periodic field's copies; the CPU methods draw each cloud once.
+  refuse_if_given_without(a, "--repeat-to", p.cloud_method == render::CloudMethod::Slices,
+                          "--method " + p.method + " draws each cloud once (the " +
+                              (p.cloud_method == render::CloudMethod::PathTrace ? "path tracer" : "reference renderer") +
+                              " does not repeat a periodic field); only --method slices draws its copies");
   if (a.repeat_to == "auto") {
     slices.repeat_to_m = p.frame.scene && p.frame.scene->name == "sky" ? 32000.0 : 0.0;
   } else {
     const std::optional<double> r = parse_double(a.repeat_to);
-    if (!r || !(*r >= 0.0 && *r <= 1e6))
-      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in [0, 1e6] metres");
+    if (!r || !(*r >= 0.0 && *r <= render::kMaxRepeatToM))
+      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in [0, " +
+                       number_text(render::kMaxRepeatToM) + "] metres");
     slices.repeat_to_m = *r;
   }
   try {

@@ -39,7 +39,8 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
                      number_text(state.render_scale) + " is below one pixel (" + std::to_string(frame_w) + "x" +
                      std::to_string(frame_h) + "); give a larger --res");
   render::check_sky_cloud_files(state.sky);
-  check_outputs({{"-o", output}, {"--preview", preview}}, {{"--view-state", path}});
+  check_outputs({{"-o", output}, {"--preview", preview}},
+                RunInputs().file("--view-state", path).sky(state.sky, "--view-state '" + path + "' sky"));
   if (!version_note.empty()) std::cerr << "note: " << version_note << "\n";
   checks_done();
   const auto start = std::chrono::steady_clock::now();

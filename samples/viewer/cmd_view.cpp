@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -112,20 +113,25 @@ int run_view(const ViewArgs& a) {
   // Every file the run may write, before any work: none of them an input or each other, each a
   // regular file (or none yet) in a folder that takes it. --state-out may be --state (Ctrl+S
   // saves there by default), but not another input.
-  std::vector<PathArg> inputs{{"--sky", a.sky}, {"--script", a.script}};
-  for (const std::string& f : a.files)
-    if (!has_frame_field(f)) inputs.push_back({"FILE", f});
-  std::vector<PathArg> outputs{{"--state-out", a.state_out}};
-  if (!script.record.empty()) outputs.push_back({"script record", script.record});
-  for (const viewer::ScriptEvent& e : script.events)
-    if (e.kind == viewer::ScriptEvent::Kind::SaveSky) outputs.push_back({"script save_sky", e.path});
-  std::vector<PathArg> writes = outputs;  // several save_sky events may name one file, written in turn
-  std::sort(writes.begin(), writes.end(), [](const PathArg& x, const PathArg& y) { return x.path < y.path; });
-  writes.erase(std::unique(writes.begin(), writes.end(), [](const PathArg& x, const PathArg& y) { return x.path == y.path; }),
-               writes.end());
+  RunInputs inputs;
+  inputs.file("--sky", a.sky).file("--script", a.script);
   // Ctrl+S may rewrite --state (it saves there unless --state-out is given); nothing else may.
   if (!a.state.empty() && (a.state_out.empty() || file_identity(a.state) != file_identity(a.state_out)))
-    inputs.push_back({"--state", a.state});
+    inputs.file("--state", a.state);
+  // The files the sky names (its file clouds, every frame of a sequence, and coverage maps),
+  // wherever the sky came from.
+  inputs.sky(state.sky, !a.sky.empty()     ? "--sky '" + a.sky + "'"
+                        : !a.files.empty() ? std::string("FILE")
+                        : !a.state.empty() ? "--state '" + a.state + "' sky"
+                                           : std::string("the default sky"));
+  std::vector<PathArg> writes{{"--state-out", a.state_out}};
+  if (!script.record.empty()) writes.push_back({"script record", script.record});
+  // Several save_sky events may name one file, written in turn: it is one output (however it is
+  // spelled), but no other output may be it.
+  std::set<std::string> saved_skies;
+  for (const viewer::ScriptEvent& e : script.events)
+    if (e.kind == viewer::ScriptEvent::Kind::SaveSky && saved_skies.insert(file_identity(e.path)).second)
+      writes.push_back({"script save_sky", e.path});
   check_outputs(writes, inputs);
   // Screenshots (F12, a script's screenshot_every) go to a folder: one that exists or can be made.
   {

@@ -106,18 +106,18 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
   }
   if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
     double el = s.sky.sun_elevation_deg, az = s.sky.sun_azimuth_deg;
-    bool moved = slider("elevation", el, -10.0, 90.0, "%.1f");
+    bool moved = slider("elevation", el, volume::kSunElevationRangeDeg.lo, volume::kSunElevationRangeDeg.hi, "%.1f");
     tip("degrees above the horizon");
-    moved |= slider("azimuth", az, 0.0, 359.9, "%.1f");
+    moved |= slider("azimuth", az, volume::kSunAzimuthRangeDeg.lo, volume::kSunAzimuthRangeDeg.hi, "%.1f");
     tip("compass bearing, degrees: 0 north, 90 east");
-    bool day_moved = slider("time of day", panel.hour, 0.0, 24.0, "%.2f");
+    bool day_moved = slider("time of day", panel.hour, app::kHourRange.lo, app::kHourRange.hi, "%.2f");
     tip("local solar time, hours; with the latitude and the day of the year it sets the elevation and azimuth");
-    day_moved |= slider("latitude", panel.latitude_deg, -90.0, 90.0, "%.1f");
-    day_moved |= slider("day of year", panel.day_of_year, 1.0, 366.0, "%.0f");
+    day_moved |= slider("latitude", panel.latitude_deg, app::kLatitudeRangeDeg.lo, app::kLatitudeRangeDeg.hi, "%.1f");
+    day_moved |= slider("day of year", panel.day_of_year, app::kDayOfYearRange.lo, app::kDayOfYearRange.hi, "%.0f");
     if (day_moved) {
       // The renderer's suns end 10 degrees below the horizon: night holds the sun there.
       const app::SunPosition sun = app::sun_at(panel.hour, panel.latitude_deg, panel.day_of_year);
-      el = std::max(sun.elevation_deg, -10.0);
+      el = std::max(sun.elevation_deg, volume::kSunElevationRangeDeg.lo);
       az = sun.azimuth_deg;
       moved = true;
     }

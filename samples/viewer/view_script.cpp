@@ -13,6 +13,7 @@
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/volume/json_io.hpp"
+#include "nimbus/volume/sky_ranges.hpp"
 
 namespace nimbus::viewer {
 namespace {
@@ -117,7 +118,9 @@ Script load_script(const std::string& path) {
           } else if (ik == "sun") {
             if (!iv.is_array() || iv.size() != 2) bad(ikey + " must be [elevation, azimuth] degrees");
             ev.kind = ScriptEvent::Kind::Sun;
-            ev.amount = {number(iv[0], ikey + "[0]", -10, 90), number(iv[1], ikey + "[1]", 0, 359.999)};
+            ev.amount = {number(iv[0], ikey + "[0]", volume::kSunElevationRangeDeg.lo, volume::kSunElevationRangeDeg.hi),
+                         number(iv[1], ikey + "[1]", volume::kSunAzimuthRangeDeg.lo, volume::kSunAzimuthRangeDeg.hi)};
+            if (ev.amount.y == volume::kSunAzimuthRangeDeg.hi) ev.amount.y = volume::kSunAzimuthRangeDeg.lo;  // north, as sky files read it
           } else if (ik == "save_sky") {
             if (!iv.is_string() || iv.get<std::string>().empty()) bad(ikey + " must be a file name");
             ev.kind = ScriptEvent::Kind::SaveSky;

@@ -51,6 +51,26 @@ class HostileCli : public ::testing::Test {
     file.write({make_ball(6, 0.1)});
     file.close();
     fs::copy_file(d / "cloud.vdb", d / "cloud.exr");  // a VDB named as an image: an input -o may name
+    // Periodic files (the "period_m" metadata generate writes for a field's tile) whose period is
+    // shorter than the cloud (1.3 m across), or no period at all.
+    for (const auto& [name, period] : {std::pair<std::string, std::string>{"short", "0.3 0.3"}, {"nan", "nan 1"},
+                                       {"huge", "1e300 1"}, {"negative", "-1 1"}}) {
+      openvdb::MetaMap meta;
+      meta.insertMeta("period_m", openvdb::StringMetadata(period));
+      openvdb::io::File periodic((d / ("period_" + name + ".vdb")).string());
+      periodic.write({make_ball(6, 0.1)}, meta);
+      periodic.close();
+    }
+    // A cloud of one voxel (0.1 m) repeated every nanometre: 1024 copies in each voxel, drawn for 25 s.
+    openvdb::MetaMap meta;
+    meta.insertMeta("period_m", openvdb::StringMetadata("1e-9 1e-9"));
+    const openvdb::FloatGrid::Ptr voxel = openvdb::FloatGrid::create(0.0f);
+    voxel->setName("density");
+    voxel->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    voxel->getAccessor().setValueOn(openvdb::Coord(0, 0, 0), 1.0f);
+    openvdb::io::File tiny((d / "period_tiny.vdb").string());
+    tiny.write({voxel}, meta);
+    tiny.close();
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -162,8 +182,39 @@ TEST_F(HostileCli, RangesAreSaneBeforeAnyWork) {
       {{"render", "{d}/cloud.vdb", "--grid", "nope", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 2,
        "--grid"},
       {{"info", "{d}/cloud.vdb", "--grid", "nope"}, 2, "--grid"},
-      // The wind carries the cloud 10^13 m away: the time is at fault, and the message says so.
-      {with(kCumulus, {"--time", "1e12", "-o", "{d}/o.vdb"}), 2, "at t = 1e+12 s (--time"},
+      // Times have one range, for flags, files, view states and Python: 31 years either way.
+      {with(kCumulus, {"--time", "1e12", "-o", "{d}/o.vdb"}), 2, "--time: t = 1e+12 s is outside [-1e+09, 1e+09] s of sky time"},
+      {with(kTinyClouds, {"--time", "1e300", "-o", "{d}/c.exr"}), 2, "--time: t = 1e+300 s is outside [-1e+09, 1e+09] s"},
+      // A file holds one moment: its picture was the same at any --time, to the byte.
+      {{"render", "{d}/cloud.vdb", "--scene", "none", "--res", "8x8", "--time", "1e300", "-o", "{d}/c.exr"}, 2,
+       "--time: t = 1e+300 s is outside"},
+      {{"render", "{d}/cloud.vdb", "--scene", "none", "--res", "8x8", "--time", "5", "-o", "{d}/c.exr"}, 2,
+       "--time: FILE clouds are the same at any time"},
+  });
+}
+
+// Periods (a periodic field's "period_m") and the distance its copies are drawn to: hostile values
+// of either are refused naming the file and key (exit 1: the file is at fault) or the flag (2).
+TEST_F(HostileCli, PeriodsAndRepeatsAreRefusedNamingTheirSource) {
+  const std::vector<std::string> file = {"render", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"};
+  expect_refused({
+      // A period shorter than its cloud exited 2, a usage error, for a file's content.
+      {with(file, {"{d}/period_short.vdb"}), 1,
+       "{d}/period_short.vdb: metadata 'period_m': the period along x (0.3 m) is shorter than the cloud"},
+      {with(file, {"{d}/period_tiny.vdb", "--repeat-to", "1e6"}), 1,
+       "{d}/period_tiny.vdb: metadata 'period_m': the period along x (1e-09 m) is shorter than a voxel (0.1 m)"},
+      {with(file, {"{d}/period_nan.vdb"}), 1, "{d}/period_nan.vdb: metadata 'period_m' must be two periods in [0, 1e7] metres"},
+      {with(file, {"{d}/period_huge.vdb"}), 1, "{d}/period_huge.vdb: metadata 'period_m' must be two periods"},
+      {with(file, {"{d}/period_negative.vdb"}), 1, "{d}/period_negative.vdb: metadata 'period_m' must be two periods"},
+      {with(kTinyClouds, {"--repeat-to", "nan", "-o", "{d}/c.exr"}), 2, "--repeat-to: 'nan' is not auto or a distance in [0, 1e+06]"},
+      {with(kTinyClouds, {"--repeat-to", "-1", "-o", "{d}/c.exr"}), 2, "--repeat-to: '-1' is not auto or a distance"},
+      {with(kTinyClouds, {"--repeat-to", "1e300", "-o", "{d}/c.exr"}), 2, "--repeat-to: '1e300' is not auto or a distance"},
+      {with(kTinyClouds, {"--repeat-to", "", "-o", "{d}/c.exr"}), 2, "--repeat-to: the value is empty"},
+      // The path tracer and the reference draw each cloud once: --repeat-to was ignored.
+      {with(kTinyClouds, {"--method", "pathtrace", "--repeat-to", "5000", "-o", "{d}/c.exr"}), 2,
+       "--repeat-to: --method pathtrace draws each cloud once (the path tracer does not repeat a periodic field)"},
+      {with(kTinyClouds, {"--method", "reference", "--repeat-to", "0", "-o", "{d}/c.exr"}), 2,
+       "--repeat-to: --method reference draws each cloud once"},
   });
 }
 
@@ -200,6 +251,23 @@ TEST_F(HostileCli, ExtremeValuesAreRefusedBeforeTheyBecomeNaN) {
        "--extinction: must be at most 1e12"},
       {with(kTinyScene, {"--exposure", "1e300", "--preview", "{d}/s.png", "-o", "{d}/s.exr"}), 2,
        "--exposure: must be in [-64, 64] stops"},
+      // A lamp's bulb in a scene at 1e12 W/sr: 1.3e14 W/(m^2 sr), clipped to the EXR's 65504.
+      {{"render", "--preset", "steam", "--voxel-size", "0.05", "--res", "8x8", "--lamp", "0,-0.3,0.15", "--lamp-intensity",
+        "1e12", "--ms-method", "octaves", "-o", "{d}/c.exr"},
+       2, "--lamp-intensity: '1e12' W/sr makes each --lamp's bulb, seen in the scene, 1.27324e+14 W/(m^2 sr), beyond the 65504"},
+      // A direction too short to survive normalising in floats named the internal field
+      // ("light direction_to_sun must be finite and non-zero"), not the flag.
+      {with(kTinyClouds, {"--sun", "1e-30,0,1e-30", "-o", "{d}/c.exr"}), 2,
+       "--sun: '1e-30,0,1e-30' is too short a direction (length 1.41421e-30, below 1e-12)"},
+      // The sun's bearing has the range of sky files and view states, [0, 360]; it took any number.
+      {with(kTinyClouds, {"--sun-elevation", "30", "--sun-azimuth", "1e300", "-o", "{d}/c.exr"}), 2,
+       "--sun-azimuth: must be in [0, 360] degrees, got 1e+300"},
+      {with(kTinyClouds, {"--sun-elevation", "30", "--sun-azimuth", "-1", "-o", "{d}/c.exr"}), 2,
+       "--sun-azimuth: must be in [0, 360] degrees, got -1"},
+      // A voxel of 1e300 m: a brick of one empty voxel was written, exit 0.
+      {{"generate", "--preset", "steam", "--voxel-size", "1e300", "--brick", "0/1", "-o", "{d}/b.vdb"}, 2, "--voxel-size: must be"},
+      {{"render", "--preset", "steam", "--voxel-size", "1e300", "--scene", "none", "--res", "8x8", "-o", "{d}/c.exr"}, 2,
+       "--voxel-size: must be"},
   });
 }
 

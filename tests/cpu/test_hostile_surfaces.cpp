@@ -6,6 +6,7 @@
 // line, the exit code, nothing on stdout, the directory unchanged: support/hostile_table.hpp);
 // the rest run a command and check what it left.
 #include <gtest/gtest.h>
+#include <png.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -29,6 +30,18 @@ using Case = HostileCase;
 void write_file(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
   out << text;
+}
+
+// A 2x2 grey PNG, as a coverage map.
+void write_grey_png(const fs::path& p) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = 2;
+  image.height = 2;
+  image.format = PNG_FORMAT_GRAY;
+  const unsigned char grey[4] = {0, 128, 255, 64};
+  png_image_write_to_file(&image, p.c_str(), 0, grey, 0, nullptr);
+  png_image_free(&image);
 }
 
 bool has_control_character(const std::string& text) {
@@ -83,6 +96,16 @@ class HostileSurfaces : public ::testing::Test {
     write_file(d / "key_long.json", R"({"frames": 1, ")" + std::string(100000, 'k') + R"(": 1})");
     write_file(d / "sky_key_escape.json", "{\"clouds\": [{\"preset\": \"cumulus-humilis\", \"\\u001b]0;title\\u0007\": 1}]}");
     write_file(d / "null_cloud.json", R"({"cloud": null})");
+    // Files named inside other inputs: a coverage map (a sky file's, relative to it; a params
+    // file's, relative to it; a view state's) and a sky's file cloud.
+    write_grey_png(d / "map.png");
+    write_file(d / "sky_map.json",
+               R"({"clouds": [{"preset": "cumulus-humilis", "overrides": {"coverage_map": "map.png"}}]})");
+    write_file(d / "params_map.json", R"({"coverage_map": "map.png"})");
+    write_file(d / "state_map.json",
+               state_json("", R"("preset": "cumulus-humilis", "overrides": {"coverage_map": ")" + ds + R"(/map.png"})"));
+    write_file(d / "save_sky_map.json", R"({"frames": 1, "events": [{"frame": 0, "save_sky": ")" + ds + R"(/map.png"}]})");
+    write_file(d / "record_out.json", R"({"frames": 1, "record": ")" + ds + R"(/out_state.json"})");
     // A farm job folder with something other than a regular file where its files go.
     fs::create_directories(d / "job_fifo");
     ::mkfifo((d / "job_fifo" / "task.sh").c_str(), 0600);
@@ -151,6 +174,32 @@ TEST_F(HostileSurfaces, WritesNeverReplaceInputsOrSpecialFiles) {
   });
 }
 
+// A file named inside an input (a sky file's coverage map, a --params file's, a --set's, a view
+// state's sky) was no input to the output checks: only the flags' own files were. `generate --sky
+// k.json -o m.png` replaced the map k.json names. Every file named anywhere in a run's inputs is
+// now one, and a script's record and --state-out may not be one file either.
+TEST_F(HostileSurfaces, FilesNamedInsideInputsAreInputsToo) {
+  const std::vector<std::string> humilis = {"generate", "--preset", "cumulus-humilis"};
+  const std::vector<std::string> field = {"generate", "--preset", "cumulus-field", "--voxel-size", "200"};
+  expect_refused({
+      {{"generate", "--sky", "{d}/sky_map.json", "-o", "{d}/map.png"}, 2,
+       "-o '{d}/map.png': is also --sky '{d}/sky_map.json' clouds[0].overrides.coverage_map"},
+      {with(humilis, {"--params", "{d}/params_map.json", "-o", "{d}/map.png"}), 2, "-o '{d}/map.png': is also cloud.coverage_map"},
+      {with(field, {"--set", "coverage_map={d}/map.png", "-o", "{d}/map.png"}), 2, "-o '{d}/map.png': is also cloud.coverage_map"},
+      {with(field, {"--set", "coverage_map={d}/map.png", "-o", "{d}/sub/../map.png"}), 2,
+       "is also cloud.coverage_map '{d}/map.png'"},
+      {{"render", "--view-state", "{d}/state_map.json", "-o", "{d}/o.exr", "--preview", "{d}/map.png"}, 2,
+       "--preview '{d}/map.png': is also --view-state '{d}/state_map.json' sky clouds[0].overrides.coverage_map"},
+      {with(kScript, {"{d}/save_sky_map.json", "--sky", "{d}/sky_map.json"}), 2,
+       "script save_sky '{d}/map.png': is also --sky '{d}/sky_map.json' clouds[0].overrides.coverage_map"},
+      {with(kScript, {"{d}/save_sky_map.json", "--state", "{d}/state_map.json"}), 2,
+       "script save_sky '{d}/map.png': is also --state '{d}/state_map.json' sky clouds[0].overrides.coverage_map"},
+      // The record and --state-out naming one file: one would replace the other, without a word.
+      {with(kScript, {"{d}/record_out.json", "--state-out", "{d}/out_state.json"}), 2,
+       "script record '{d}/out_state.json': is also --state-out"},
+  });
+}
+
 // Failures a scripted run found after its work, or never: each is now an error before it.
 TEST_F(HostileSurfaces, ScriptedRunsRefuseWhatWouldFailLater) {
   expect_refused({
@@ -197,6 +246,17 @@ TEST_F(HostileSurfaces, FarmRefusesJobsEveryTaskWouldRefuse) {
        "--frames: 1-200000 is more than 100000 frames for one farm job"},
       {with(slurm, {"generate", "--preset", "steam", "--frames", "0-1", "--fps", "1e-300", "-o", "{d}/s.%04d.vdb"}), 2,
        "would be at t = 1e+300 s"},
+      // A brick job's joined file inside its own job folder: it could be job.json, a script or a
+      // brick merge reads, and the next farm slurm --dir there replaces what is in it.
+      {{"farm", "slurm", "--dir", "{d}/job", "--dry-run", "--bricks", "2", "--", "generate", "--preset", "steam", "-o",
+        "{d}/job/job.json"},
+       2, "COMMAND -o '{d}/job/job.json': lies inside the job folder --dir '{d}/job'"},
+      {{"farm", "slurm", "--dir", "{d}/job", "--dry-run", "--bricks", "2", "--", "generate", "--preset", "steam", "-o",
+        "{d}/job/bricks/brick.0000.vdb"},
+       2, "lies inside the job folder"},
+      {{"farm", "slurm", "--dir", "{d}/sub/../job", "--dry-run", "--bricks", "2", "--", "generate", "--preset", "steam", "-o",
+        "{d}/job/field.vdb"},
+       2, "lies inside the job folder"},
   });
 }
 

@@ -110,6 +110,10 @@ TEST_F(SunFlags, BadOrConflictingSunsAreUsageErrors) {
       {"--day-of-year 40", "--day-of-year: it goes with --time-of-day"},
       {"--sun-elevation 95", "--sun-elevation: must be in [-10, 90]"},
       {"--sun-elevation 30 --sun-azimuth nan", "--sun-azimuth"},
+      // The bearing's range is the sky file's and the view state's (volume/sky_ranges.hpp).
+      {"--sun-elevation 30 --sun-azimuth 1e300", "--sun-azimuth: must be in [0, 360] degrees"},
+      {"--sun-elevation 30 --sun-azimuth 360.5", "--sun-azimuth: must be in [0, 360] degrees"},
+      {"--sun 1e-30,0,1e-30", "--sun: '1e-30,0,1e-30' is too short a direction"},
       {"--time-of-day 25", "--time-of-day: must be in [0, 24]"},
       {"--time-of-day 12 --latitude 91", "--latitude: must be in [-90, 90]"},
       {"--time-of-day 12 --day-of-year 0", "--day-of-year: must be in [1, 366]"},

@@ -9,6 +9,7 @@
 #include "nimbus/base/sequence_pattern.hpp"
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/preset.hpp"
+#include "nimbus/volume/sky_ranges.hpp"
 
 namespace nimbus::volume {
 namespace {
@@ -76,8 +77,9 @@ void validate(const Sky& s) {
       std::abs(w.y) > kMaxWind || std::abs(w.z) > kMaxWind)
     bad("sky wind: each component must be finite and within +-200 m/s");
   if (!(s.evolution_scale >= 0.0 && s.evolution_scale <= 1000.0)) bad("sky evolution: must be in [0, 1000]");
-  if (!(s.sun_elevation_deg >= -10.0 && s.sun_elevation_deg <= 90.0)) bad("sky sun.elevation: must be in [-10, 90] degrees");
-  if (!(s.sun_azimuth_deg >= 0.0 && s.sun_azimuth_deg < 360.0)) bad("sky sun.azimuth: must be in [0, 360) degrees");
+  if (!kSunElevationRangeDeg.holds(s.sun_elevation_deg))
+    bad("sky sun.elevation: must be in " + range_text(kSunElevationRangeDeg) + " degrees");
+  if (!kSunAzimuthRangeDeg.holds(s.sun_azimuth_deg)) bad("sky sun.azimuth: must be in " + range_text(kSunAzimuthRangeDeg) + " degrees");
   if (!(s.voxel_size_m >= 2.0 && s.voxel_size_m <= 500.0)) bad("sky voxel_size: must be in [2, 500] metres");
   if (!(s.keyframe_interval_s > 0.0 && s.keyframe_interval_s <= 3600.0))
     bad("sky keyframe_interval: must be in (0, 3600] seconds");
@@ -104,10 +106,10 @@ Sky sky_from_json(const json& doc, const std::string& where) {
       if (!v.is_object()) bad(key + " must be {\"elevation\": deg, \"azimuth\": deg}");
       for (const auto& [sk, sv] : v.items()) {
         if (sk == "elevation") {
-          s.sun_elevation_deg = number(sv, key + ".elevation", -10.0, 90.0);
+          s.sun_elevation_deg = number(sv, key + ".elevation", kSunElevationRangeDeg.lo, kSunElevationRangeDeg.hi);
         } else if (sk == "azimuth") {
-          s.sun_azimuth_deg = number(sv, key + ".azimuth", 0.0, 360.0);
-          if (s.sun_azimuth_deg == 360.0) s.sun_azimuth_deg = 0.0;
+          s.sun_azimuth_deg = number(sv, key + ".azimuth", kSunAzimuthRangeDeg.lo, kSunAzimuthRangeDeg.hi);
+          if (s.sun_azimuth_deg == kSunAzimuthRangeDeg.hi) s.sun_azimuth_deg = kSunAzimuthRangeDeg.lo;
         } else {
           bad(key + "." + echo(sk) + ": unknown key (known: elevation, azimuth)");
         }

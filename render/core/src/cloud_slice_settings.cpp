@@ -6,6 +6,8 @@
 
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 
+#include "nimbus/base/validate.hpp"
+
 namespace nimbus::render {
 namespace {
 
@@ -33,8 +35,9 @@ void validate(const CloudSliceSettings& s) {
     throw std::invalid_argument("slice settings branch: not one of auto, front-to-back, back-to-front");
   if (s.max_lights < 1 || s.max_lights > 8)
     throw std::invalid_argument("slice settings max_lights: must be in [1, 8], got " + std::to_string(s.max_lights));
-  if (!(s.repeat_to_m >= 0.0 && s.repeat_to_m <= 1e6))
-    throw std::invalid_argument("slice settings repeat_to_m: must be in [0, 1e6] metres, got " + std::to_string(s.repeat_to_m));
+  if (!(s.repeat_to_m >= 0.0 && s.repeat_to_m <= kMaxRepeatToM))
+    throw std::invalid_argument("slice settings repeat_to_m: must be in [0, " + number_text(kMaxRepeatToM) + "] metres, got " +
+                                number_text(s.repeat_to_m));
   try {
     validate(s.multiple);
   } catch (const std::invalid_argument& e) {

@@ -1,6 +1,7 @@
 // Clouds from VDB files and presets (cloud_source.hpp).
 #include "nimbus/render/core/cloud_source.hpp"
 
+#include "nimbus/render/core/cloud_tiles.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 
 #include <openvdb/tools/ChangeBackground.h>
@@ -83,6 +84,9 @@ CloudVolume load_cloud_file(const std::string& path, const std::string& grid, Up
     throw std::runtime_error(path + ": " + e.what());
   }
   c.period_m = period;
+  // A period shorter than the cloud is the file's fault (its metadata), not the command line's.
+  if (const std::string fault = period_fault(c); !fault.empty())
+    throw std::runtime_error(path + ": metadata '" + volume::kPeriodMetadataKey + "': the period " + fault);
   // World extents a camera can frame: a voxel of 1e300 m once reached the camera as Inf.
   constexpr double kMaxWorld = 1e8;  // metres
   for (int a = 0; a < 3; ++a)

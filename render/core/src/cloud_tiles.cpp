@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/base/validate.hpp"
+
 namespace nimbus::render {
 namespace {
 
@@ -70,22 +72,33 @@ bool outside_frustum(const glm::dmat4& view_proj, const glm::dvec3& lo, const gl
 
 }  // namespace
 
-void validate_period(const CloudVolume& c) {
+std::string period_fault(const CloudVolume& c) {
   const glm::dvec3& p = c.period_m;
-  const auto bad = [&](const std::string& why) {
-    throw std::invalid_argument("cloud '" + c.name + "': period " + why);
-  };
-  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) bad("must be finite");
-  if (p.y != 0.0) bad("repeats along render x and z only (the world's x and y); its y must be 0");
-  if (p.x < 0.0 || p.z < 0.0) bad("must not be negative");
+  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return "must be finite";
+  if (p.y != 0.0) return "repeats along render x and z only (the world's x and y); its y must be 0";
+  if (p.x < 0.0 || p.z < 0.0) return "must not be negative";
   // The support box is the tile plus a voxel's trilinear reach each side.
   const glm::dvec2 v = voxel_xz(c);
-  if (p.x > 0.0 && p.x < (c.world_max.x - c.world_min.x) - 2.5 * v.x)
-    bad("along x (" + std::to_string(p.x) + " m) is shorter than the cloud (" +
-        std::to_string(c.world_max.x - c.world_min.x) + " m): its copies would overlap");
-  if (p.z > 0.0 && p.z < (c.world_max.z - c.world_min.z) - 2.5 * v.y)
-    bad("along z (" + std::to_string(p.z) + " m) is shorter than the cloud (" +
-        std::to_string(c.world_max.z - c.world_min.z) + " m): its copies would overlap");
+  const auto shorter = [](const char* axis, double period, double extent) {
+    return std::string("along ") + axis + " (" + number_text(period) + " m) is shorter than the cloud (" + number_text(extent) +
+           " m): its copies would overlap";
+  };
+  if (p.x > 0.0 && p.x < (c.world_max.x - c.world_min.x) - 2.5 * v.x) return shorter("x", p.x, c.world_max.x - c.world_min.x);
+  if (p.z > 0.0 && p.z < (c.world_max.z - c.world_min.z) - 2.5 * v.y) return shorter("z", p.z, c.world_max.z - c.world_min.z);
+  // A tile is a whole number of voxels: a period under one voxel (a cloud of a voxel or two, which
+  // the test above lets through) stacks copies within each voxel.
+  const auto under_a_voxel = [](const char* axis, double period, double voxel) {
+    return std::string("along ") + axis + " (" + number_text(period) + " m) is shorter than a voxel (" + number_text(voxel) +
+           " m): its copies would overlap";
+  };
+  if (p.x > 0.0 && p.x < v.x) return under_a_voxel("x", p.x, v.x);
+  if (p.z > 0.0 && p.z < v.y) return under_a_voxel("z", p.z, v.y);
+  return "";
+}
+
+void validate_period(const CloudVolume& c) {
+  const std::string fault = period_fault(c);
+  if (!fault.empty()) throw std::invalid_argument("cloud '" + c.name + "': period " + fault);
 }
 
 CloudTilePlan plan_cloud_tiles(const std::vector<CloudVolume>& clouds, const Camera& camera, double repeat_to_m) {

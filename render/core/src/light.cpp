@@ -57,8 +57,8 @@ Light bulb_light(const glm::dvec3& position_m, const glm::dvec3& intensity_w_sr,
 
 void validate(const Light& l) {
   if (l.kind == LightKind::Sun) {
-    require(finite3(l.direction_to_sun) && glm::length(l.direction_to_sun) > 1e-12,
-            "light direction_to_sun must be finite and non-zero");
+    require(finite3(l.direction_to_sun) && glm::length(l.direction_to_sun) >= kMinSunDirectionLength,
+            "light direction_to_sun must be finite and at least " + number_text(kMinSunDirectionLength) + " long");
     require_colour(l.irradiance_w_m2, "irradiance_w_m2");
     return;
   }

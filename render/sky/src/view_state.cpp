@@ -8,6 +8,7 @@
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/volume/json_io.hpp"
+#include "nimbus/volume/sky_ranges.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
@@ -71,9 +72,9 @@ void validate(const ViewState& s) {
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state camera: ") + e.what());
   }
-  if (!std::isfinite(s.sky_time_s) || std::abs(s.sky_time_s) > 1e9) bad("view state time.sky: must be finite, |t| <= 1e9 s");
-  if (!std::isfinite(s.evolution_time_s) || std::abs(s.evolution_time_s) > 1e9)
-    bad("view state time.evolution: must be finite, |t| <= 1e9 s");
+  const std::string time_range = "must be in " + volume::range_text(volume::kSkyTimeRangeS) + " seconds of sky time";
+  if (!volume::kSkyTimeRangeS.holds(s.sky_time_s)) bad("view state time.sky: " + time_range);
+  if (!volume::kSkyTimeRangeS.holds(s.evolution_time_s)) bad("view state time.evolution: " + time_range);
   if (!(s.speed >= 0.0 && s.speed <= 1000.0)) bad("view state time.speed: must be in [0, 1000]");
   try {
     validate(s.optics);
@@ -87,8 +88,8 @@ void validate(const ViewState& s) {
     bad("view state optics.ms_photons: must be in [1024, 67108864]");
   if (s.slices.slices < 8 || s.slices.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
   if (s.slices.light_res < 32 || s.slices.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
-  if (!(s.slices.repeat_to_m >= 0.0 && s.slices.repeat_to_m <= 1e6))
-    bad("view state renderer.repeat_to: must be in [0, 1e6] metres");
+  if (!(s.slices.repeat_to_m >= 0.0 && s.slices.repeat_to_m <= kMaxRepeatToM))
+    bad("view state renderer.repeat_to: must be in [0, " + number_text(kMaxRepeatToM) + "] metres");
   try {
     validate(s.slices);  // what the JSON does not hold: the defaults, or a program's own
   } catch (const std::invalid_argument& e) {

@@ -2,6 +2,7 @@
 #include "nimbus/app/farm_job.hpp"
 
 #include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "nimbus/app/frame_range.hpp"
@@ -40,6 +41,22 @@ std::vector<std::string> without_option(std::vector<std::string> args, std::size
   const bool joined = args[at].find('=') != std::string::npos;
   args.erase(args.begin() + long(at), args.begin() + long(at) + (joined ? 1 : 2));
   return args;
+}
+
+// Whether `path` is `folder` or lies inside it, as the file system resolves both (links and
+// other spellings included).
+bool lies_within(const std::filesystem::path& path, const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+  if (ec) p = path.lexically_normal();
+  std::filesystem::path f = std::filesystem::weakly_canonical(folder, ec);
+  if (ec) f = folder.lexically_normal();
+  auto pi = p.begin();
+  for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi) {
+    if (fi->empty() && std::next(fi) == f.end()) break;  // a trailing separator
+    if (pi == p.end() || *pi != *fi) return false;
+  }
+  return true;
 }
 
 int brick_count(const std::string& layout) {
@@ -119,6 +136,13 @@ FarmJob plan_farm_job(const std::vector<std::string>& command, int chunk, const 
     job.kind = "bricks";
     job.bricks = bricks;
     job.merge_output = output;
+    // The joined file goes outside the job folder, which is the farm's own (job.json, the scripts,
+    // logs/, bricks/ that merge reads): inside it, it could be one of them, or be replaced by the
+    // next farm slurm --dir there.
+    if (lies_within(job_path(job, output), job.dir))
+      throw UsageError("COMMAND -o '" + echo(output, 200) + "': lies inside the job folder --dir '" + echo(job.dir, 200) +
+                       "', which holds the farm's own files (job.json, scripts, logs/, bricks/); write the joined file "
+                       "outside it");
     make_farm_tasks(job);
     return job;
   }

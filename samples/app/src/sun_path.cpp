@@ -17,8 +17,9 @@ double solar_declination_deg(double day_of_year) {
 
 SunPosition sun_at(double hour, double latitude_deg, double day_of_year) {
   if (!std::isfinite(hour)) throw std::invalid_argument("time of day: must be a finite number of hours");
-  if (!(latitude_deg >= -90.0 && latitude_deg <= 90.0))
-    throw std::invalid_argument("latitude: must be in [-90, 90] degrees, got " + std::to_string(latitude_deg));
+  if (!kLatitudeRangeDeg.holds(latitude_deg))
+    throw std::invalid_argument("latitude: must be in " + volume::range_text(kLatitudeRangeDeg) + " degrees, got " +
+                                number_text(latitude_deg));
   if (!std::isfinite(day_of_year)) throw std::invalid_argument("day of year: must be finite");
   const double lat = latitude_deg * kDeg, d = solar_declination_deg(day_of_year) * kDeg;
   const double h = 15.0 * kDeg * std::remainder(hour - 12.0, 24.0);  // hour angle, [-pi, pi]

@@ -10,7 +10,8 @@ namespace nimbus {
 // Throws std::runtime_error "<what> '<path>': ..." unless a regular file can be written at
 // `path` now: an existing `path` must be a regular file (a directory, symbolic link, FIFO,
 // device or socket is refused, never replaced); an existing parent directory must accept a new
-// file (a probe file, named as write_atomically names its temporary, is created and removed);
+// file (a probe file, named as write_atomically names its temporary and unique to the call, is
+// created with O_EXCL and removed, so concurrent checks of one path and leftover files never clash);
 // a missing parent must be creatable (a probe directory is made and removed in its nearest
 // existing ancestor). Leaves nothing behind.
 void check_output_path(const std::filesystem::path& path, const std::string& what);

@@ -29,8 +29,8 @@ struct Sky {
   std::vector<SkyCloud> clouds;         // at least one
   glm::dvec3 wind_m_s{0.0};             // one wind for every cloud (the presets' own winds are ignored)
   double evolution_scale = 1.0;         // multiplies each preset's evolution rate, >= 0
-  double sun_elevation_deg = 35.0;      // [-10, 90]
-  double sun_azimuth_deg = 120.0;       // clockwise from north, [0, 360)
+  double sun_elevation_deg = 35.0;      // kSunElevationRangeDeg (sky_ranges.hpp)
+  double sun_azimuth_deg = 120.0;       // clockwise from north, kSunAzimuthRangeDeg
   double voxel_size_m = 30.0;           // generation resolution, [2, 500]
   double keyframe_interval_s = 30.0;    // sky time between evolution keyframes, (0, 3600]
 };

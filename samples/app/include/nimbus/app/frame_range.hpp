@@ -13,20 +13,33 @@
 
 #include "nimbus/app/usage_error.hpp"
 #include "nimbus/base/validate.hpp"
+#include "nimbus/volume/sky_ranges.hpp"
 
 namespace nimbus::app {
 
 // A sequence longer than this needs --many-frames: a typo such as 1-1000000 would otherwise start
 // writing a million files.
 inline constexpr long kMaxFramesUnforced = 10000;
-// The sky time of any frame of a sequence: at most 1e9 s (31 years) from time 0.
-inline constexpr double kMaxSequenceSeconds = 1e9;
 
 // A time in seconds for a message: "t = 1e+12 s".
 inline std::string time_text(double seconds) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "t = %g s", seconds);
   return buf;
+}
+
+// "[-1e+09, 1e+09] s of sky time (31 years either way)": the one range of sky times
+// (volume::kSkyTimeRangeS), as every check of a time words it.
+inline std::string sky_time_range_text() {
+  return volume::range_text(volume::kSkyTimeRangeS) + " s of sky time (31 years either way)";
+}
+
+// UsageError "--time: t = 1e+12 s is outside [-1e+09, 1e+09] s of sky time ..." unless `seconds`
+// lies in volume::kSkyTimeRangeS: the check of --time, and of the Python module's time
+// (generate_plan.hpp), word for word.
+inline void check_sky_time(double seconds) {
+  if (!volume::kSkyTimeRangeS.holds(seconds))
+    throw UsageError("--time: " + time_text(seconds) + " is outside " + sky_time_range_text());
 }
 
 // First and last frame; UsageError naming --frames when malformed or reversed.
@@ -111,11 +124,11 @@ inline long task_id_from_env(const std::string& var) {
   return std::stol(text);
 }
 
-// UsageError naming the flag for a non-finite time, a bad fps, a bad range, a time with a range,
+// UsageError naming the flag for a time outside volume::kSkyTimeRangeS, a bad fps, a bad range, a time with a range,
 // more than kMaxFramesUnforced frames without --many-frames, --frame-from-env or --chunk without
 // --frames, a chunk below 1, or a task id beyond the range's tasks.
 inline FrameRange parse_frames(const FrameArgs& a) {
-  if (a.time && !std::isfinite(*a.time)) throw UsageError("--time: must be finite (seconds)");
+  if (a.time) check_sky_time(*a.time);
   if (!(std::isfinite(a.fps) && a.fps > 0)) throw UsageError("--fps: must be finite and > 0");
   if (a.chunk < 1) throw UsageError("--chunk: must be at least 1 frame");
   if (std::abs(a.start_frame) > 9999999) throw UsageError("--start-frame: must be within +-9999999");
@@ -139,9 +152,9 @@ inline FrameRange parse_frames(const FrameArgs& a) {
   // Every frame's time is checked now, not when its turn comes (--fps 1e-300 put frame 1 at
   // 1e300 s, after frame 0 was written): the first and last frames bound them all.
   for (const int f : {r.first, r.last})
-    if (!(std::abs(r.time(f)) <= kMaxSequenceSeconds))
+    if (!volume::kSkyTimeRangeS.holds(r.time(f)))
       throw UsageError(std::string(a.time_scale.empty() ? "--fps" : "--time-scale") + ": frame " + std::to_string(f) +
-                       " would be at " + time_text(r.time(f)) + ", beyond +-1e9 s of sky time; " +
+                       " would be at " + time_text(r.time(f)) + ", outside " + sky_time_range_text() + "; " +
                        (a.time_scale.empty() ? "raise --fps" : "lower --time-scale") + " or move --start-frame");
   const long count = long(r.last) - r.first + 1;
   if (count > kMaxFramesUnforced && !a.many_frames)

@@ -5,7 +5,15 @@
 // the sky file's sun azimuth; elevation is above the horizon.
 #pragma once
 
+#include "nimbus/volume/sky_ranges.hpp"
+
 namespace nimbus::app {
+
+// The ranges of the time-of-day controls (--time-of-day, --latitude, --day-of-year and the
+// viewer's sliders), defined once; the sun itself keeps volume::kSunElevationRangeDeg.
+inline constexpr volume::Range kHourRange{0.0, 24.0};          // local solar time, hours
+inline constexpr volume::Range kLatitudeRangeDeg{-90.0, 90.0};  // north positive
+inline constexpr volume::Range kDayOfYearRange{1.0, 366.0};     // 1 = 1 January
 
 struct SunPosition {
   double elevation_deg = 0.0;  // [-90, 90]

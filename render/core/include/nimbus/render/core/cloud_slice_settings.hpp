@@ -25,9 +25,13 @@ struct CloudSliceSettings {
   int max_lights = 4;
   // A periodic cloud (CloudVolume::period_m) is drawn with copies of its tile out to this
   // distance from the eye, metres, so that a field fills the sky to the horizon (cloud_tiles.hpp);
-  // 0: one tile. [0, 1e6]
+  // 0: one tile. [0, kMaxRepeatToM]
   double repeat_to_m = 0.0;
 };
+
+// The farthest a periodic field is repeated, metres: --repeat-to and a view state's
+// renderer.repeat_to (the copies each way are bounded too: kMaxRepeatsPerAxis, cloud_tiles.hpp).
+inline constexpr double kMaxRepeatToM = 1e6;
 
 void validate(const CloudSliceSettings& settings);
 

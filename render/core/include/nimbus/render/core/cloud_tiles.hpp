@@ -8,6 +8,7 @@
 // texture: nothing is uploaded twice.
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -31,9 +32,12 @@ struct CloudTilePlan {
 constexpr std::size_t kMaxFarCopies = 1024;
 constexpr int kMaxRepeatsPerAxis = 64;  // copies each way from the eye's tile, per axis, at most
 
-// Throws std::invalid_argument naming the cloud when its period is not finite, negative, has a
-// y part, or is shorter than the cloud's extent along its axis (copies would overlap). A period
-// that is not an exact whole number of voxels leaves a seam; the caller's tiles are exact.
+// What is wrong with the cloud's period, "along x (10 m) is shorter than the cloud (600 m): its
+// copies would overlap", or empty when nothing is: not finite, negative, a y part, shorter than
+// the cloud's extent along its axis, or shorter than a voxel. A period that is not an exact whole number of voxels
+// leaves a seam; the caller's tiles are exact.
+std::string period_fault(const CloudVolume& cloud);
+// std::invalid_argument "cloud '<name>': period <fault>" when period_fault finds one.
 void validate_period(const CloudVolume& cloud);
 
 // The copies drawn for `camera`. repeat_to_m = 0, or no periodic cloud: near is every cloud

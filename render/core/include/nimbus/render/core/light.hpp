@@ -13,6 +13,10 @@ namespace nimbus::render {
 
 enum class LightKind { Sun, Point };
 
+// The shortest sun direction a Light takes (it is normalised on use, in floats on the GPU:
+// shorter ones vanish there).
+inline constexpr double kMinSunDirectionLength = 1e-12;
+
 struct Light {
   // Sun: parallel light arriving from `direction_to_sun` (the one name and sign of the sun's
   // direction, from the sky file to the shaders), of irradiance `irradiance_w_m2` where it enters

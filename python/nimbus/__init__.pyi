@@ -6,6 +6,7 @@ import numpy
 import numpy.typing
 
 __version__: str
+VOXEL_SIZE_RANGE_M: tuple[float, float]  # metres: the voxel sizes a Volume may have (generate's too)
 
 _Path = Union[str, os.PathLike[str]]
 _Vec3 = Sequence[float]

@@ -89,21 +89,17 @@ void evaluate_grid(const NoiseField& field, const GridSpec& grid, std::span<floa
   // Worley samples at 8 octaves takes seconds, a block a fraction of a millisecond.
   const std::stop_token stop = current_stop_token();
   const int64_t grain = std::max<int64_t>(1, 4096 / grid.res[0]);
-  if (!options.parallel) {
-    for (int64_t r = 0; r < rows; r += grain) {
+  // Rows [begin, end) a grain at a time, polling between grains. TBB's auto partitioner hands a
+  // task many grains at once, so a poll per task could wait for seconds.
+  const auto rows_polled = [&](int64_t begin, int64_t end) {
+    for (int64_t b = begin; b < end; b += grain) {
       throw_if_stopped(stop);
-      k.rows(fd, grid, r, std::min(rows, r + grain), out.data());
+      k.rows(fd, grid, b, std::min(end, b + grain), out.data());
     }
-    return;
-  }
-  // TBB's auto partitioner hands a task many grains at once: the poll is per grain inside it.
+  };
+  if (!options.parallel) return rows_polled(0, rows);
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, rows, grain),
-                    [&](const tbb::blocked_range<int64_t>& r) {
-                      for (int64_t b = r.begin(); b < r.end(); b += grain) {
-                        throw_if_stopped(stop);
-                        k.rows(fd, grid, b, std::min(r.end(), b + grain), out.data());
-                      }
-                    });
+                    [&](const tbb::blocked_range<int64_t>& r) { rows_polled(r.begin(), r.end()); });
 }
 
 void evaluate_points(const NoiseField& field, std::span<const std::array<double, 3>> points,

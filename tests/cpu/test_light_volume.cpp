@@ -12,9 +12,11 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <stop_token>
 #include <string>
 #include <vector>
 
+#include "nimbus/base/cancel.hpp"
 #include "nimbus/render/core/light_volume.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "slab_discrete_ordinates.hpp"
@@ -339,6 +341,27 @@ TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
   EXPECT_EQ(d1.fluence_rgb, d2.fluence_rgb);
   EXPECT_EQ(d1.flux_xyz, d2.flux_xyz);
   EXPECT_EQ(d1.gradient, d2.gradient);
+}
+
+// A stop belongs to its call (cancel.hpp): under a scope whose stop was requested the build ends
+// with Cancelled; under a quiet scope it gives the same volume as with no scope (its polls, in the
+// tallies' chunked zeroing and merging among them, change no bit).
+TEST(LightVolume, AStoppedBuildEndsWithCancelledAndAQuietScopeChangesNothing) {
+  const Light sun = overhead_sun();
+  LightVolumeSettings s = small_settings();
+  s.threads = 2;
+  const LightVolume free_run = build_light_volume(small_slab(0.9), sun, s);
+  {
+    std::stop_source source;
+    source.request_stop();
+    const StopScope scope(source.get_token());
+    EXPECT_THROW(build_light_volume(small_slab(0.9), sun, s), Cancelled);
+  }
+  std::stop_source quiet;
+  const StopScope scope(quiet.get_token());
+  const LightVolume again = build_light_volume(small_slab(0.9), sun, s);
+  EXPECT_EQ(again.fluence_rgb, free_run.fluence_rgb);
+  EXPECT_EQ(again.flux_xyz, free_run.flux_xyz);
 }
 
 // A ball 24 mean free paths in radius (albedo 0.99, HG 0.7: 7.4 transport mean free paths),

@@ -1,6 +1,8 @@
 // The frame pipeline (frame_renderer.hpp).
 #include "nimbus/render/frame/frame_renderer.hpp"
 
+#include "nimbus/base/cancel.hpp"
+
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -228,8 +230,12 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats, PixelDepths
     if (!cloud_renderer_) throw std::logic_error("frame renderer: no clouds set");
     const bool had = cloud_renderer_->has_light_volume() &&
                      (light_volume_given_ || (!light_volume_stale_ && settings_.slices.multiple.light_volume == light_volume_built_));
+    // The GL passes below are not polled inside (a draw cannot stop half-way); between them, a
+    // poll of the call's stop (cancel.hpp) keeps a stop within one pass.
+    const std::stop_token stop = current_stop_token();
     st.light_volume_build_ms = update_light_volume();
     st.light_volume_rebuilt = settings_.slices.multiple.method == MultipleScatteringMethod::LightVolume && !had;
+    throw_if_stopped(stop);
     char buf[256];
     if (scene_) {
       if (!shaft_renderer_) shaft_renderer_ = std::make_unique<ShaftRenderer>(*scene_, settings_.shaft_settings);
@@ -241,8 +247,10 @@ Image FrameRenderer::render(const Camera& camera, FrameStats* stats, PixelDepths
                                      settings_.cloud_shadow_res, cloud_renderer_->next_textures());
       shaft_renderer_->set_cloud_shadow(map ? &*map : nullptr);
       try {
+        throw_if_stopped(stop);
         shaft_renderer_->set_jitter_frame(settings_.slices.frame);  // one frame's jitter for every pass
         shaft_renderer_->render(camera, settings_.shafts, stats ? &st.scene : nullptr);
+        throw_if_stopped(stop);
         const SceneUnderlay under{shaft_renderer_->color_texture(), shaft_renderer_->distance_texture(), &*scene_};
         image = cloud_renderer_->render(camera, cloud_lights(), settings_.slices, &under, stats ? &st.clouds : nullptr, depths);
       } catch (...) {

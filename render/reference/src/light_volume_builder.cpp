@@ -149,6 +149,25 @@ constexpr double kSourceQuantum = 1e-9;
 // than this together; then every thread adds atomically into one.
 constexpr std::size_t kThreadTallyBytes = std::size_t{512} << 20;
 
+// Tally arrays take up to kThreadTallyBytes: zeroing or adding them takes tenths of a second, so
+// both go a chunk at a time, with a poll of the call's stop between chunks (cancel.hpp).
+constexpr std::size_t kPolledChunk = std::size_t{1} << 20;  // 8 MiB of int64
+std::vector<std::int64_t> zeroed_polled(std::size_t n, const std::stop_token& stop) {
+  std::vector<std::int64_t> a;
+  a.reserve(n);
+  while (a.size() < n) {
+    throw_if_stopped(stop);
+    a.resize(std::min(n, a.size() + kPolledChunk), 0);
+  }
+  return a;
+}
+void add_polled(std::vector<std::int64_t>& to, const std::vector<std::int64_t>& from, const std::stop_token& stop) {
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (i % kPolledChunk == 0) throw_if_stopped(stop);
+    to[i] += from[i];
+  }
+}
+
 // Where one thread's tallies go.
 struct TallySink {
   std::int64_t* sum = nullptr;
@@ -363,8 +382,6 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
   Tallies tallies;
   tallies.quantum = 1e-9 * shortest;
   const std::size_t n_sum = g.cells() * kTallies, n_source = handover.on() ? g.cells() * 3 : 0;
-  tallies.sum.assign(n_sum, 0);
-  tallies.source.assign(n_source, 0);
   PathRng shift_rng(settings.seed, ~std::uint64_t{0});
   const double shift_u = shift_rng.uniform(), shift_v = shift_rng.uniform();
   const std::size_t threads = static_cast<std::size_t>(std::max(1, arena.max_concurrency()));
@@ -373,6 +390,10 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
     std::vector<std::int64_t> sum, source;
   };
   tbb::enumerable_thread_specific<Own> own;
+  if (shared) {
+    tallies.sum = zeroed_polled(n_sum, stop);
+    tallies.source = zeroed_polled(n_source, stop);
+  }
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
@@ -380,8 +401,8 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
                         if (!shared) {
                           Own& mine = own.local();
                           if (mine.sum.empty()) {
-                            mine.sum.assign(n_sum, 0);
-                            mine.source.assign(n_source, 0);
+                            mine.sum = zeroed_polled(n_sum, stop);
+                            mine.source = zeroed_polled(n_source, stop);
                           }
                           sink = TallySink{mine.sum.data(), mine.source.data(), false, tallies.quantum};
                         }
@@ -394,24 +415,37 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
                         }
                       });
   });
-  // Integer sums: the same whatever thread tallied what.
-  for (const Own& mine : own) {
-    for (std::size_t i = 0; i < mine.sum.size(); ++i) tallies.sum[i] += mine.sum[i];
-    for (std::size_t i = 0; i < mine.source.size(); ++i) tallies.source[i] += mine.source[i];
+  if (shared) return tallies;
+  // Integer sums: the same whatever thread tallied what. The first thread's arrays become the
+  // sums (no third zeroed copy), the others are added to them.
+  for (Own& mine : own) {
+    if (mine.sum.empty()) continue;
+    if (tallies.sum.empty()) {
+      tallies.sum = std::move(mine.sum);
+      tallies.source = std::move(mine.source);
+      continue;
+    }
+    add_polled(tallies.sum, mine.sum, stop);
+    add_polled(tallies.source, mine.source, stop);
+  }
+  if (tallies.sum.empty()) {  // no photon was traced
+    tallies.sum = zeroed_polled(n_sum, stop);
+    tallies.source = zeroed_polled(n_source, stop);
   }
   return tallies;
 }
 
 // Stage: each cell's covered part (light_volume_stages.hpp, Coverage), from kSubsamples^3 points.
 Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
-                     tbb::task_arena& arena) {
+                     tbb::task_arena& arena, const std::stop_token& stop) {
   Coverage cov;
   cov.covered.assign(g.cells(), 0.0);
   cov.centroid.assign(g.cells(), glm::dvec3(0.0));
   cov.spread.assign(g.cells(), glm::dvec3(0.0));
   arena.execute([&] {
     tbb::parallel_for(0, g.nz, [&](int k) {
-      for (int j = 0; j < g.ny; ++j)
+      for (int j = 0; j < g.ny; ++j) {
+        throw_if_stopped(stop);  // a row of cells at a time (cancel.hpp)
         for (int i = 0; i < g.nx; ++i) {
           int hits = 0;
           glm::dvec3 sum(0.0), sum_sq(0.0);
@@ -433,6 +467,7 @@ Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<
                             1.0 / (12.0 * kSubsamples * kSubsamples);
           }
         }
+      }
     });
   });
   return cov;
@@ -482,7 +517,7 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
   const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)
 
-  const Coverage coverage = coverage_of(v, g, media, arena);
+  const Coverage coverage = coverage_of(v, g, media, arena, stop);
   // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
   CellMedium medium;
   Handover handover;
@@ -495,7 +530,11 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
   const double scale = rect.area_m2() / static_cast<double>(settings.photons) * tallies.quantum /
                        (v.cell_m.x * v.cell_m.y * v.cell_m.z);
+  // The stages after the photons take up to tenths of a second each on a large grid: a poll
+  // between them (cancel.hpp).
+  throw_if_stopped(stop);
   CellValues values = cell_values(g, tallies.sum, coverage.covered, scale);
+  throw_if_stopped(stop);
   if (handover.on()) {
     // Source per unit volume: q = (E A / N) sum(w) / V, per unit irradiance E.
     const double q_scale = rect.area_m2() / static_cast<double>(settings.photons) * kSourceQuantum /
@@ -503,9 +542,13 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
     arena.execute([&] { add_diffused_light(g, v, medium, tallies.source, q_scale, coverage, values, stop); });
   }
   clamp_spikes(g, values);
+  throw_if_stopped(stop);
   smooth_anisotropy(g, values);
+  throw_if_stopped(stop);
   std::vector<float> fit = linear_fits(g, values, coverage);
+  throw_if_stopped(stop);
   fill_empty_rings(g, values, fit);
+  throw_if_stopped(stop);
   pack_light_volume(values, std::move(fit), settings.fits, rect.l, v);
   v.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return v;

@@ -47,7 +47,7 @@ struct BenchLookArgs {
   std::string spp = "16,64,256";
   int slices = 128;
   std::string ms_grid = "48";       // light-volume rows: cells along the longest axis
-  std::string ms_photons = "2097152";  // light-volume rows: photons from the sun
+  std::string ms_photons = std::to_string(render::LightVolumeSettings{}.photons);  // light-volume rows: photons from the sun
   std::string ms_lobes = "2";          // light-volume rows: scattering orders kept as lobes
   std::string ms_fits = "1";           // light-volume rows: 1 with eq. MS-4's fits, 0 without
   // light-volume rows: transport mean free paths deep beyond which light is diffused (0: all traced)

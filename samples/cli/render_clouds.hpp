@@ -45,7 +45,7 @@ struct CloudRenderArgs {
   std::optional<int> multiple;      // octaves 0-3; light-volume: 0 (off) or 1; unset: see --ms-method
   std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves
   int ms_grid = 48;                  // light volume: cells along the clouds' longest axis
-  int64_t ms_photons = 1 << 21;      // light volume: photons from the sun
+  int64_t ms_photons = render::LightVolumeSettings{}.photons;  // light volume: photons from the sun
   int ms_lobes = 2;                  // light volume: scattering orders kept as lobes, [0, 2]
   double ms_diffusion = render::LightVolumeSettings{}.diffusion_depth;  // light volume: diffusion deeper than this (transport mfp; 0: off)
   uint64_t ms_seed = 1;              // light volume

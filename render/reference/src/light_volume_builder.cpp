@@ -48,24 +48,29 @@ double total_majorant(const std::vector<TracedCloud>& media, const glm::dvec3& w
 }
 
 
-// Delta tracking in one cloud as TracedCloud::free_flight, recording every tentative collision
-// (the real one included) into `points`. Returns the real collision's distance or +inf.
-// A tentative collision of a flight: where (metres along it) and the majorant that drew it.
-struct Tentative {
-  double t, m;
+// A stretch of a flight inside bricks with a majorant (metres along it): where the cloud may have
+// medium, and so where a flight's track is tallied.
+struct Span {
+  double a, b;
 };
 
+// Delta tracking in one cloud as TracedCloud::free_flight, recording the stretches of the flight
+// inside its bricks with a majorant, up to the real collision, into `spans`. Returns the real
+// collision's distance or +inf.
 double free_flight_recorded(const TracedCloud& c, const glm::dvec3& o, const glm::dvec3& d, double t1, PathRng& rng,
-                            std::vector<Tentative>& points) {
+                            std::vector<Span>& spans) {
   double hit = kInf;
   c.march(o, d, 0.0, t1, [&](double s0, double s1, double m, const glm::dvec3& lo, const glm::dvec3& ld) {
     if (m <= 0.0) return true;
     double t = s0;
     while (true) {
       t -= std::log(1.0 - rng.uniform()) / m;
-      if (t >= s1) return true;
-      points.push_back({t, m});
+      if (t >= s1) {
+        spans.push_back({s0, s1});
+        return true;
+      }
       if (rng.uniform() * m < c.sigma_t(lo, ld, t)) {
+        spans.push_back({s0, t});
         hit = t;
         return false;
       }
@@ -173,7 +178,7 @@ struct TallySink {
   std::int64_t* sum = nullptr;
   std::int64_t* source = nullptr;
   bool shared = false;  // the arrays are every thread's: add atomically
-  double quantum = 0.0;
+  double per_metre = 0.0;  // 1 / Tallies::quantum: units per metre of weighted track
   static void add(std::int64_t* a, std::size_t i, double units, bool shared) {
     const std::int64_t x = static_cast<std::int64_t>(units + (units >= 0.0 ? 0.5 : -0.5));  // to nearest
     if (shared)
@@ -181,7 +186,7 @@ struct TallySink {
     else
       a[i] += x;
   }
-  void add_track(std::size_t i, double metres) const { add(sum, i, metres / quantum, shared); }
+  void add_units(std::size_t i, double units) const { add(sum, i, units, shared); }
   void add_source(std::size_t i, double weight) const { add(source, i, weight / kSourceQuantum, shared); }
 };
 
@@ -251,26 +256,65 @@ bool tally_source(const TallySink& sink, const LightVolume& v, const CellGrid& g
   return true;
 }
 
-// Each brick's majorant raised to one tentative collision per cell's width. A tentative collision
-// stands for 1 / m metres of track, so in a brick of thin cloud (small majorant m) one flight's
-// few collisions count kilometres: a cluster of cells that support each other past the spike
-// clamp (measured: 2x2 cells at 4x their surroundings on the congestus tower's shadowed face, a
-// white blob, 78 % of that case's squared error). Any m at least the extinction is a majorant, so
-// a collision then stands for at most a cell's width of track.
-void raise_majorants(std::vector<TracedCloud>& media, double shortest_cell_m) {
-  for (TracedCloud& m : media)
-    for (double& b : m.majorant)
-      if (b > 0.0) b = std::max(b, 1.0 / shortest_cell_m);
+// Visits the cells of the grid that the segment o + t d, t in [t0, t1), crosses, in order (a 3D
+// DDA, Amanatides & Woo 1987): f(cell index, ijk, s0, s1) for each cell's part [s0, s1).
+template <typename F>
+void for_each_cell(const LightVolume& v, const CellGrid& g, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                   F f) {
+  const glm::dvec3 uo = (o - v.world_min) / v.cell_m, ud = d / v.cell_m;  // in cells
+  const int n[3] = {g.nx, g.ny, g.nz};
+  for (int a = 0; a < 3; ++a) {  // clip to the grid, [0, n) in cells
+    if (ud[a] == 0.0) {
+      if (!(uo[a] >= 0.0 && uo[a] < n[a])) return;
+      continue;
+    }
+    double ta = -uo[a] / ud[a], tb = (n[a] - uo[a]) / ud[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 < t1)) return;
+  int ijk[3], step[3];
+  double t_next[3], t_delta[3];
+  const glm::dvec3 u0 = uo + t0 * ud;
+  for (int a = 0; a < 3; ++a) {
+    ijk[a] = std::clamp(static_cast<int>(std::floor(u0[a])), 0, n[a] - 1);
+    if (ud[a] > 0.0) {
+      step[a] = 1;
+      t_next[a] = (ijk[a] + 1 - uo[a]) / ud[a];
+      t_delta[a] = 1.0 / ud[a];
+    } else if (ud[a] < 0.0) {
+      step[a] = -1;
+      t_next[a] = (ijk[a] - uo[a]) / ud[a];
+      t_delta[a] = -1.0 / ud[a];
+    } else {
+      step[a] = 0;
+      t_next[a] = kInf;
+      t_delta[a] = kInf;
+    }
+  }
+  double t = t0;
+  while (t < t1) {
+    const int a = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
+    const double s1 = std::min(t_next[a], t1);
+    if (s1 > t) f(g.index(ijk[0], ijk[1], ijk[2]), glm::ivec3(ijk[0], ijk[1], ijk[2]), t, s1);
+    t = s1;
+    ijk[a] += step[a];
+    if (ijk[a] < 0 || ijk[a] >= n[a]) return;
+    t_next[a] += t_delta[a];
+  }
 }
 
-// Adds a flight's tentative collisions up to its end, after `bounce` scatterings, along d from o.
-// Within a flight the weight and the direction hold, so a run of collisions in one cell needs only
-// its track sum(1 / m) (each tentative collision stands for 1 / m metres) and its first moment
-// sum(off / m); the cell's tallies follow from the two once per run (half the adds of tallying each
-// collision: measured, the main job's volume a quarter faster).
-void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
-                  const glm::dvec3& o, const glm::dvec3& d, double end, const std::vector<Tentative>& points,
-                  const glm::dvec3& weight, int bounce, int lobe_orders, const glm::dvec3& l) {
+// Adds a flight's track after `bounce` scatterings, along d from o up to `end`, in the cells it
+// crosses inside the clouds' bricks (`spans`, of one or more clouds): each cell gets the exact
+// length of the flight inside it and its first moment (eq. MS-2's track-length estimator with the
+// track itself, not its tentative collisions, which only sampled it: measured, less photon noise
+// for the same photons). Within a flight the weight and the direction hold, so a cell's tallies
+// follow from its track and moment once (a flight that leaves a cell and enters it again, between
+// two clouds' bricks, is added per run).
+void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g, const glm::dvec3& o, const glm::dvec3& d,
+                  double end, std::vector<Span>& spans, bool several_clouds, const glm::dvec3& weight, int bounce,
+                  int lobe_orders, const glm::dvec3& l) {
   constexpr std::size_t kNone = ~std::size_t{0};
   std::size_t cell = kNone;
   double track = 0.0;
@@ -279,49 +323,58 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
   const auto flush = [&] {
     if (cell == kNone || !(track > 0.0)) return;
     const std::size_t k = cell * kTallies;
-    const glm::dvec3 wt = weight * track;
-    sink.add_track(k + 0, wt.x);
-    sink.add_track(k + 1, wt.y);
-    sink.add_track(k + 2, wt.z);
-    const double mean = w_mean * track;
-    sink.add_track(k + 3, mean * d.x);
-    sink.add_track(k + 4, mean * d.y);
-    sink.add_track(k + 5, mean * d.z);
+    // In the tallies' fixed-point units (a multiply, not a divide per tally).
+    const double units = track * sink.per_metre;
+    const glm::dvec3 wt = weight * units;
+    sink.add_units(k + 0, wt.x);
+    sink.add_units(k + 1, wt.y);
+    sink.add_units(k + 2, wt.z);
+    const double mean = w_mean * units;
+    sink.add_units(k + 3, mean * d.x);
+    sink.add_units(k + 4, mean * d.y);
+    sink.add_units(k + 5, mean * d.z);
     // The traceless second moment: w (d d^T - I / 3).
-    sink.add_track(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
-    sink.add_track(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
-    sink.add_track(k + 8, mean * d.x * d.y);
-    sink.add_track(k + 9, mean * d.x * d.z);
-    sink.add_track(k + 10, mean * d.y * d.z);
-    sink.add_track(k + kMomentTally + 0, w_mean * moment.x);
-    sink.add_track(k + kMomentTally + 1, w_mean * moment.y);
-    sink.add_track(k + kMomentTally + 2, w_mean * moment.z);
+    sink.add_units(k + 6, mean * (d.x * d.x - 1.0 / 3.0));
+    sink.add_units(k + 7, mean * (d.y * d.y - 1.0 / 3.0));
+    sink.add_units(k + 8, mean * d.x * d.y);
+    sink.add_units(k + 9, mean * d.x * d.z);
+    sink.add_units(k + 10, mean * d.y * d.z);
+    const glm::dvec3 m = (w_mean * sink.per_metre) * moment;
+    sink.add_units(k + kMomentTally + 0, m.x);
+    sink.add_units(k + kMomentTally + 1, m.y);
+    sink.add_units(k + kMomentTally + 2, m.z);
     if (bounce <= lobe_orders) {  // the flight after scattering `bounce` times
-      sink.add_track(k + kLobeTally + 2 * (bounce - 1), mean);
-      sink.add_track(k + kLobeTally + 2 * (bounce - 1) + 1, mean * glm::dot(d, l));
+      sink.add_units(k + kLobeTally + 2 * (bounce - 1), mean);
+      sink.add_units(k + kLobeTally + 2 * (bounce - 1) + 1, mean * glm::dot(d, l));
     }
   };
-  for (const Tentative& c : points) {
-    if (c.t > end) continue;
-    const glm::dvec3 p = o + c.t * d;
-    const glm::dvec3 u = (p - v.world_min) / v.cell_m;  // in cells
-    const glm::dvec3 ijk = glm::floor(u);
-    // The bricks reach up to 7 voxels past a cloud's support, where only null collisions happen;
-    // the grid covers the support alone, and a point beyond it is no cell's track (clamped into the
-    // edge cells it made the stratus sheet's top layer 5.5x too bright).
-    if (!(ijk.x >= 0.0 && ijk.y >= 0.0 && ijk.z >= 0.0 && ijk.x < g.nx && ijk.y < g.ny && ijk.z < g.nz)) continue;
-    // Several clouds' collisions together come at the rate of their majorants' sum.
-    const double m = media.size() > 1 ? total_majorant(media, p) : c.m;
-    if (!(m > 0.0)) continue;
-    const std::size_t q = g.index(int(ijk.x), int(ijk.y), int(ijk.z));
-    if (q != cell) {
-      flush();
-      cell = q;
-      track = 0.0;
-      moment = glm::dvec3(0.0);
-    }
-    track += 1.0 / m;
-    moment += (u - ijk - 0.5) / m;
+  // One span per stretch of bricks that touch (one walk of the cells each), and several clouds'
+  // spans, which overlap where their bricks do, as their union, in order.
+  if (several_clouds) std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.a < y.a; });
+  std::size_t n = 0;
+  for (const Span& s : spans) {
+    if (n > 0 && s.a <= spans[n - 1].b)
+      spans[n - 1].b = std::max(spans[n - 1].b, s.b);
+    else
+      spans[n++] = s;
+  }
+  spans.resize(n);
+  const glm::dvec3 uo = (o - v.world_min) / v.cell_m, ud = d / v.cell_m;
+  for (const Span& s : spans) {
+    // Only track inside the grid is tallied: the bricks reach up to 7 voxels past a cloud's
+    // support, and that margin's track clamped into the edge cells made the stratus sheet's top
+    // layer 5.5x too bright.
+    for_each_cell(v, g, o, d, s.a, std::min(s.b, end), [&](std::size_t q, const glm::ivec3& ijk, double s0, double s1) {
+      if (q != cell) {
+        flush();
+        cell = q;
+        track = 0.0;
+        moment = glm::dvec3(0.0);
+      }
+      const double length = s1 - s0;
+      track += length;
+      moment += length * (uo + 0.5 * (s0 + s1) * ud - glm::dvec3(ijk) - 0.5);  // the part's centre, in the cell
+    });
   }
   flush();
 }
@@ -333,7 +386,7 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
 void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, const CellGrid& g,
                   const std::vector<TracedCloud>& media, const LaunchRect& rect, double shift_u, double shift_v,
                   double back_m, const LightVolumeSettings& settings, const Handover& handover,
-                  std::vector<Tentative>& points) {
+                  std::vector<Span>& spans) {
   PathRng rng(settings.seed, static_cast<std::uint64_t>(i));
   const double fi = static_cast<double>(i);
   // Positions on the rectangle: the R2 sequence (Roberts 2018), shifted per seed (Cranley-Patterson).
@@ -358,16 +411,16 @@ void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, c
     if (!(std::max({weight.x, weight.y, weight.z}) > 0.0)) break;
     d = sample_phase(hit.optics.phase, d, rng);
     // The next flight, every cloud's tentative collisions recorded; the nearest real one ends it.
-    points.clear();
+    spans.clear();
     c = Collision{};
     for (std::size_t j = 0; j < media.size(); ++j) {
-      const double t = free_flight_recorded(media[j], o, d, c.t, rng, points);
+      const double t = free_flight_recorded(media[j], o, d, c.t, rng, spans);
       if (t < c.t) {
         c.t = t;
         c.medium = static_cast<int>(j);
       }
     }
-    tally_flight(sink, v, g, media, o, d, c.t, points, weight, bounce, settings.lobe_orders, rect.l);
+    tally_flight(sink, v, g, o, d, c.t, spans, media.size() > 1, weight, bounce, settings.lobe_orders, rect.l);
     if (c.medium < 0) break;  // escaped
   }
 }
@@ -397,21 +450,21 @@ Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, settings.photons, 1024),
                       [&](const tbb::blocked_range<std::int64_t>& r) {
-                        TallySink sink{tallies.sum.data(), tallies.source.data(), true, tallies.quantum};
+                        TallySink sink{tallies.sum.data(), tallies.source.data(), true, 1.0 / tallies.quantum};
                         if (!shared) {
                           Own& mine = own.local();
                           if (mine.sum.empty()) {
                             mine.sum = zeroed_polled(n_sum, stop);
                             mine.source = zeroed_polled(n_source, stop);
                           }
-                          sink = TallySink{mine.sum.data(), mine.source.data(), false, tallies.quantum};
+                          sink = TallySink{mine.sum.data(), mine.source.data(), false, 1.0 / tallies.quantum};
                         }
-                        std::vector<Tentative> points;
+                        std::vector<Span> spans;
                         for (std::int64_t i = r.begin(); i < r.end(); ++i) {
                           // Every 1024 photons (cancel.hpp): the auto partitioner hands a task many
                           // grains of 1024 at once, so a poll per task could wait for seconds.
                           if (((i - r.begin()) & 1023) == 0) throw_if_stopped(stop);
-                          trace_photon(i, sink, v, g, media, rect, shift_u, shift_v, widest, settings, handover, points);
+                          trace_photon(i, sink, v, g, media, rect, shift_u, shift_v, widest, settings, handover, spans);
                         }
                       });
   });
@@ -512,7 +565,6 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
   const auto start = std::chrono::steady_clock::now();
   const CellGrid g{v.size[0], v.size[1], v.size[2]};
   std::vector<TracedCloud> media = media_of(clouds);
-  raise_majorants(media, std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z}));
   const LaunchRect rect = launch_rect(v, light.direction_to_sun);
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
   const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)

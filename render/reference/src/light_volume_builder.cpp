@@ -47,7 +47,6 @@ double total_majorant(const std::vector<TracedCloud>& media, const glm::dvec3& w
   return s;
 }
 
-
 // A stretch of a flight inside bricks with a majorant (metres along it): where the cloud may have
 // medium, and so where a flight's track is tallied.
 struct Span {
@@ -256,55 +255,6 @@ bool tally_source(const TallySink& sink, const LightVolume& v, const CellGrid& g
   return true;
 }
 
-// Visits the cells of the grid that the segment o + t d, t in [t0, t1), crosses, in order (a 3D
-// DDA, Amanatides & Woo 1987): f(cell index, ijk, s0, s1) for each cell's part [s0, s1).
-template <typename F>
-void for_each_cell(const LightVolume& v, const CellGrid& g, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
-                   F f) {
-  const glm::dvec3 uo = (o - v.world_min) / v.cell_m, ud = d / v.cell_m;  // in cells
-  const int n[3] = {g.nx, g.ny, g.nz};
-  for (int a = 0; a < 3; ++a) {  // clip to the grid, [0, n) in cells
-    if (ud[a] == 0.0) {
-      if (!(uo[a] >= 0.0 && uo[a] < n[a])) return;
-      continue;
-    }
-    double ta = -uo[a] / ud[a], tb = (n[a] - uo[a]) / ud[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (!(t0 < t1)) return;
-  int ijk[3], step[3];
-  double t_next[3], t_delta[3];
-  const glm::dvec3 u0 = uo + t0 * ud;
-  for (int a = 0; a < 3; ++a) {
-    ijk[a] = std::clamp(static_cast<int>(std::floor(u0[a])), 0, n[a] - 1);
-    if (ud[a] > 0.0) {
-      step[a] = 1;
-      t_next[a] = (ijk[a] + 1 - uo[a]) / ud[a];
-      t_delta[a] = 1.0 / ud[a];
-    } else if (ud[a] < 0.0) {
-      step[a] = -1;
-      t_next[a] = (ijk[a] - uo[a]) / ud[a];
-      t_delta[a] = -1.0 / ud[a];
-    } else {
-      step[a] = 0;
-      t_next[a] = kInf;
-      t_delta[a] = kInf;
-    }
-  }
-  double t = t0;
-  while (t < t1) {
-    const int a = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
-    const double s1 = std::min(t_next[a], t1);
-    if (s1 > t) f(g.index(ijk[0], ijk[1], ijk[2]), glm::ivec3(ijk[0], ijk[1], ijk[2]), t, s1);
-    t = s1;
-    ijk[a] += step[a];
-    if (ijk[a] < 0 || ijk[a] >= n[a]) return;
-    t_next[a] += t_delta[a];
-  }
-}
-
 // Adds a flight's track after `bounce` scatterings, along d from o up to `end`, in the cells it
 // crosses inside the clouds' bricks (`spans`, of one or more clouds): each cell gets the exact
 // length of the flight inside it and its first moment (eq. MS-2's track-length estimator with the
@@ -359,12 +309,16 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
       spans[n++] = s;
   }
   spans.resize(n);
-  const glm::dvec3 uo = (o - v.world_min) / v.cell_m, ud = d / v.cell_m;
+  // The flight in cells (traced::walk_cells, Amanatides & Woo 1987).
+  const glm::dvec3 per_cell = 1.0 / v.cell_m;
+  const glm::dvec3 uo = (o - v.world_min) * per_cell, ud = d * per_cell;
+  const int cells[3] = {g.nx, g.ny, g.nz};
   for (const Span& s : spans) {
     // Only track inside the grid is tallied: the bricks reach up to 7 voxels past a cloud's
     // support, and that margin's track clamped into the edge cells made the stratus sheet's top
     // layer 5.5x too bright.
-    for_each_cell(v, g, o, d, s.a, std::min(s.b, end), [&](std::size_t q, const glm::ivec3& ijk, double s0, double s1) {
+    walk_cells(uo, ud, cells, s.a, std::min(s.b, end), [&](const glm::ivec3& ijk, double s0, double s1) {
+      const std::size_t q = g.index(ijk.x, ijk.y, ijk.z);
       if (q != cell) {
         flush();
         cell = q;
@@ -374,6 +328,7 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
       const double length = s1 - s0;
       track += length;
       moment += length * (uo + 0.5 * (s0 + s1) * ud - glm::dvec3(ijk) - 0.5);  // the part's centre, in the cell
+      return true;
     });
   }
   flush();

@@ -16,6 +16,7 @@
 #include "nimbus/base/splitmix64.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
+#include "grid_walk.hpp"
 
 namespace nimbus::render::traced {
 
@@ -84,50 +85,11 @@ struct TracedCloud {
   void march(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1, F f) const {
     const glm::dvec3 lo = glm::dvec3(cloud->world_to_index * glm::dvec4(o, 1.0)) - shift;
     const glm::dvec3 ld = glm::dvec3(cloud->world_to_index * glm::dvec4(d, 0.0));
-    const glm::dvec3 uo = lo + 1.0;  // u space: bricks of kBrick from 0
-    // Clip to [0, nb * 8) in u.
-    for (int a = 0; a < 3; ++a) {
-      const double hi = static_cast<double>(nb[a]) * kBrick;
-      if (ld[a] == 0.0) {
-        if (uo[a] < 0.0 || uo[a] >= hi) return;
-        continue;
-      }
-      double ta = (0.0 - uo[a]) / ld[a], tb = (hi - uo[a]) / ld[a];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-    }
-    if (!(t0 < t1)) return;
-    int cell[3], step[3];
-    double t_next[3], t_delta[3];
-    for (int a = 0; a < 3; ++a) {
-      const double u = uo[a] + t0 * ld[a];
-      cell[a] = std::clamp(static_cast<int>(std::floor(u / kBrick)), 0, nb[a] - 1);
-      if (ld[a] > 0.0) {
-        step[a] = 1;
-        t_next[a] = ((cell[a] + 1) * kBrick - uo[a]) / ld[a];
-        t_delta[a] = kBrick / ld[a];
-      } else if (ld[a] < 0.0) {
-        step[a] = -1;
-        t_next[a] = (cell[a] * kBrick - uo[a]) / ld[a];
-        t_delta[a] = -kBrick / ld[a];
-      } else {
-        step[a] = 0;
-        t_next[a] = kInf;
-        t_delta[a] = kInf;
-      }
-    }
-    double t = t0;
-    while (t < t1) {
-      const int a = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
-      const double s1 = std::min(t_next[a], t1);
-      const double m = majorant[static_cast<std::size_t>(cell[0] + nb[0] * (cell[1] + nb[1] * cell[2]))];
-      if (s1 > t && !f(t, s1, m, lo, ld)) return;
-      t = s1;
-      cell[a] += step[a];
-      if (cell[a] < 0 || cell[a] >= nb[a]) return;
-      t_next[a] += t_delta[a];
-    }
+    // u = local + 1: bricks of kBrick from 0, walked in bricks (u / kBrick, exact).
+    const glm::dvec3 ub = (lo + 1.0) / static_cast<double>(kBrick), udb = ld / static_cast<double>(kBrick);
+    walk_cells(ub, udb, nb, t0, t1, [&](const glm::ivec3& b, double s0, double s1) {
+      return f(s0, s1, majorant[static_cast<std::size_t>(b[0] + nb[0] * (b[1] + nb[1] * b[2]))], lo, ld);
+    });
   }
 
   double sigma_t(const glm::dvec3& lo, const glm::dvec3& ld, double t) const {

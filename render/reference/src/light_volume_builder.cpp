@@ -334,8 +334,8 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
   flush();
 }
 
-// Photon i's path from the launch rectangle: after its first real collision, every tentative
-// collision of every flight is tallied, until it escapes, is absorbed or loses the roulette; or,
+// Photon i's path from the launch rectangle: after its first real collision, every flight's
+// track is tallied, until it escapes, is absorbed or loses the roulette; or,
 // where `deep` is given, until it scatters (after its lobe orders) in a deep cell, where its
 // scattered weight becomes the diffusion's source instead.
 void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, const CellGrid& g,
@@ -365,7 +365,8 @@ void trace_photon(std::int64_t i, const TallySink& sink, const LightVolume& v, c
     if (bounce >= 16 && !survives_roulette(weight, rng)) break;  // as the path tracer
     if (!(std::max({weight.x, weight.y, weight.z}) > 0.0)) break;
     d = sample_phase(hit.optics.phase, d, rng);
-    // The next flight, every cloud's tentative collisions recorded; the nearest real one ends it.
+    // The next flight, every cloud's stretches inside its bricks recorded; the nearest real
+    // collision ends it.
     spans.clear();
     c = Collision{};
     for (std::size_t j = 0; j < media.size(); ++j) {

@@ -1,10 +1,10 @@
 // Builds the light volume (nimbus/render/core/light_volume.hpp) on the CPU: photons from the sun
 // through the clouds with the path tracer's own free flights (delta tracking against the 8^3
 // brick majorants, cloud_path_tracer.hpp), their weights the product of the albedos met; from the
-// first real collision on, every tentative collision of a flight (real or null, drawn at the
-// majorant's rate m) tallies weight / m metres of track into its cell: an unbiased track-length
-// estimate of the fluence of scattered light (Spanier & Gelbard 1969; eq. MS-2 in docs/clouds.md),
-// and the same times the direction for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
+// first real collision on, each flight tallies its exact length in every cell it crosses inside
+// the bricks (a 3D DDA), times its weight: the track-length estimate of the fluence of scattered
+// light (Spanier & Gelbard 1969; eq. MS-2 in docs/clouds.md), and the same times the direction
+// for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
 // threads: photon i draws from its own stream and the tallies are fixed-point integers, each
 // thread's own, summed after. With settings.diffusion_depth > 0 a photon that scatters deep inside
 // the clouds hands its light to a diffusion solve on the grid (light_volume_diffusion.hpp).

@@ -77,7 +77,7 @@ struct LaunchRect {
 };
 LaunchRect launch_rect(const LightVolume& grid, const glm::dvec3& direction_to_sun);
 
-// The part of each cell where tentative collisions can happen (some brick's majorant > 0), the
+// The part of each cell where a flight's track is tallied (some brick's majorant > 0), the
 // centroid of that part about the cell's centre and its variance per axis, in cells.
 struct Coverage {
   std::vector<double> covered;

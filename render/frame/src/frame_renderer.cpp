@@ -1,13 +1,12 @@
 // The frame pipeline (frame_renderer.hpp).
 #include "nimbus/render/frame/frame_renderer.hpp"
 
-#include "nimbus/base/cancel.hpp"
-
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "nimbus/base/cancel.hpp"
 #include "nimbus/render/clouds/cloud_shadow.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "nimbus/render/core/metadata.hpp"

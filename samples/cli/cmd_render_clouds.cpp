@@ -15,6 +15,7 @@
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/core/grain_filter.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/context.hpp"
@@ -152,6 +153,8 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
   cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
+  cmd->add_flag("--no-grain-filter", a.no_grain_filter,
+                "Slices: keep the jitter's grain (by default a still of fewer than 32 samples is filtered of it, guided by depth)");
   cmd->add_option("--ms-occlusion", a.ms_occlusion, "Multiple-scattering octaves: extinction scale a per octave, (0, 1]")
       ->capture_default_str();
   cmd->add_option("--ms-contribution", a.ms_contribution, "Multiple-scattering octaves: radiance scale b per octave, [0, 1]")
@@ -273,7 +276,13 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     render::FrameStats stats;
     render::Image image;
     try {
-      image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, &stats); });
+      render::PixelDepths depths;  // to guide the grain filter
+      image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, &stats, &depths); });
+      // One jittered frame of slices holds the jitter's grain: filtered (grain_filter.hpp).
+      render::GrainFilter grain;
+      grain.on = !a.no_grain_filter;
+      if (fs.method == render::CloudMethod::Slices && render::grain_filter_applies(grain, 1, fs.slices.jitter))
+        image = render::filter_grain(image, depths, grain);
     } catch (const std::invalid_argument& e) {
       // A stage refused what it computed (a NaN pixel): the flags were checked, so say which
       // input it was rendering, and that it is a failure of the render, not of the usage.

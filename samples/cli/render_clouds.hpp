@@ -52,6 +52,7 @@ struct CloudRenderArgs {
   double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;
   bool no_jitter = false;
+  bool no_grain_filter = false;      // slices: leave the jitter's grain in the picture (grain_filter.hpp)
   int spp = 64;                      // pathtrace: samples per pixel
   int bounces = 1000;                // pathtrace: scattering events per path at most
   uint64_t seed = 1;                 // pathtrace

@@ -20,7 +20,7 @@
 namespace nimbus::cli {
 
 int run_render_view_state(const std::string& path, const CameraArgs& camera, const std::string& output,
-                          const std::string& preview, std::optional<double> exposure, int samples) {
+                          const std::string& preview, std::optional<double> exposure, int samples, bool grain_filter) {
   int width = 960, height = 540;
   if (samples < 1 || samples > 4096) throw UsageError("--spp: must be in [1, 4096] with --view-state, got " + std::to_string(samples));
   if (!camera.res.empty()) std::tie(width, height) = parse_resolution("--res", camera.res);
@@ -30,7 +30,8 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
     if (p.find('%') != std::string::npos)
       throw UsageError(flag + ": '" + echo(p) + "' holds a %: a view state renders one picture, not a sequence");
   int version = 0;
-  const render::ViewState state = render::load_view_state(path, &version);
+  render::ViewState state = render::load_view_state(path, &version);
+  if (!grain_filter) state.grain_filter.on = false;
   const std::string version_note = render::view_state_version_note(path, version);  // said once every check has passed
   // The frame is rendered at the state's render scale, as the viewer draws it.
   const auto [frame_w, frame_h] = render::scaled_frame_size(width, height, state.render_scale);
@@ -53,15 +54,16 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   render::SkyRenderer renderer(state);
   render::SkyFrameInfo info;
   render::ProgressiveFrame mean;
+  render::PixelDepths depths;  // the last frame's, to guide the grain filter
   naming_gpu_memory("--res", width, height, [&] {
     for (int i = 0; i < samples; ++i) {
       render::FrameQuality quality;
       quality.sample = render::progressive_sample(static_cast<unsigned>(i));
-      mean.add(renderer.render(state, width, height, quality, true, nullptr, &info), "the state");
+      mean.add(renderer.render(state, width, height, quality, true, nullptr, &info, &depths), "the state");
     }
     return 0;
   });
-  const render::Image& image = mean.mean();
+  const render::Image image = render::still_picture(mean, depths, state.grain_filter, state.slices.jitter);
   render::PreviewOptions po;
   po.exposure_stops = exposure ? *exposure : state.exposure_stops;
   write_image_files(output, preview, image, po);

@@ -10,6 +10,6 @@
 namespace nimbus::cli {
 
 int run_render_view_state(const std::string& path, const CameraArgs& camera, const std::string& output,
-                          const std::string& preview, std::optional<double> exposure, int samples);
+                          const std::string& preview, std::optional<double> exposure, int samples, bool grain_filter);
 
 }  // namespace nimbus::cli

@@ -183,7 +183,9 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
 render::Image Viewer::draw_plain(int width, int height, render::FrameQuality quality, bool still,
                                  const std::string& view_key, FrameReport& r) {
   quality.sample = render::progressive_sample(still ? progressive_.samples() : 0);
-  render::Image frame = renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info);
+  render::PixelDepths depths;  // to guide the still's grain filter
+  render::Image frame =
+      renderer_->render(state_, width, height, quality, options_.wait_for_keyframes, &r.stats, &r.info, &depths);
   // The evolution waits while its keyframes are made: carry on from what was drawn.
   if (r.info.waited) state_.evolution_time_s = r.info.evolution_time_s;
   if (options_.progressive_samples == 0 || r.quality_level != 0) {
@@ -192,10 +194,11 @@ render::Image Viewer::draw_plain(int width, int height, render::FrameQuality qua
   }
   // What was drawn joins the key: a light volume replacing its preview, or keyframes that
   // arrived, start a new mean although the state held still.
-  render::Image mean = progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] +
-                                                   " | " + frame.metadata["evolution_time_s"]);
+  progressive_.add(frame, view_key + " | " + r.info.multiple + " | " + frame.metadata["keyframes"] + " | " +
+                              frame.metadata["evolution_time_s"]);
   r.samples = progressive_.samples();
-  return mean;
+  // The mean of few jittered frames still holds grain: filtered (grain_filter.hpp).
+  return render::still_picture(progressive_, depths, state_.grain_filter, state_.slices.jitter);
 }
 
 void Viewer::set_temporal(bool on) {

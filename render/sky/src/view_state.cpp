@@ -92,6 +92,7 @@ void validate(const ViewState& s) {
     bad("view state renderer.repeat_to: must be in [0, " + number_text(kMaxRepeatToM) + "] metres");
   try {
     validate(s.slices);  // what the JSON does not hold: the defaults, or a program's own
+    validate(s.grain_filter);
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state renderer: ") + e.what());
   }
@@ -153,9 +154,10 @@ ViewState view_state_from_json(const json& doc, const std::string& where, int* v
         else if (rk == "render_scale") s.render_scale = number(rv, rkey);
         else if (rk == "exposure") s.exposure_stops = number(rv, rkey);
         else if (rk == "jitter") s.slices.jitter = volume::json_bool(rv, rkey);
+        else if (rk == "grain_filter") s.grain_filter.on = volume::json_bool(rv, rkey);
         else if (rk == "repeat_to") s.slices.repeat_to_m = number(rv, rkey);
         else if (rk == "shafts") s.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
-        else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, repeat_to, shafts)");
+        else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, grain_filter, repeat_to, shafts)");
       });
     } else if (k != "nimbus" && k != "version") {
       bad(key + ": unknown key (known: version, sky, scene, camera, time, optics, renderer)");
@@ -196,6 +198,7 @@ json view_state_to_json(const ViewState& s) {
             {"render_scale", s.render_scale},
             {"exposure", s.exposure_stops},
             {"jitter", s.slices.jitter},
+            {"grain_filter", s.grain_filter.on},
             {"repeat_to", s.slices.repeat_to_m},
             {"shafts", to_string(s.shafts)}}}};
 }

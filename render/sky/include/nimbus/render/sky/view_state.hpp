@@ -16,6 +16,7 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_slice_settings.hpp"
+#include "nimbus/render/core/grain_filter.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/volume/sky.hpp"
 
@@ -72,6 +73,9 @@ struct ViewState {
     m.steps = 24;
     return m;
   }();
+  // A still's grain filter (grain_filter.hpp): on while a still is the mean of few jittered
+  // frames ("grain_filter" in the JSON, true or false; the rest of it keeps its defaults).
+  GrainFilter grain_filter;
   int cloud_shadow_res = 256; // [16, 8192]
   double render_scale = 1.0;  // (0, 1]: the frame is rendered at this share of the window's size
   double exposure_stops = 0.0;  // display and PNG screenshots: radiance times 2^stops, [-20, 20]

@@ -146,6 +146,28 @@ TEST(GrainFilter, AFarCloudIsNotTakenIntoANearOne) {
   EXPECT_GT(blind_edge, 1.05);
 }
 
+// A cloud pixel whose few samples fell on the clouds far behind reads their distance (the
+// distance is an alpha-weighted mean of grainy samples) and shows as a dark dot. Weighed against
+// its neighbours by its own distance it would take nothing from them and keep the dot; against
+// the median distance of its 3x3 neighbourhood it is filtered like them.
+TEST(GrainFilter, ADotThatReadTheFarCloudsIsFilteredWithItsNeighbours) {
+  Image img = grainy_frame(1.0, 0.4);
+  PixelDepths d = cloud_depths(kW, kH, 1000.0f);
+  int dots = 0;
+  for (int y = 8; y < kH - 8; y += 9)
+    for (int x = 8; x < kW - 8; x += 9) {
+      set_depth(d, x, y, 10000.0f, true);
+      for (int c = 0; c < 3; ++c) img.pixel(x, y)[c] = 0.2f;
+      ++dots;
+    }
+  const Image out = filter_grain(img, d, GrainFilter{});
+  double worst = 1.0;
+  for (int y = 8; y < kH - 8; y += 9)
+    for (int x = 8; x < kW - 8; x += 9) worst = std::min(worst, static_cast<double>(out.pixel(x, y)[0]));
+  std::printf("[ dots ] %d dots of 0.2 in clouds of 1: the darkest after the filter %.3f\n", dots, worst);
+  EXPECT_GT(worst, 0.75);
+}
+
 // Huge, tiny and zero values stay finite and non-negative.
 TEST(GrainFilter, ExtremeValuesStayFinite) {
   Image img = grainy_frame(0.0, 0.0);

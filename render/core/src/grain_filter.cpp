@@ -67,6 +67,30 @@ std::vector<char> near_clouds(const std::vector<Shows>& shows, int w, int h, int
   return out;
 }
 
+// Each cloud pixel's distance for the depth weights: the median of the cloud pixels' distances
+// in its 3x3 neighbourhood. The distance is an alpha-weighted mean of grainy samples: a pixel at
+// a cloud's edge whose few samples fell on the clouds far behind reads their distance, and
+// weighed against its own reading it took nothing from its neighbours and kept its grain (dark
+// dots along the congestus' edge in README command 1's picture at 300 %).
+std::vector<float> reference_depths(const PixelDepths& depths, const std::vector<Shows>& shows) {
+  const int w = depths.width, h = depths.height;
+  std::vector<float> out(shows.size(), 0.0f);
+  tbb::parallel_for(0, h, [&](int y) {
+    float near[9];
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * w + x;
+      if (shows[p] != Shows::Clouds) continue;
+      int n = 0;
+      for (int j = std::max(0, y - 1); j <= std::min(h - 1, y + 1); ++j)
+        for (int i = std::max(0, x - 1); i <= std::min(w - 1, x + 1); ++i)
+          if (shows[static_cast<std::size_t>(j) * w + i] == Shows::Clouds) near[n++] = depths.distance_m(i, j);
+      std::nth_element(near, near + n / 2, near + n);
+      out[p] = near[n / 2];
+    }
+  });
+  return out;
+}
+
 // Sums of `v` over the (2r + 1)^2 square about each pixel (edges clamped to the image).
 std::vector<double> box_sums(const std::vector<double>& v, int w, int h, int r) {
   std::vector<double> rows(v.size()), out(v.size());
@@ -169,6 +193,7 @@ Image filter_grain(const Image& frame, const PixelDepths& depths, const GrainFil
   const std::vector<Shows> shows = guided ? classify(depths) : std::vector<Shows>(static_cast<std::size_t>(w) * h, Shows::Sky);
   const std::vector<char> active = guided ? near_clouds(shows, w, h, r) : std::vector<char>(shows.size(), 1);
   const double inv_tol = 1.0 / filter.depth_tolerance;
+  const std::vector<float> reference = guided ? reference_depths(depths, shows) : std::vector<float>();
   Image out = frame;
   // The share of the pixel's kernel (within the image) that its neighbours took: less where
   // surfaces or clouds at other distances stood in the window (blend_by_grain).
@@ -178,7 +203,7 @@ Image filter_grain(const Image& frame, const PixelDepths& depths, const GrainFil
       const std::size_t p = static_cast<std::size_t>(y) * w + x;
       if (!active[p] || shows[p] == Shows::Surface) continue;
       const bool p_cloud = shows[p] == Shows::Clouds;
-      const double dp = p_cloud ? depths.distance_m(x, y) : 0.0;
+      const double dp = p_cloud ? reference[p] : 0.0;
       double sum[4] = {0.0, 0.0, 0.0, 0.0}, total = 0.0, full = 0.0;
       for (int j = std::max(0, y - r); j <= std::min(h - 1, y + r); ++j)
         for (int i = std::max(0, x - r); i <= std::min(w - 1, x + r); ++i) {

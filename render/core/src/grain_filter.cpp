@@ -118,7 +118,7 @@ std::vector<double> box_sums(const std::vector<double>& v, int w, int h, int r) 
 // fills the window (below). Measured with `nimbus compare` against the mean of 32 jittered
 // frames: a near sky with little grain (two cumulus at 60 m voxels seen from 4 km, 192x108)
 // 0.76 % unfiltered, 0.79 % filtered, 2.0 % with the change taken everywhere; README command 1's
-// picture 7.0 % -> 1.40 % (against 64 frames). `out` holds F and becomes the blend; returns the
+// picture 7.0 % -> 1.37 % (against 64 frames). `out` holds F and becomes the blend; returns the
 // mean share over the filtered pixels. `reach`: the share of each pixel's kernel its neighbours
 // took.
 double blend_by_grain(const Image& frame, Image& out, const std::vector<Shows>& shows, const std::vector<char>& active,

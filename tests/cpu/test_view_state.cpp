@@ -38,6 +38,7 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   s.render_scale = 0.5;
   s.exposure_stops = -1.5;
   s.slices.jitter = false;
+  s.grain_filter.on = false;
   s.slices.repeat_to_m = 12500.0;
   const json j = view_state_to_json(s);
   const ViewState t = view_state_from_json(j, "state");
@@ -45,6 +46,7 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   EXPECT_EQ(t.camera.eye, s.camera.eye);
   EXPECT_EQ(t.paused, true);
   EXPECT_EQ(t.slices.jitter, false);
+  EXPECT_EQ(t.grain_filter.on, false);
   EXPECT_EQ(t.slices.repeat_to_m, 12500.0);
   EXPECT_EQ(t.optics.phase.g_back, -0.3);
   EXPECT_EQ(t.slices.multiple.method, MultipleScatteringMethod::Octaves);
@@ -54,7 +56,9 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   json old = j;
   for (const char* k : {"ms_method", "ms_grid", "ms_photons"}) old["optics"].erase(k);
   old["renderer"].erase("repeat_to");  // and one saved before the sky reached the horizon, 32 km
+  old["renderer"].erase("grain_filter");  // or before stills were filtered of their grain: on
   const ViewState u = view_state_from_json(old, "old state");
+  EXPECT_TRUE(u.grain_filter.on);
   EXPECT_EQ(u.slices.repeat_to_m, 32000.0);
   EXPECT_EQ(u.slices.multiple.method, MultipleScatteringMethod::LightVolume);
   EXPECT_EQ(u.slices.multiple.light_volume.photons, ViewState{}.slices.multiple.light_volume.photons);
@@ -112,6 +116,11 @@ TEST(ViewState, BadContentsNameTheKey) {
     j = good;
     j["renderer"]["repeat_to"] = r;
     EXPECT_NE(error_of(j).find("renderer.repeat_to"), std::string::npos) << error_of(j);
+  }
+  for (const json& r : {json("yes"), json(1), json(nullptr)}) {
+    j = good;
+    j["renderer"]["grain_filter"] = r;
+    EXPECT_NE(error_of(j).find("renderer.grain_filter"), std::string::npos) << error_of(j);
   }
   j = good;
   j["renderer"]["shafts"] = "reference";

@@ -278,11 +278,10 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     try {
       render::PixelDepths depths;  // to guide the grain filter
       image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, &stats, &depths); });
-      // One jittered frame of slices holds the jitter's grain: filtered (grain_filter.hpp).
+      // One jittered frame of slices holds the jitter's grain (grain_filter.hpp).
       render::GrainFilter grain;
       grain.on = !a.no_grain_filter;
-      if (fs.method == render::CloudMethod::Slices && render::grain_filter_applies(grain, 1, fs.slices.jitter))
-        image = render::filter_grain(image, depths, grain);
+      image = render::still_picture(image, 1, depths, grain, fs.method == render::CloudMethod::Slices && fs.slices.jitter);
     } catch (const std::invalid_argument& e) {
       // A stage refused what it computed (a NaN pixel): the flags were checked, so say which
       // input it was rendering, and that it is a failure of the render, not of the usage.

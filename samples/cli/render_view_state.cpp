@@ -54,16 +54,17 @@ int run_render_view_state(const std::string& path, const CameraArgs& camera, con
   render::SkyRenderer renderer(state);
   render::SkyFrameInfo info;
   render::ProgressiveFrame mean;
-  render::PixelDepths depths;  // the last frame's, to guide the grain filter
+  render::PixelDepths depths;  // the last frame's, to guide the grain filter (read back for it alone)
   naming_gpu_memory("--res", width, height, [&] {
     for (int i = 0; i < samples; ++i) {
       render::FrameQuality quality;
       quality.sample = render::progressive_sample(static_cast<unsigned>(i));
-      mean.add(renderer.render(state, width, height, quality, true, nullptr, &info, &depths), "the state");
+      mean.add(renderer.render(state, width, height, quality, true, nullptr, &info, i + 1 == samples ? &depths : nullptr),
+               "the state");
     }
     return 0;
   });
-  const render::Image image = render::still_picture(mean, depths, state.grain_filter, state.slices.jitter);
+  const render::Image image = render::still_picture(mean.mean(), mean.samples(), depths, state.grain_filter, state.slices.jitter);
   render::PreviewOptions po;
   po.exposure_stops = exposure ? *exposure : state.exposure_stops;
   write_image_files(output, preview, image, po);

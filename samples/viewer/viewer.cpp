@@ -198,7 +198,7 @@ render::Image Viewer::draw_plain(int width, int height, render::FrameQuality qua
                               frame.metadata["evolution_time_s"]);
   r.samples = progressive_.samples();
   // The mean of few jittered frames still holds grain: filtered (grain_filter.hpp).
-  return render::still_picture(progressive_, depths, state_.grain_filter, state_.slices.jitter);
+  return render::still_picture(progressive_.mean(), progressive_.samples(), depths, state_.grain_filter, state_.slices.jitter);
 }
 
 void Viewer::set_temporal(bool on) {

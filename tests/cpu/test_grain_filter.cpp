@@ -8,6 +8,7 @@
 
 #include "nimbus/render/core/blue_noise.hpp"
 #include "nimbus/render/core/grain_filter.hpp"
+#include "nimbus/render/core/progressive_frame.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -214,8 +215,8 @@ TEST(GrainFilter, AppliesToFewJitteredFramesAndNarrowsAsTheyAddUp) {
   ProgressiveFrame mean;
   mean.add(grainy_frame(1.0, 0.4), "still");
   const PixelDepths d = cloud_depths(kW, kH, 700.0f);
-  EXPECT_LT(rms_about(still_picture(mean, d, f, true), 1.0, 3), rms_about(mean.mean(), 1.0, 3) / 8.0);
-  EXPECT_EQ(still_picture(mean, d, f, false).rgba, mean.mean().rgba);
+  EXPECT_LT(rms_about(still_picture(mean.mean(), mean.samples(), d, f, true), 1.0, 3), rms_about(mean.mean(), 1.0, 3) / 8.0);
+  EXPECT_EQ(still_picture(mean.mean(), mean.samples(), d, f, false).rgba, mean.mean().rgba);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ TEST(GrainFilterGl, AStillWithLittleGrainIsLeftAsItIs) {
     PixelDepths depths;
     ProgressiveFrame one;
     one.add(sky.render(s, w, h, FrameQuality{}, true, nullptr, nullptr, &depths), "one");
-    const Image still = still_picture(one, depths, s.grain_filter, s.slices.jitter);
+    const Image still = still_picture(one.mean(), one.samples(), depths, s.grain_filter, s.slices.jitter);
     const double filtered = compare_images(still, converged.mean()).rel_rmse;
     const double raw = compare_images(one.mean(), converged.mean()).rel_rmse;
     std::printf("[ still, %d slices ] from the mean of 32 jittered frames: one frame %.2f %%, filtered %.2f %%\n", slices,

@@ -222,7 +222,8 @@ Image filter_grain(const Image& frame, const PixelDepths& depths, const GrainFil
           total += weight;
         }
       float* o = out.pixel(x, y);
-      for (int k = 0; k < 4; ++k) o[k] = static_cast<float>(sum[k] / total);  // total >= the pixel's own weight, 1
+      // total > 0: the pixel's own weight is positive (its distance against its neighbours' median).
+      for (int k = 0; k < 4; ++k) o[k] = static_cast<float>(sum[k] / total);
       reach[p] = static_cast<float>(total / full);
     }
   });
@@ -234,11 +235,11 @@ Image filter_grain(const Image& frame, const PixelDepths& depths, const GrainFil
   return out;
 }
 
-Image still_picture(const ProgressiveFrame& mean, const PixelDepths& depths, const GrainFilter& filter, bool jitter) {
-  if (!grain_filter_applies(filter, mean.samples(), jitter)) return mean.mean();
+Image still_picture(const Image& mean, unsigned samples, const PixelDepths& depths, const GrainFilter& filter, bool jitter) {
+  if (!grain_filter_applies(filter, samples, jitter)) return mean;
   GrainFilter narrowed = filter;
-  narrowed.sigma_px = grain_filter_sigma_px(filter, mean.samples());
-  return filter_grain(mean.mean(), depths, narrowed);
+  narrowed.sigma_px = grain_filter_sigma_px(filter, samples);
+  return filter_grain(mean, depths, narrowed);
 }
 
 }  // namespace nimbus::render

@@ -15,7 +15,6 @@
 #pragma once
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/pixel_depths.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
 
 namespace nimbus::render {
 
@@ -50,9 +49,10 @@ double grain_filter_sigma_px(const GrainFilter& filter, unsigned samples);
 // depths are of another size or the filter is invalid.
 Image filter_grain(const Image& frame, const PixelDepths& depths, const GrainFilter& filter);
 
-// The picture a still shows: the mean of its jittered frames, filtered when
-// grain_filter_applies (by grain_filter_sigma_px of its samples), guided by the depths of one of
-// its frames.
-Image still_picture(const ProgressiveFrame& mean, const PixelDepths& depths, const GrainFilter& filter, bool jitter);
+// The picture a still shows: `mean`, the mean of `samples` jittered frames (one frame: 1),
+// filtered when grain_filter_applies (by grain_filter_sigma_px of its samples), guided by the
+// depths of one of its frames. Every still goes through it: `nimbus render`, its --view-state
+// and the viewer.
+Image still_picture(const Image& mean, unsigned samples, const PixelDepths& depths, const GrainFilter& filter, bool jitter);
 
 }  // namespace nimbus::render

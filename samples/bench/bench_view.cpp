@@ -17,6 +17,7 @@
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "bench_view_accumulated.hpp"
+#include "nimbus/render/core/grain_filter.hpp"
 #include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/core/image_resample.hpp"
 #include "nimbus/render/sky/view_state.hpp"
@@ -188,12 +189,14 @@ std::string levels_text(const std::map<int, int>& levels, bool temporal) {
 
 // A still view's progressive samples (progressive_frame.hpp): the mean's error against the
 // 4x-supersampled frame (twice the size each way, 2x2 boxes, itself the mean of 16 samples)
-// after 1, 2, 4, ... samples, and the time they took.
+// after 1, 2, 4, ... samples, and the time they took; and the error of what the viewer shows of
+// it, the mean filtered of its grain (still_picture, grain_filter.hpp).
 void print_still_view(const render::ViewState& start, const viewer::ViewerOptions& options,
                       const std::vector<std::pair<int, int>>& sizes, int samples) {
   std::printf("\n## A still view's samples on the default view (time paused): the mean against the 4x-supersampled frame\n\n");
-  std::printf("| size | samples | rel. RMSE vs 4x supersampled | median rel. | time for them, s |\n");
-  std::printf("|---|---:|---:|---:|---:|\n");
+  std::printf("| size | samples | rel. RMSE vs 4x supersampled | median rel. | shown (grain filter): rel. RMSE | "
+              "time for them, s |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|\n");
   for (const auto& [w, h] : sizes) {
     viewer::Viewer v(start, options);
     v.state().paused = true;
@@ -203,15 +206,20 @@ void print_still_view(const render::ViewState& start, const viewer::ViewerOption
       fine.add(v.render_at(2 * w, 2 * h, render::FrameQuality{1.0, 0, render::progressive_sample(i)}), "fine");
     const render::Image reference = render::box_downsample(fine.mean(), 2);
     render::ProgressiveFrame mean;
+    render::PixelDepths depths;
     double seconds = 0.0;
     for (int i = 0; i < samples; ++i) {
       const auto t0 = Clock::now();
-      mean.add(v.render_at(w, h, render::FrameQuality{1.0, 0, render::progressive_sample(static_cast<unsigned>(i))}), "still");
+      mean.add(v.render_at(w, h, render::FrameQuality{1.0, 0, render::progressive_sample(static_cast<unsigned>(i))}, &depths),
+               "still");
       seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       const int n = i + 1;
       if ((n & (n - 1)) == 0 || n == samples) {
         const render::ImageError e = render::compare_images(mean.mean(), reference);
-        std::printf("| %dx%d | %d | %.4f | %.4f | %.1f |\n", w, h, n, e.rel_rmse, e.median_rel, seconds);
+        const render::Image shown =
+            render::still_picture(mean.mean(), mean.samples(), depths, v.state().grain_filter, v.state().slices.jitter);
+        std::printf("| %dx%d | %d | %.4f | %.4f | %.4f | %.1f |\n", w, h, n, e.rel_rmse, e.median_rel,
+                    render::compare_images(shown, reference).rel_rmse, seconds);
         std::fflush(stdout);
       }
     }

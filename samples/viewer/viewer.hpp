@@ -106,8 +106,10 @@ class Viewer {
     return renderer_->render(state_, width, height, render::FrameQuality{}, true);
   }
   // A frame of the current state at a given quality (the bench's levels); nothing is kept.
-  render::Image render_at(int width, int height, const render::FrameQuality& quality) {
-    return renderer_->render(state_, width, height, quality, true);
+  // `depths`: what each pixel shows and how far (to guide the grain filter as draw() does).
+  render::Image render_at(int width, int height, const render::FrameQuality& quality,
+                          render::PixelDepths* depths = nullptr) {
+    return renderer_->render(state_, width, height, quality, true, nullptr, nullptr, depths);
   }
   render::SkyKeyframes& keyframes() { return renderer_->keyframes(); }
   // The keyframes' light volumes (null until the light-volume method was first drawn).

@@ -54,6 +54,8 @@ struct BenchLookArgs {
   std::string ms_diffusion = number_text(render::LightVolumeSettings{}.diffusion_depth);
   // light-volume rows: photons per cell face for finer cells, 0 the grid exactly
   std::string ms_refine = std::to_string(kDefaultRefine);
+  // light-volume rows: transport mean free paths deep beyond which photons fly in the similar medium (0: never)
+  std::string ms_similarity = number_text(render::LightVolumeSettings{}.similarity_depth);
   std::string lighting = "front-lit,back-lit";          // which lightings to run
   std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
@@ -95,6 +97,7 @@ struct Octaves {
   bool fits = true;
   int refine = kDefaultRefine;  // LightVolumeSettings::photons_per_cell
   double diffusion = 0.0;       // LightVolumeSettings::diffusion_depth
+  double similarity = 0.0;      // LightVolumeSettings::similarity_depth
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -182,7 +185,8 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
       for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0))
         for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
           for (int refine : parse_ints("--ms-refine", a.ms_refine, 1000000000, 0))
-            for (double diffusion : parse_doubles("--ms-diffusion-depth", a.ms_diffusion, 0.0, 1000.0)) {
+            for (double diffusion : parse_doubles("--ms-diffusion-depth", a.ms_diffusion, 0.0, 1000.0))
+              for (double similarity : parse_doubles("--ms-similarity-depth", a.ms_similarity, 0.0, 1000.0)) {
               methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
                                      (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
                                      (fits ? "" : ", no fits") +
@@ -190,8 +194,11 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
                                       : refine == 0  ? ", exact grid"
                                                      : ", finer to " + std::to_string(refine) + " photons a cell") +
                                      (diffusion == 0.0 ? ""
-                                                       : ", diffused deeper than " + number_text(diffusion) + " mfp"),
-                                 0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion});
+                                                       : ", diffused deeper than " + number_text(diffusion) + " mfp") +
+                                     (similarity == render::LightVolumeSettings{}.similarity_depth ? ""
+                                      : similarity == 0.0 ? ", true phase everywhere"
+                                                          : ", similar deeper than " + number_text(similarity) + " mfp"),
+                                 0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion, similarity});
             }
   }
   return methods;
@@ -310,6 +317,7 @@ render::FrameSettings slicer_settings(const BenchLookArgs& a, const Octaves& m) 
     fs.slices.multiple.light_volume.fits = m.fits;
     fs.slices.multiple.light_volume.photons_per_cell = m.refine;
     fs.slices.multiple.light_volume.diffusion_depth = m.diffusion;
+    fs.slices.multiple.light_volume.similarity_depth = m.similarity;
   }
   return fs;
 }
@@ -399,6 +407,10 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ms-refine", a->ms_refine,
                   "Comma-separated photons per cell face down to which the light volume takes finer cells than --ms-grid "
                   "(0: --ms-grid exactly)")
+      ->capture_default_str();
+  cmd->add_option("--ms-similarity-depth", a->ms_similarity,
+                  "Comma-separated transport mean free paths inside the clouds beyond which the light volume's photons, "
+                  "past their lobe orders, fly in the similar isotropic medium (0: the true phase everywhere)")
       ->capture_default_str();
   cmd->add_option("--lighting", a->lighting, "Comma-separated lightings to run: front-lit, back-lit")->capture_default_str();
   cmd->add_option("--phases", a->phases, "Comma-separated phases to run: isotropic, hg, dual (names or their prefixes)")

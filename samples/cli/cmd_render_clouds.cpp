@@ -149,6 +149,11 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
                   "Light volume: deeper than this many transport mean free paths inside the clouds, photons hand their "
                   "light to a diffusion solve on its grid, 0-1000 (0: photons carry all of it)")
       ->capture_default_str();
+  cmd->add_option("--ms-similarity-depth", a.ms_similarity,
+                  "Light volume: deeper than this many transport mean free paths inside the clouds, photons past "
+                  "their lobe orders fly in the similar medium (isotropic, sigma_s (1 - g)), 0-1000 (0: the true phase "
+                  "everywhere)")
+      ->capture_default_str();
   cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
   cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();

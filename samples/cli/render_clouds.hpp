@@ -48,6 +48,7 @@ struct CloudRenderArgs {
   int64_t ms_photons = render::LightVolumeSettings{}.photons;  // light volume: photons from the sun
   int ms_lobes = 2;                  // light volume: scattering orders kept as lobes, [0, 2]
   double ms_diffusion = render::LightVolumeSettings{}.diffusion_depth;  // light volume: diffusion deeper than this (transport mfp; 0: off)
+  double ms_similarity = render::LightVolumeSettings{}.similarity_depth;  // light volume: similar medium deeper than this (transport mfp; 0: off)
   uint64_t ms_seed = 1;              // light volume
   double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
   double blur_deg = 0.0;

@@ -56,7 +56,7 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     ms.octaves = a.multiple.value_or(0);
   }
   const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
-  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-diffusion-depth", "--ms-seed"})
+  for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-diffusion-depth", "--ms-similarity-depth", "--ms-seed"})
     refuse_if_given_without(a, flag, light_volume,
                             "applies to the light volume (--ms-method light-volume), and the multiple scattering here is "
                             "the octaves method");
@@ -76,6 +76,10 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     throw UsageError("--ms-diffusion-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
                      std::to_string(a.ms_diffusion));
   ms.light_volume.diffusion_depth = a.ms_diffusion;
+  if (!std::isfinite(a.ms_similarity) || a.ms_similarity < 0.0 || a.ms_similarity > 1000.0)
+    throw UsageError("--ms-similarity-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
+                     std::to_string(a.ms_similarity));
+  ms.light_volume.similarity_depth = a.ms_similarity;
   ms.light_volume.seed = a.ms_seed;
   auto check = [](double v, bool ok, const char* flag, const char* range) {
     if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));

@@ -29,7 +29,7 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       {"--light-res", clouds}, {"--repeat-to", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
       {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},
       {"--ambient", clouds}, {"--multiple", clouds}, {"--ms-method", clouds}, {"--ms-grid", clouds},
-      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-diffusion-depth", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
+      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-diffusion-depth", clouds}, {"--ms-similarity-depth", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
       {"--no-jitter", clouds}, {"--no-grain-filter", clouds | view}, {"--ms-occlusion", clouds}, {"--ms-contribution", clouds},
       {"--ms-eccentricity", clouds}, {"--spp", clouds | view}, {"--bounces", clouds}, {"--seed", clouds},
   };

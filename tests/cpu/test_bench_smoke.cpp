@@ -115,6 +115,7 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
   EXPECT_EQ(run("bench look --view above").code, 2);
   EXPECT_EQ(run("bench look --ms-lobes 3").code, 2);
   EXPECT_EQ(run("bench look --ms-diffusion-depth -1").code, 2);
+  EXPECT_EQ(run("bench look --ms-similarity-depth 1001").code, 2);
   EXPECT_EQ(run("bench look --phases mie").code, 2);
   EXPECT_EQ(run("bench look --lighting side-lit").code, 2);
 }

@@ -227,6 +227,50 @@ void thick_slab_against_dom(double diffusion_depth) {
   EXPECT_LT(worst_cell, 6.0);
 }
 
+// The similar medium (LightVolumeSettings::similarity_depth): past their lobe orders, photons that
+// scatter a transport mean free path or more inside a slab 30 mean free paths thick under HG 0.7
+// fly on in isotropic scattering at sigma_s (1 - g), a third of the flights. Each layer of cells
+// against the discrete ordinates of the true phase and against the same photons walking the true
+// phase everywhere. Measured (2^17 photons): within 1.1 % of the DOM (the true walk 0.7 %), the
+// layers' flux within 4.8 % of the true walk's. Tolerances 12 % (as the isotropic thick slab
+// above) and 6 %.
+TEST(LightVolume, SimilarMediumKeepsAThickForwardSlab) {
+  const double tau = 30.0, albedo = 0.99;
+  const int layers = 30, n = 160;
+  const DualLobePhase hg{0.7, 0.0, 1.0};
+  const std::vector<CloudVolume> clouds = {slab(tau, layers, n, hg, albedo)};
+  LightVolumeSettings s;
+  s.resolution = 32;
+  s.photons = 1 << 17;
+  s.similarity_depth = 0.0;
+  const LightVolume exact = build_light_volume(clouds, overhead_sun(), s);
+  s.similarity_depth = 1.0;
+  const LightVolume similar = build_light_volume(clouds, overhead_sun(), s);
+  const test::SlabSolution dom = test::solve_slab(tau, albedo, hg, 1.0);
+  double worst_dom = 0.0, worst_exact_dom = 0.0, worst_flux = 0.0;
+  for (int j = 0; j < similar.size[1]; ++j) {
+    const double y0 = similar.world_min.y + j * similar.cell_m.y, y1 = y0 + similar.cell_m.y;
+    if (y0 < 0.0 || y1 > layers - 1.0) continue;
+    const double phi_dom = dom_mean(dom.fluence, tau, layers, y0, y1);
+    const double a = central_layer(similar, j).mean, b = central_layer(exact, j).mean;
+    double fa = 0.0, fb = 0.0;
+    for (int k = similar.size[2] * 3 / 10; k < similar.size[2] * 7 / 10; ++k)
+      for (int i = similar.size[0] * 3 / 10; i < similar.size[0] * 7 / 10; ++i) {
+        fa += similar.flux_xyz[3 * index(similar, i, j, k) + 1];
+        fb += exact.flux_xyz[3 * index(exact, i, j, k) + 1];
+      }
+    std::printf("similar slab: cells y [%.2f, %.2f]: fluence %.4f, true walk %.4f, DOM %.4f; flux %.4f, true walk %.4f\n",
+                y0, y1, a, b, phi_dom, fa, fb);
+    worst_dom = std::max(worst_dom, std::abs(a / phi_dom - 1.0));
+    worst_exact_dom = std::max(worst_exact_dom, std::abs(b / phi_dom - 1.0));
+    worst_flux = std::max(worst_flux, std::abs(fa - fb) / std::max(std::abs(fb), 1e-9));
+  }
+  std::printf("[ similar slab ] worst layer %.1f %% off the DOM (true walk %.1f %%), flux %.1f %% off the true walk's\n",
+              100.0 * worst_dom, 100.0 * worst_exact_dom, 100.0 * worst_flux);
+  EXPECT_LT(worst_dom, 0.12);
+  EXPECT_LT(worst_flux, 0.06);
+}
+
 // A slab under a layer of haze so thin (density 1e-6) that its own bricks' majorant would put a
 // tentative collision every 10^7 m: each would stand for that much track, and the haze's cells
 // would read 0 or thousands. The light there is the slab's reflection, as in the cells just
@@ -320,6 +364,22 @@ TEST(LightVolume, ChromaticAlbedoScalesItsChannels) {
   EXPECT_EQ(b, 0.0);
 }
 
+// Under isotropic scattering the similar medium is the medium itself (g = 0: sigma_t' = sigma_t,
+// a' = a), so the walk in its deep cells is the same walk, draw for draw.
+TEST(LightVolume, SimilarMediumOfIsotropicScatteringIsItself) {
+  LightVolumeSettings a = small_settings(), b = small_settings();
+  a.similarity_depth = 0.0;
+  b.similarity_depth = 0.5;
+  const std::vector<CloudVolume> iso = {slab(12.0, 16, 48, DualLobePhase{0.0, 0.0, 1.0}, 0.95)};
+  const LightVolume va = build_light_volume(iso, overhead_sun(), a), vb = build_light_volume(iso, overhead_sun(), b);
+  EXPECT_EQ(va.fluence_rgb, vb.fluence_rgb);
+  EXPECT_EQ(va.flux_xyz, vb.flux_xyz);
+  // A forward phase flies in another medium there: not the same draws.
+  const std::vector<CloudVolume> forward = {slab(12.0, 16, 48, DualLobePhase{0.7, 0.0, 1.0}, 0.95)};
+  const LightVolume fa = build_light_volume(forward, overhead_sun(), a), fb = build_light_volume(forward, overhead_sun(), b);
+  EXPECT_NE(fa.fluence_rgb, fb.fluence_rgb);
+}
+
 TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
   LightVolumeSettings one = small_settings(), two = small_settings(), other = small_settings();
   one.threads = 1;
@@ -341,6 +401,12 @@ TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
   EXPECT_EQ(d1.fluence_rgb, d2.fluence_rgb);
   EXPECT_EQ(d1.flux_xyz, d2.flux_xyz);
   EXPECT_EQ(d1.gradient, d2.gradient);
+  // More photons than one batch of the builder's spatial order (2^18): the batches' sums too.
+  one.diffusion_depth = two.diffusion_depth = 0.0;
+  one.photons = two.photons = (1 << 18) + 4099;
+  const LightVolume m1 = build_light_volume(small_slab(0.9), sun, one), m2 = build_light_volume(small_slab(0.9), sun, two);
+  EXPECT_EQ(m1.fluence_rgb, m2.fluence_rgb);
+  EXPECT_EQ(m1.quadrupole, m2.quadrupole);
 }
 
 // A stop belongs to its call (cancel.hpp): under a scope whose stop was requested the build ends
@@ -458,6 +524,11 @@ TEST(LightVolume, RefusesBadSettingsNamingThem) {
     s = small_settings();
     s.diffusion_depth = depth;
     EXPECT_NE(message(s).find("diffusion depth"), std::string::npos) << depth;
+  }
+  for (double depth : {-1.0, 1001.0, std::nan("")}) {
+    s = small_settings();
+    s.similarity_depth = depth;
+    EXPECT_NE(message(s).find("similarity depth"), std::string::npos) << depth;
   }
   EXPECT_THROW(build_light_volume({}, sun, small_settings()), std::invalid_argument);
   // The largest grid allowed fits the 2 GiB bound; its size is known before anything is allocated.

@@ -240,6 +240,8 @@ TEST(RenderCloudsCli, BadInputIsAUsageError) {
       {kSteam + "--ms-lobes 3", "--ms-lobes"},
       {kSteam + "--ms-diffusion-depth 1001", "--ms-diffusion-depth"},
       {kSteam + "--multiple 2 --ms-diffusion-depth 2", "--ms-diffusion-depth"},
+      {kSteam + "--ms-similarity-depth -1", "--ms-similarity-depth"},
+      {kSteam + "--multiple 2 --ms-similarity-depth 2", "--ms-similarity-depth"},
       {kSteam + "--ms-occlusion 0", "--ms-occlusion"},
       {kSteam + "--frames 5-2", "--frames"},
       {kSteam + "--sun 0,0,0", "--sun"},
@@ -282,11 +284,16 @@ TEST(RenderCloudsCli, LightVolumeIsTheDefaultAndMultipleZeroIsSingleScattering) 
   EXPECT_GT(radiance_sum(a), radiance_sum(b));  // scattered light only adds
   EXPECT_NE(a.metadata.at("light_volume").find("all light traced"), std::string::npos) << a.metadata.at("light_volume");
   // The deep light diffused: said in the metadata.
-  auto dif = run_nimbus("render" + common + "--ms-photons 20000 --ms-grid 16 --ms-diffusion-depth 2 -o " + (d / "dif.exr").string());
+  auto dif = run_nimbus("render" + common + "--ms-photons 20000 --ms-grid 16 --ms-diffusion-depth 2 --ms-similarity-depth 1 -o " +
+                         (d / "dif.exr").string());
   ASSERT_EQ(dif.code, 0) << dif.output;
   const render::Image e = render::read_exr(d / "dif.exr");
   EXPECT_NE(e.metadata.at("light_volume").find("diffused deeper than 2 transport mean free paths"), std::string::npos)
       << e.metadata.at("light_volume");
+  // The similar medium in the deep cells (opt-in): said too.
+  EXPECT_NE(e.metadata.at("light_volume").find("similar medium deeper than 1 transport mean free paths"), std::string::npos)
+      << e.metadata.at("light_volume");
+  EXPECT_EQ(a.metadata.at("light_volume").find("similar medium"), std::string::npos) << a.metadata.at("light_volume");
   fs::remove_all(d);
 }
 

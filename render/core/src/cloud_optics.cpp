@@ -62,6 +62,9 @@ void validate(const LightVolumeSettings& s) {
   require(std::isfinite(s.diffusion_depth) && s.diffusion_depth >= 0.0 && s.diffusion_depth <= 1000.0,
           "light volume diffusion depth must be in [0, 1000] transport mean free paths (0: off), got " +
               std::to_string(s.diffusion_depth));
+  require(std::isfinite(s.similarity_depth) && s.similarity_depth >= 0.0 && s.similarity_depth <= 1000.0,
+          "light volume similarity depth must be in [0, 1000] transport mean free paths (0: off), got " +
+              std::to_string(s.similarity_depth));
   require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");
 }
 

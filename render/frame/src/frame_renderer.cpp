@@ -171,7 +171,10 @@ namespace {
 std::string describe_light_volume(const LightVolume& v) {
   char depth[64];
   std::snprintf(depth, sizeof depth, "diffused deeper than %g transport mean free paths", v.diffusion_depth);
-  const std::string traced = v.diffusion_depth > 0.0 ? depth : "all light traced";
+  std::string traced = v.diffusion_depth > 0.0 ? depth : "all light traced";
+  char similar[96];
+  std::snprintf(similar, sizeof similar, ", similar medium deeper than %g transport mean free paths", v.similarity_depth);
+  if (v.similarity_depth > 0.0) traced += similar;
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "%dx%dx%d cells of %.6g x %.6g x %.6g m, %lld photons, seed %llu, %d lobe orders, %s, %s, built on the CPU",

@@ -64,6 +64,7 @@ struct LightVolume {
   std::uint64_t seed = 0;
   int lobe_orders = 0;  // orders kept as lobes (LightVolumeSettings::lobe_orders)
   double diffusion_depth = 0.0;  // LightVolumeSettings::diffusion_depth (0: photons carried all the light)
+  double similarity_depth = 0.0;  // LightVolumeSettings::similarity_depth (0: the true phase everywhere)
   int diffusion_iterations = 0;  // the diffusion solve's conjugate-gradient iterations (0: none)
   double build_seconds = 0.0;
 

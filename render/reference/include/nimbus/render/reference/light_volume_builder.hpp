@@ -7,7 +7,10 @@
 // for the net flux, and times d d^T - I / 3 for the second moment. Deterministic per seed, whatever the
 // threads: photon i draws from its own stream and the tallies are fixed-point integers, each
 // thread's own, summed after. With settings.diffusion_depth > 0 a photon that scatters deep inside
-// the clouds hands its light to a diffusion solve on the grid (light_volume_diffusion.hpp).
+// the clouds hands its light to a diffusion solve on the grid (light_volume_diffusion.hpp); with
+// settings.similarity_depth > 0 it flies on there in the similar isotropic medium instead (fewer,
+// longer flights). Photons go in the order of their launch points along a Z curve, for the cache;
+// the sums do not change.
 #pragma once
 #include <vector>
 

@@ -195,9 +195,8 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
                                                      : ", finer to " + std::to_string(refine) + " photons a cell") +
                                      (diffusion == 0.0 ? ""
                                                        : ", diffused deeper than " + number_text(diffusion) + " mfp") +
-                                     (similarity == render::LightVolumeSettings{}.similarity_depth ? ""
-                                      : similarity == 0.0 ? ", true phase everywhere"
-                                                          : ", similar deeper than " + number_text(similarity) + " mfp"),
+                                     (similarity == 0.0 ? ""
+                                                        : ", similar deeper than " + number_text(similarity) + " mfp"),
                                  0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion, similarity});
             }
   }

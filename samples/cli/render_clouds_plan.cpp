@@ -76,14 +76,13 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     throw UsageError("--ms-diffusion-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
                      std::to_string(a.ms_diffusion));
   ms.light_volume.diffusion_depth = a.ms_diffusion;
-  if (!std::isfinite(a.ms_similarity) || a.ms_similarity < 0.0 || a.ms_similarity > 1000.0)
-    throw UsageError("--ms-similarity-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
-                     std::to_string(a.ms_similarity));
-  ms.light_volume.similarity_depth = a.ms_similarity;
   ms.light_volume.seed = a.ms_seed;
   auto check = [](double v, bool ok, const char* flag, const char* range) {
     if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));
   };
+  check(a.ms_similarity, a.ms_similarity >= 0.0 && a.ms_similarity <= 1000.0, "--ms-similarity-depth",
+        "[0, 1000] transport mean free paths (0: off)");
+  ms.light_volume.similarity_depth = a.ms_similarity;
   check(a.ms_occlusion, a.ms_occlusion > 0.0 && a.ms_occlusion <= 1.0, "--ms-occlusion", "(0, 1]");
   check(a.ms_contribution, a.ms_contribution >= 0.0 && a.ms_contribution <= 1.0, "--ms-contribution", "[0, 1]");
   check(a.ms_eccentricity, a.ms_eccentricity >= 0.0 && a.ms_eccentricity <= 1.0, "--ms-eccentricity", "[0, 1]");

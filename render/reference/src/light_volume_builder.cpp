@@ -372,7 +372,7 @@ void tally_flight(const TallySink& sink, const LightVolume& v, const CellGrid& g
 // Photon i's position on the launch rectangle, in [0, 1)^2: the R2 sequence (Roberts 2018),
 // shifted per seed (Cranley-Patterson).
 glm::dvec2 launch_point(std::int64_t i, double shift_u, double shift_v) {
-  // x - floor(x) is exact (as fmod(x, 1) is, at a tenth of its cost: measured 6 % of the build).
+  // x - floor(x) is exact, as fmod(x, 1) is, and cheaper (fmod had 1.3 % of the build's profile).
   const double fi = static_cast<double>(i);
   const double x = shift_u + fi * 0.7548776662466927, y = shift_v + fi * 0.5698402909980532;
   return {x - std::floor(x), y - std::floor(y)};

@@ -56,6 +56,9 @@ struct BenchLookArgs {
   std::string ms_refine = std::to_string(kDefaultRefine);
   // light-volume rows: transport mean free paths deep beyond which photons fly in the similar medium (0: never)
   std::string ms_similarity = number_text(render::LightVolumeSettings{}.similarity_depth);
+  // light-volume rows: the share of the photons traced before the volume is taken, on the whole
+  // build's grid (LightVolumeBuild; 1: the whole build)
+  std::string ms_progressive = "1";
   std::string lighting = "front-lit,back-lit";          // which lightings to run
   std::string phases = "isotropic,hg,dual";             // which phases to run (prefixes of their names)
   std::string view = "side";  // side: the whole cloud framed level with it; below: looking up at its base
@@ -98,6 +101,7 @@ struct Octaves {
   int refine = kDefaultRefine;  // LightVolumeSettings::photons_per_cell
   double diffusion = 0.0;       // LightVolumeSettings::diffusion_depth
   double similarity = 0.0;      // LightVolumeSettings::similarity_depth
+  double share = 1.0;           // of the photons traced, progressively (LightVolumeBuild)
 };
 
 // An observer under the cloud looking up at its base, as a stratiform layer is seen: 1 km below
@@ -186,7 +190,8 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
         for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
           for (int refine : parse_ints("--ms-refine", a.ms_refine, 1000000000, 0))
             for (double diffusion : parse_doubles("--ms-diffusion-depth", a.ms_diffusion, 0.0, 1000.0))
-              for (double similarity : parse_doubles("--ms-similarity-depth", a.ms_similarity, 0.0, 1000.0)) {
+              for (double similarity : parse_doubles("--ms-similarity-depth", a.ms_similarity, 0.0, 1000.0))
+                for (double share : parse_doubles("--ms-progressive", a.ms_progressive, 1.0 / 1024.0, 1.0)) {
               methods.push_back({"light volume " + std::to_string(grid) + " cells, " + std::to_string(photons) + " photons, " +
                                      (lobes == 0 ? std::string("no lobes") : std::to_string(lobes) + " lobe orders") +
                                      (fits ? "" : ", no fits") +
@@ -196,8 +201,9 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
                                      (diffusion == 0.0 ? ""
                                                        : ", diffused deeper than " + number_text(diffusion) + " mfp") +
                                      (similarity == 0.0 ? ""
-                                                        : ", similar deeper than " + number_text(similarity) + " mfp"),
-                                 0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion, similarity});
+                                                        : ", similar deeper than " + number_text(similarity) + " mfp") +
+                                     (share == 1.0 ? "" : ", its first " + number_text(share) + " traced"),
+                                 0, 0.5, 0.5, true, grid, photons, lobes, fits != 0, refine, diffusion, similarity, share});
             }
   }
   return methods;
@@ -322,13 +328,23 @@ render::FrameSettings slicer_settings(const BenchLookArgs& a, const Octaves& m) 
 }
 
 // One slicer row: the best GPU time of five frames after the first (which builds the light
-// volume), its error against the reference, and the light volume's build time and grid.
+// volume), its error against the reference, and the light volume's build time and grid. A row
+// with a share of the photons takes the volume of a progressive build after that share.
 void slicer_row(const BenchLookArgs& a, const LookCase& c, const Octaves& m, render::PlotSeries& series) {
   const render::FrameSettings fs = slicer_settings(a, m);
   render::FrameRenderer fr(std::nullopt, c.light, fs);
   fr.set_clouds(c.clouds);
   render::FrameStats first;
-  fr.render(c.camera, &first);  // programs compiled, buffers made, the light volume built
+  if (m.share < 1.0) {
+    render::LightVolumeBuild build(c.clouds, c.light, fs.slices.multiple.light_volume);
+    build.trace(std::max<std::int64_t>(1, std::llround(m.share * static_cast<double>(build.photons()))));
+    const render::LightVolume v = build.volume();
+    fr.set_light_volume(v);
+    first.light_volume_build_ms = 1000.0 * v.build_seconds;
+    fr.render(c.camera);
+  } else {
+    fr.render(c.camera, &first);  // programs compiled, buffers made, the light volume built
+  }
   double best = 1e300;
   render::Image img;
   for (int rep = 0; rep < 5; ++rep) {
@@ -410,6 +426,10 @@ void add_bench_look(CLI::App& bench, Action& action) {
   cmd->add_option("--ms-similarity-depth", a->ms_similarity,
                   "Comma-separated transport mean free paths inside the clouds beyond which the light volume's photons, "
                   "past their lobe orders, fly in the similar isotropic medium (0: the true phase everywhere)")
+      ->capture_default_str();
+  cmd->add_option("--ms-progressive", a->ms_progressive,
+                  "Comma-separated shares of the photons in (0, 1] traced before the light volume is taken, on the whole "
+                  "build's grid: a progressive build's early volume (1: the whole build)")
       ->capture_default_str();
   cmd->add_option("--lighting", a->lighting, "Comma-separated lightings to run: front-lit, back-lit")->capture_default_str();
   cmd->add_option("--phases", a->phases, "Comma-separated phases to run: isotropic, hg, dual (names or their prefixes)")

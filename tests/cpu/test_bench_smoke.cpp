@@ -116,6 +116,8 @@ TEST(BenchLook, TinyRunPrintsEveryCaseAndTheOctavesHelp) {
   EXPECT_EQ(run("bench look --ms-lobes 3").code, 2);
   EXPECT_EQ(run("bench look --ms-diffusion-depth -1").code, 2);
   EXPECT_EQ(run("bench look --ms-similarity-depth 1001").code, 2);
+  EXPECT_EQ(run("bench look --ms-progressive 0").code, 2);
+  EXPECT_EQ(run("bench look --ms-progressive 1.5").code, 2);
   EXPECT_EQ(run("bench look --phases mie").code, 2);
   EXPECT_EQ(run("bench look --lighting side-lit").code, 2);
 }
@@ -129,15 +131,17 @@ TEST(BenchSmoke, BenchViewRefusesAnUnknownPath) {
 }
 
 // `nimbus bench look --view below --lighting back-lit --phases hg`: only the chosen case runs,
-// with a row per light-volume variant asked for (lobes and fits on and off), all finite.
+// with a row per light-volume variant asked for (lobes and fits on and off, a progressive build's
+// first quarter), all finite.
 TEST(BenchLook, ChosenCasesSeenFromBelow) {
   const Result r = run("bench look --preset stratus --view below --res 32x24 --ref-spp 8 --spp 2 --slices 24 --ms-photons 4096 "
-                       "--ms-lobes 0,2 --ms-fits 0,1 --lighting back-lit --phases hg");
+                       "--ms-lobes 0,2 --ms-fits 0,1 --ms-progressive 0.25,1 --lighting back-lit --phases hg");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("seen from below"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("| back-lit | hg:0.7 | slicer, light volume 48 cells, 4096 photons, 2 lobe orders |"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("no lobes, no fits"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("4096 photons, 2 lobe orders, its first 0.25 traced |"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("| front-lit |"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("| back-lit | isotropic |"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("nan"), std::string::npos);

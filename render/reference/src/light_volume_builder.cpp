@@ -455,78 +455,106 @@ void spatial_order(std::int64_t first, std::int64_t count, double shift_u, doubl
     order[start[key[static_cast<std::size_t>(j)]]++] = static_cast<std::uint32_t>(j);
 }
 
-// Stage: the photons, on the arena's threads; deterministic per seed (photon i draws from its
-// own stream, the tallies are integers).
-Tallies trace_photons(const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
-                      const Similarity& similar, const LaunchRect& rect, const LightVolumeSettings& settings,
-                      const Handover& handover, tbb::task_arena& arena, const std::stop_token& stop) {
-  const double shortest = std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z});
-  const double widest = std::max({v.cell_m.x, v.cell_m.y, v.cell_m.z});
-  Tallies tallies;
-  tallies.quantum = 1e-9 * shortest;
-  const std::size_t n_sum = g.cells() * kTallies, n_source = handover.on() ? g.cells() * 3 : 0;
-  PathRng shift_rng(settings.seed, ~std::uint64_t{0});
-  const double shift_u = shift_rng.uniform(), shift_v = shift_rng.uniform();
-  const std::size_t threads = static_cast<std::size_t>(std::max(1, arena.max_concurrency()));
-  const bool shared = threads * (n_sum + n_source) * sizeof(std::int64_t) > kThreadTallyBytes;
+// Stage: the photons, on the arena's threads, a range of them per call; deterministic per seed
+// (photon i draws from its own stream, the tallies are integers), so photons traced over several
+// calls sum to the same tallies as in one.
+class PhotonTallies {
+ public:
+  PhotonTallies(const CellGrid& g, const LightVolume& v, bool source, const LightVolumeSettings& settings,
+                std::size_t threads, const std::stop_token& stop)
+      : n_sum_(g.cells() * kTallies), n_source_(source ? g.cells() * 3 : 0) {
+    quantum_ = 1e-9 * std::min({v.cell_m.x, v.cell_m.y, v.cell_m.z});
+    PathRng shift_rng(settings.seed, ~std::uint64_t{0});
+    shift_u_ = shift_rng.uniform();
+    shift_v_ = shift_rng.uniform();
+    shared_ = threads * (n_sum_ + n_source_) * sizeof(std::int64_t) > kThreadTallyBytes;
+    if (shared_) {
+      all_.sum = zeroed_polled(n_sum_, stop);
+      all_.source = zeroed_polled(n_source_, stop);
+    }
+  }
+
+  // Traces photons first..end - 1.
+  void trace(std::int64_t first_photon, std::int64_t end, const LightVolume& v, const CellGrid& g,
+             const std::vector<TracedCloud>& media, const Similarity& similar, const LaunchRect& rect,
+             const LightVolumeSettings& settings, const Handover& handover, tbb::task_arena& arena,
+             const std::stop_token& stop) {
+    const double widest = std::max({v.cell_m.x, v.cell_m.y, v.cell_m.z});
+    // Photons go a batch at a time, each batch in the order of their launch points along a Z curve
+    // over the rectangle (Morton 1966), so that a thread's photons in a row walk the same cells and
+    // find the tallies and the density in its cache. The set of photons is the same, so are the
+    // integer sums.
+    std::vector<std::uint32_t> order;
+    for (std::int64_t first = first_photon; first < end; first += kBatch) {
+      const std::int64_t count = std::min<std::int64_t>(kBatch, end - first);
+      spatial_order(first, count, shift_u_, shift_v_, order);
+      arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, count, 1024), [&](const tbb::blocked_range<std::int64_t>& r) {
+          const TallySink sink = sink_of_this_thread(stop);
+          std::vector<Span> spans;
+          for (std::int64_t i = r.begin(); i < r.end(); ++i) {
+            // Every 1024 photons (cancel.hpp): the auto partitioner hands a task many grains of
+            // 1024 at once, so a poll per task could wait for seconds.
+            if (((i - r.begin()) & 1023) == 0) throw_if_stopped(stop);
+            trace_photon(first + order[static_cast<std::size_t>(i)], sink, v, g, media, similar, rect, shift_u_,
+                         shift_v_, widest, settings, handover, spans);
+          }
+        });
+      });
+    }
+  }
+
+  // The sums of every thread's tallies. Integer sums: the same whatever thread tallied what.
+  // `consume`: no more photons follow, and the first thread's arrays become the sums (no third
+  // zeroed copy); otherwise a copy.
+  Tallies sums(bool consume, const std::stop_token& stop) {
+    Tallies out;
+    out.quantum = quantum_;
+    if (shared_) {
+      out.sum = consume ? std::move(all_.sum) : all_.sum;
+      out.source = consume ? std::move(all_.source) : all_.source;
+      return out;
+    }
+    for (Own& mine : own_) {
+      if (mine.sum.empty()) continue;
+      if (out.sum.empty()) {
+        out.sum = consume ? std::move(mine.sum) : mine.sum;
+        out.source = consume ? std::move(mine.source) : mine.source;
+        continue;
+      }
+      add_polled(out.sum, mine.sum, stop);
+      add_polled(out.source, mine.source, stop);
+    }
+    if (out.sum.empty()) {  // no photon was traced
+      out.sum = zeroed_polled(n_sum_, stop);
+      out.source = zeroed_polled(n_source_, stop);
+    }
+    return out;
+  }
+
+ private:
   struct Own {
     std::vector<std::int64_t> sum, source;
   };
-  tbb::enumerable_thread_specific<Own> own;
-  if (shared) {
-    tallies.sum = zeroed_polled(n_sum, stop);
-    tallies.source = zeroed_polled(n_source, stop);
-  }
-  // Photons go a batch at a time, each batch in the order of their launch points along a Z curve
-  // over the rectangle (Morton 1966), so that a thread's photons in a row walk the same cells and
-  // find the tallies and the density in its cache. The set of photons is the same, so are the
-  // integer sums.
-  std::vector<std::uint32_t> order;
-  for (std::int64_t first = 0; first < settings.photons; first += kBatch) {
-    const std::int64_t count = std::min<std::int64_t>(kBatch, settings.photons - first);
-    spatial_order(first, count, shift_u, shift_v, order);
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, count, 1024),
-                        [&](const tbb::blocked_range<std::int64_t>& r) {
-                          TallySink sink{tallies.sum.data(), tallies.source.data(), true, 1.0 / tallies.quantum};
-                          if (!shared) {
-                            Own& mine = own.local();
-                            if (mine.sum.empty()) {
-                              mine.sum = zeroed_polled(n_sum, stop);
-                              mine.source = zeroed_polled(n_source, stop);
-                            }
-                            sink = TallySink{mine.sum.data(), mine.source.data(), false, 1.0 / tallies.quantum};
-                          }
-                          std::vector<Span> spans;
-                          for (std::int64_t i = r.begin(); i < r.end(); ++i) {
-                            // Every 1024 photons (cancel.hpp): the auto partitioner hands a task many
-                            // grains of 1024 at once, so a poll per task could wait for seconds.
-                            if (((i - r.begin()) & 1023) == 0) throw_if_stopped(stop);
-                            trace_photon(first + order[static_cast<std::size_t>(i)], sink, v, g, media, similar, rect,
-                                         shift_u, shift_v, widest, settings, handover, spans);
-                          }
-                        });
-    });
-  }
-  if (shared) return tallies;
-  // Integer sums: the same whatever thread tallied what. The first thread's arrays become the
-  // sums (no third zeroed copy), the others are added to them.
-  for (Own& mine : own) {
-    if (mine.sum.empty()) continue;
-    if (tallies.sum.empty()) {
-      tallies.sum = std::move(mine.sum);
-      tallies.source = std::move(mine.source);
-      continue;
+  TallySink sink_of_this_thread(const std::stop_token& stop) {
+    if (shared_) return TallySink{all_.sum.data(), all_.source.data(), true, 1.0 / quantum_};
+    Own& mine = own_.local();
+    if (mine.sum.empty()) {
+      mine.sum = zeroed_polled(n_sum_, stop);
+      mine.source = zeroed_polled(n_source_, stop);
     }
-    add_polled(tallies.sum, mine.sum, stop);
-    add_polled(tallies.source, mine.source, stop);
+    return TallySink{mine.sum.data(), mine.source.data(), false, 1.0 / quantum_};
   }
-  if (tallies.sum.empty()) {  // no photon was traced
-    tallies.sum = zeroed_polled(n_sum, stop);
-    tallies.source = zeroed_polled(n_source, stop);
-  }
-  return tallies;
-}
+
+  std::size_t n_sum_ = 0, n_source_ = 0;
+  double quantum_ = 0.0;
+  double shift_u_ = 0.0, shift_v_ = 0.0;  // the launch sequence's shift (Cranley-Patterson)
+  // Each thread tallies into its own arrays (Own), unless they would take more than
+  // kThreadTallyBytes together; then every thread adds atomically into all_.
+  bool shared_ = false;
+  Own all_;
+  tbb::enumerable_thread_specific<Own> own_;
+};
 
 // Stage: each cell's covered part (light_volume_stages.hpp, Coverage), from kSubsamples^3 points.
 Coverage coverage_of(const LightVolume& v, const CellGrid& g, const std::vector<TracedCloud>& media,
@@ -592,62 +620,132 @@ void add_diffused_light(const CellGrid& g, LightVolume& v, const CellMedium& med
 
 }  // namespace
 
-LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
-                               const LightVolumeSettings& settings) {
+// Everything a build holds between its calls: the grid, the media, the launch rectangle, the
+// cells' coverage and medium, and the photons' tallies so far.
+struct LightVolumeBuild::State {
+  const std::vector<CloudVolume>* clouds = nullptr;
+  LightVolumeSettings settings;
+  LightVolume grid;
+  CellGrid g;
+  std::vector<TracedCloud> media;
+  LaunchRect rect;
+  std::unique_ptr<tbb::task_arena> arena;
+  Coverage coverage;
+  CellMedium medium;
+  Handover handover;
+  Similarity similar;
+  std::unique_ptr<PhotonTallies> tallies;
+  std::int64_t traced = 0;
+  double seconds = 0.0;  // spent on the build so far
+};
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+LightVolumeBuild::LightVolumeBuild(const std::vector<CloudVolume>& clouds, const Light& light,
+                                   const LightVolumeSettings& settings)
+    : s_(std::make_unique<State>()) {
   validate(light);
   if (light.kind != LightKind::Sun)
     throw std::invalid_argument("light volume light: photons come from the sun only; a lamp takes the octaves method of multiple scattering");
-  LightVolume v = light_volume_grid(clouds, settings);
+  State& s = *s_;
+  s.grid = light_volume_grid(clouds, settings);
+  const LightVolume& v = s.grid;
   if (light_volume_bytes(v) > kMaxBytes)
     throw std::length_error("light volume: " + std::to_string(v.size[0]) + "x" + std::to_string(v.size[1]) + "x" +
                             std::to_string(v.size[2]) + " cells would take " + std::to_string(light_volume_bytes(v) >> 20) +
                             " MiB, more than 2048");
   const auto start = std::chrono::steady_clock::now();
-  const CellGrid g{v.size[0], v.size[1], v.size[2]};
-  std::vector<TracedCloud> media = media_of(clouds);
-  const LaunchRect rect = launch_rect(v, light.direction_to_sun);
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  s.clouds = &clouds;
+  s.settings = settings;
+  s.g = CellGrid{v.size[0], v.size[1], v.size[2]};
+  s.media = media_of(clouds);
+  s.rect = launch_rect(v, light.direction_to_sun);
+  const int concurrency = settings.threads > 0 ? settings.threads : int{tbb::task_arena::automatic};
+  s.arena = std::make_unique<tbb::task_arena>(concurrency);
   const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)
 
-  const Coverage coverage = coverage_of(v, g, media, arena, stop);
+  s.coverage = coverage_of(v, s.g, s.media, *s.arena, stop);
   // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
   // Where photons fly in the similar media (similarity_depth > 0): the cells deep enough.
-  CellMedium medium;
   if (settings.diffusion_depth > 0.0 || settings.similarity_depth > 0.0)
-    arena.execute([&] { medium = cell_medium(v, g, clouds); });
-  Handover handover;
+    s.arena->execute([&] { s.medium = cell_medium(v, s.g, clouds); });
   if (settings.diffusion_depth > 0.0) {
-    handover.deep = cells_deeper_than(g, v.cell_m, medium, settings.diffusion_depth);
-    handover.medium = &medium;
+    s.handover.deep = cells_deeper_than(s.g, v.cell_m, s.medium, settings.diffusion_depth);
+    s.handover.medium = &s.medium;
   }
-  Similarity similar{similar_media(clouds), {}};
-  if (settings.similarity_depth > 0.0) similar.deep = cells_deeper_than(g, v.cell_m, medium, settings.similarity_depth);
-  const Tallies tallies = trace_photons(v, g, media, similar, rect, settings, handover, arena, stop);
+  s.similar = Similarity{similar_media(clouds), {}};
+  if (settings.similarity_depth > 0.0) s.similar.deep = cells_deeper_than(s.g, v.cell_m, s.medium, settings.similarity_depth);
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, s.arena->max_concurrency()));
+  s.tallies = std::make_unique<PhotonTallies>(s.g, v, s.handover.on(), settings, threads, stop);
+  s.seconds = seconds_since(start);
+}
+
+LightVolumeBuild::~LightVolumeBuild() = default;
+
+std::int64_t LightVolumeBuild::traced() const { return s_->traced; }
+std::int64_t LightVolumeBuild::photons() const { return s_->settings.photons; }
+
+std::int64_t LightVolumeBuild::trace(std::int64_t photons) {
+  if (photons < 1) throw std::invalid_argument("light volume build: photons to trace must be at least 1, got " + std::to_string(photons));
+  State& s = *s_;
+  const auto start = std::chrono::steady_clock::now();
+  const std::int64_t end = s.traced + std::min(photons, s.settings.photons - s.traced);
+  s.tallies->trace(s.traced, end, s.grid, s.g, s.media, s.similar, s.rect, s.settings, s.handover, *s.arena,
+                   current_stop_token());
+  s.traced = end;
+  s.seconds += seconds_since(start);
+  return s.traced;
+}
+
+LightVolume LightVolumeBuild::volume() const { return make_volume(false); }
+
+LightVolume LightVolumeBuild::make_volume(bool consume) const {
+  State& s = *s_;
+  if (s.traced < 1) throw std::logic_error("light volume build: no photon traced yet");
+  const auto start = std::chrono::steady_clock::now();
+  const std::stop_token stop = current_stop_token();
+  const CellGrid& g = s.g;
+  LightVolume v = s.grid;
+  v.photons = s.traced;
+  const Tallies tallies = s.tallies->sums(consume, stop);
   // Track length per volume (eq. MS-2): phi = (E A / N) sum(w l) / V, per unit irradiance E.
-  const double scale = rect.area_m2() / static_cast<double>(settings.photons) * tallies.quantum /
-                       (v.cell_m.x * v.cell_m.y * v.cell_m.z);
+  const double per_photon = s.rect.area_m2() / static_cast<double>(s.traced) / (v.cell_m.x * v.cell_m.y * v.cell_m.z);
   // The stages after the photons take up to tenths of a second each on a large grid: a poll
   // between them (cancel.hpp).
   throw_if_stopped(stop);
-  CellValues values = cell_values(g, tallies.sum, coverage.covered, scale);
+  CellValues values = cell_values(g, tallies.sum, s.coverage.covered, per_photon * tallies.quantum);
   throw_if_stopped(stop);
-  if (handover.on()) {
+  if (s.handover.on()) {
     // Source per unit volume: q = (E A / N) sum(w) / V, per unit irradiance E.
-    const double q_scale = rect.area_m2() / static_cast<double>(settings.photons) * kSourceQuantum /
-                           (v.cell_m.x * v.cell_m.y * v.cell_m.z);
-    arena.execute([&] { add_diffused_light(g, v, medium, tallies.source, q_scale, coverage, values, stop); });
+    s.arena->execute([&] {
+      add_diffused_light(g, v, s.medium, tallies.source, per_photon * kSourceQuantum, s.coverage, values, stop);
+    });
   }
   clamp_spikes(g, values);
   throw_if_stopped(stop);
   smooth_anisotropy(g, values);
   throw_if_stopped(stop);
-  std::vector<float> fit = linear_fits(g, values, coverage);
+  std::vector<float> fit = linear_fits(g, values, s.coverage);
   throw_if_stopped(stop);
   fill_empty_rings(g, values, fit);
   throw_if_stopped(stop);
-  pack_light_volume(values, std::move(fit), settings.fits, rect.l, v);
-  v.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pack_light_volume(values, std::move(fit), s.settings.fits, s.rect.l, v);
+  s.seconds += seconds_since(start);
+  v.build_seconds = s.seconds;
   return v;
+}
+
+LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
+                               const LightVolumeSettings& settings) {
+  LightVolumeBuild build(clouds, light, settings);
+  build.trace(settings.photons);
+  return build.make_volume(true);
 }
 
 }  // namespace nimbus::render

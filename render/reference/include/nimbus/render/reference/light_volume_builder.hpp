@@ -12,6 +12,8 @@
 // longer flights). Photons go in the order of their launch points along a Z curve, for the cache;
 // the sums do not change.
 #pragma once
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "nimbus/render/core/cloud_optics.hpp"
@@ -34,5 +36,36 @@ std::size_t light_volume_bytes(const LightVolume& grid);
 // std::length_error when the tallies would need more than 4 GiB.
 LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Light& light,
                                const LightVolumeSettings& settings);
+
+// The same volume built progressively: photons are traced a share at a time, and volume() after
+// any share is the volume of the photons traced so far on the final grid (fewer photons: more
+// photon noise, the same mean). After all settings.photons it is build_light_volume's, bit for
+// bit: the same photons make the same integer tallies however they are split. For a viewer: a
+// first volume from a few photons in a fraction of the time, refined while it is shown.
+// `clouds` must outlive the build. The constructor throws as build_light_volume; trace() and
+// volume() poll their calling thread's stop (cancel.hpp).
+class LightVolumeBuild {
+ public:
+  LightVolumeBuild(const std::vector<CloudVolume>& clouds, const Light& light, const LightVolumeSettings& settings);
+  ~LightVolumeBuild();
+  LightVolumeBuild(const LightVolumeBuild&) = delete;
+  LightVolumeBuild& operator=(const LightVolumeBuild&) = delete;
+
+  // Traces the next `photons` photons (those left, when fewer are); returns the photons traced
+  // in all. std::invalid_argument for a count < 1.
+  std::int64_t trace(std::int64_t photons);
+  std::int64_t traced() const;
+  std::int64_t photons() const;  // settings.photons: the whole build
+  bool done() const { return traced() >= photons(); }
+  // The volume of the photons traced so far (its `photons` says how many); build_seconds is the
+  // time spent on this build so far, this call included. std::logic_error before any photon.
+  LightVolume volume() const;
+
+ private:
+  friend LightVolume build_light_volume(const std::vector<CloudVolume>&, const Light&, const LightVolumeSettings&);
+  LightVolume make_volume(bool consume) const;
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 }  // namespace nimbus::render

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# A still's speed against its grain: README command 1's view (samples/views/first-picture.json)
-# at 1280x720, for each multiple-scattering method (the light volume, the octaves, single
+# A still's speed against its grain: a view state (VIEW, by default README command 1's,
+# samples/views/first-picture.json) at 1280x720, for each multiple-scattering method (the light volume, the octaves, single
 # scattering), rendered one frame without and with the grain filter and as the mean of 4 and 16
 # jittered frames, each against that method's converged picture (the mean of CONVERGED jittered
 # frames, unfiltered: from 32 frames on the filter is off). Prints one Markdown row per method and
 # setting: whole-process seconds (median of RUNS, the settings alternated) and the relative RMSE.
-#   usage: [METHODS="light-volume octaves single"] scripts/still_grain.sh OUT_DIR NIMBUS_BINARY [RUNS=3] [CONVERGED=64]
+# A converged picture already in OUT_DIR is taken as it is (another binary's rows against the same
+# anchor).
+#   usage: [VIEW=state.json] [METHODS="light-volume octaves single"] scripts/still_grain.sh OUT_DIR NIMBUS_BINARY [RUNS=3] [CONVERGED=64]
 set -euo pipefail
 out=$1
 bin=$2
@@ -22,7 +24,7 @@ settings=("--no-grain-filter" "" "--spp 4" "--spp 16")
 names=("1 frame, unfiltered" "1 frame, filtered (the default)" "mean of 4" "mean of 16")
 for method in ${METHODS:-light-volume octaves single}; do
   state="$out/$method.json"
-  /usr/bin/python3 - "$here/samples/views/first-picture.json" "$state" "${optics[$method]}" <<'PY'
+  /usr/bin/python3 - "${VIEW:-$here/samples/views/first-picture.json}" "$state" "${optics[$method]}" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
 s.setdefault("optics", {}).update(json.loads(sys.argv[3]))

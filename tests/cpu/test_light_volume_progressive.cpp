@@ -1,13 +1,16 @@
 // The light volume built progressively (light_volume_builder.hpp, LightVolumeBuild): after all its
 // photons, in any shares, it is build_light_volume's volume bit for bit, with the deep light
 // diffused too and whatever the threads; before, a volume of fewer photons on the same grid whose
-// distance to the full one shrinks as photon noise does; bad counts and an early volume refused.
+// distance to the full one shrinks as photon noise does; bad counts, an early volume and a build
+// whose trace was stopped part-way refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+#include <stop_token>
 #include <vector>
 
+#include "nimbus/base/cancel.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "slab_volume.hpp"
 
@@ -135,6 +138,23 @@ TEST(LightVolumeProgressive, RefusesNoPhotonsAndAVolumeBeforeAny) {
   LightVolumeSettings bad = small_settings(1 << 12);
   bad.photons = 0;
   EXPECT_THROW(LightVolumeBuild(clouds, overhead_sun(), bad), std::invalid_argument);
+}
+
+// A trace stopped part-way (cancel.hpp) leaves its share half-tallied: the build refuses to go on
+// or to give a volume of it, where a volume would mix photons it does not count.
+TEST(LightVolumeProgressive, AStoppedTraceEndsTheBuild) {
+  const std::vector<CloudVolume> clouds = small_slab();
+  LightVolumeBuild build(clouds, overhead_sun(), small_settings(1 << 14));
+  build.trace(1000);
+  {
+    std::stop_source source;
+    source.request_stop();
+    const StopScope scope(source.get_token());
+    EXPECT_THROW(build.trace(5000), Cancelled);
+  }
+  EXPECT_EQ(build.traced(), 1000);
+  EXPECT_THROW(build.volume(), std::logic_error);
+  EXPECT_THROW(build.trace(5000), std::logic_error);
 }
 
 }  // namespace

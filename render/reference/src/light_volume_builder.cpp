@@ -637,6 +637,10 @@ struct LightVolumeBuild::State {
   std::unique_ptr<PhotonTallies> tallies;
   std::int64_t traced = 0;
   double seconds = 0.0;  // spent on the build so far
+  bool broken = false;   // a trace ended part-way (stopped, or out of memory): its tallies hold part of a share
+  void check_whole() const {
+    if (broken) throw std::logic_error("light volume build: a trace of it ended part-way (stopped or failed); start a new build");
+  }
 };
 
 namespace {
@@ -694,10 +698,13 @@ std::int64_t LightVolumeBuild::photons() const { return s_->settings.photons; }
 std::int64_t LightVolumeBuild::trace(std::int64_t photons) {
   if (photons < 1) throw std::invalid_argument("light volume build: photons to trace must be at least 1, got " + std::to_string(photons));
   State& s = *s_;
+  s.check_whole();
   const auto start = std::chrono::steady_clock::now();
   const std::int64_t end = s.traced + std::min(photons, s.settings.photons - s.traced);
+  s.broken = true;
   s.tallies->trace(s.traced, end, s.grid, s.g, s.media, s.similar, s.rect, s.settings, s.handover, *s.arena,
                    current_stop_token());
+  s.broken = false;
   s.traced = end;
   s.seconds += seconds_since(start);
   return s.traced;
@@ -707,6 +714,7 @@ LightVolume LightVolumeBuild::volume() const { return make_volume(false); }
 
 LightVolume LightVolumeBuild::make_volume(bool consume) const {
   State& s = *s_;
+  s.check_whole();
   if (s.traced < 1) throw std::logic_error("light volume build: no photon traced yet");
   const auto start = std::chrono::steady_clock::now();
   const std::stop_token stop = current_stop_token();

@@ -43,7 +43,9 @@ LightVolume build_light_volume(const std::vector<CloudVolume>& clouds, const Lig
 // bit: the same photons make the same integer tallies however they are split. For a viewer: a
 // first volume from a few photons in a fraction of the time, refined while it is shown.
 // `clouds` must outlive the build. The constructor throws as build_light_volume; trace() and
-// volume() poll their calling thread's stop (cancel.hpp).
+// volume() poll their calling thread's stop (cancel.hpp). A trace that ends part-way (stopped,
+// or an exception) leaves its share half-tallied: the build then refuses more calls
+// (std::logic_error), and a new one starts over.
 class LightVolumeBuild {
  public:
   LightVolumeBuild(const std::vector<CloudVolume>& clouds, const Light& light, const LightVolumeSettings& settings);

@@ -428,7 +428,7 @@ void add_bench_look(CLI::App& bench, Action& action) {
                   "past their lobe orders, fly in the similar isotropic medium (0: the true phase everywhere)")
       ->capture_default_str();
   cmd->add_option("--ms-progressive", a->ms_progressive,
-                  "Comma-separated shares of the photons in (0, 1] traced before the light volume is taken, on the whole "
+                  "Comma-separated shares of the photons in [1/1024, 1] traced before the light volume is taken, on the whole "
                   "build's grid: a progressive build's early volume (1: the whole build)")
       ->capture_default_str();
   cmd->add_option("--lighting", a->lighting, "Comma-separated lightings to run: front-lit, back-lit")->capture_default_str();

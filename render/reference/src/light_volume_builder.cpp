@@ -623,7 +623,6 @@ void add_diffused_light(const CellGrid& g, LightVolume& v, const CellMedium& med
 // Everything a build holds between its calls: the grid, the media, the launch rectangle, the
 // cells' coverage and medium, and the photons' tallies so far.
 struct LightVolumeBuild::State {
-  const std::vector<CloudVolume>* clouds = nullptr;
   LightVolumeSettings settings;
   LightVolume grid;
   CellGrid g;
@@ -665,7 +664,6 @@ LightVolumeBuild::LightVolumeBuild(const std::vector<CloudVolume>& clouds, const
                             std::to_string(v.size[2]) + " cells would take " + std::to_string(light_volume_bytes(v) >> 20) +
                             " MiB, more than 2048");
   const auto start = std::chrono::steady_clock::now();
-  s.clouds = &clouds;
   s.settings = settings;
   s.g = CellGrid{v.size[0], v.size[1], v.size[2]};
   s.media = media_of(clouds);
@@ -710,9 +708,9 @@ std::int64_t LightVolumeBuild::trace(std::int64_t photons) {
   return s.traced;
 }
 
-LightVolume LightVolumeBuild::volume() const { return make_volume(false); }
+LightVolume LightVolumeBuild::volume() { return make_volume(false); }
 
-LightVolume LightVolumeBuild::make_volume(bool consume) const {
+LightVolume LightVolumeBuild::make_volume(bool consume) {
   State& s = *s_;
   s.check_whole();
   if (s.traced < 1) throw std::logic_error("light volume build: no photon traced yet");

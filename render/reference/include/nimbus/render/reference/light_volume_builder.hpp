@@ -60,12 +60,15 @@ class LightVolumeBuild {
   std::int64_t photons() const;  // settings.photons: the whole build
   bool done() const { return traced() >= photons(); }
   // The volume of the photons traced so far (its `photons` says how many); build_seconds is the
-  // time spent on this build so far, this call included. std::logic_error before any photon.
-  LightVolume volume() const;
+  // time spent on this build so far, this call included (so it adds to the build's time).
+  // std::logic_error before any photon.
+  LightVolume volume();
 
  private:
   friend LightVolume build_light_volume(const std::vector<CloudVolume>&, const Light&, const LightVolumeSettings&);
-  LightVolume make_volume(bool consume) const;
+  // `consume`: the tallies move into the volume, and the build is spent (build_light_volume's
+  // last call).
+  LightVolume make_volume(bool consume);
   struct State;
   std::unique_ptr<State> s_;
 };

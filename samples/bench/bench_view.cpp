@@ -286,7 +286,7 @@ int run_bench_view(const BenchViewArgs& a) {
                            Row{Path::Orbit, true, "orbit"}, Row{Path::Orbit, true, "orbit, temporal", false, true},
                            Row{Path::TimeLapse, true, "time-lapse"},
                            Row{Path::TimeLapse, true, "time-lapse, temporal", false, true},
-                           Row{Path::SunDrag, false, "sun drag"}}) {
+                           Row{Path::SunDrag, true, "sun drag", false, true}}) {
       if (!path_chosen(a.paths, row.name)) continue;
       if (row.path == Path::SunDrag && start.slices.multiple.method != render::MultipleScatteringMethod::LightVolume) continue;
       if (row.octaves && start.slices.multiple.method == render::MultipleScatteringMethod::Octaves) continue;

@@ -158,7 +158,10 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   // With the temporal frame, a running clock is motion too: the frames are drawn small and
   // accumulated, as while the camera moves.
   const bool clock_runs = !state_.paused && state_.speed != 0.0;
-  const bool animating = moved_ || (options_.temporal && clock_runs);
+  // A light still settling (a new sun's quick volume, an old one's, or the octaves standing in,
+  // on screen while the full volume is built) is motion too: a full-quality frame of it would be replaced when the full
+  // volume lands, and drawn small the new light shows a frame sooner.
+  const bool animating = moved_ || (options_.temporal && clock_runs) || light_settling_;
   render::FrameQuality quality = adaptive_.quality(state_.slices.slices);
   if (options_.temporal && animating && !still) {
     frame_ = draw_temporal(width, height, quality, r);
@@ -169,6 +172,8 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   r.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   adaptive_.update(animating, r.cpu_ms, now_s);
   moved_ = false;
+  light_settling_ = state_.slices.multiple.method == render::MultipleScatteringMethod::LightVolume &&
+                    r.info.multiple != "light volume";
   report_ = r;
   if (options_.frame_on_start && !framed_) {
     // Clouds nobody placed a camera for (files, presets): look at them from here on.

@@ -155,6 +155,7 @@ class Viewer {
                            FrameReport& r);
   FrameReport report_;
   bool fly_ = false, quit_ = false, moved_ = false, framed_ = false;
+  bool light_settling_ = false;  // the last frame's light volume was not the full one (a preview, stale, the octaves)
   int last_width_ = 0, last_height_ = 0;
   int failures_ = 0;
   std::string message_, shader_error_;

@@ -1,6 +1,7 @@
 // KeyframeWorker (render/sky/keyframe_worker.hpp), the background thread behind SkyKeyframes and
 // KeyframeLightVolumes: values are made for the keys wanted under the current context, a new
-// context drops the old values and discards one still being made, failures reach wait(), and
+// context drops the old values and discards one still being made (stopping it when it polls its
+// stop token), failures reach wait(), and
 // the values held are pruned to those nearest the frame. Synchronised with gates, never sleeps.
 #include <gtest/gtest.h>
 
@@ -8,11 +9,13 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <stop_token>
 #include <thread>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "nimbus/base/cancel.hpp"
 #include "nimbus/render/sky/keyframe_worker.hpp"
 
 namespace nimbus::render {
@@ -99,6 +102,52 @@ TEST(KeyframeWorker, ANewContextDropsTheOldValuesAndDiscardsOneInTheMaking) {
   // And back: context 1's values were dropped, so key 2 is made again under 1.
   EXPECT_EQ(w.wait(1, 2)->context, 1);
   EXPECT_EQ(w.get(2, 2), nullptr);
+}
+
+// A make() that polls its stop token (cancel.hpp) is stopped by a new context at once: it never
+// finishes on its own here, so the test ends only if the stop reaches it; the stop is no failure.
+TEST(KeyframeWorker, ANewContextStopsTheMakingThatPollsItsToken) {
+  std::promise<void> started_promise;
+  std::future<void> started = started_promise.get_future();
+  std::once_flag first;
+  std::atomic<bool> saw_stop{false};
+  Worker w("thing", [&](int64_t k, const int& c) {
+    if (c == 1) {
+      const std::stop_token stop = current_stop_token();
+      std::call_once(first, [&] { started_promise.set_value(); });
+      while (!stop.stop_requested()) std::this_thread::yield();
+      saw_stop = true;
+      throw_if_stopped(stop);
+    }
+    return Made{k, c};
+  });
+  w.want(1, {5}, 10, 4);
+  started.wait();
+  EXPECT_TRUE(w.stats().busy);
+  const auto v = w.wait(2, 5);  // a new context: context 1's making stops, then 2's is made
+  EXPECT_EQ(v->context, 2);
+  EXPECT_TRUE(saw_stop);
+  EXPECT_EQ(w.stats().stopped, 1);
+  EXPECT_EQ(w.stats().made, 1);
+  EXPECT_EQ(w.error(), "");
+}
+
+// The destructor stops a making that polls its token: this test would hang otherwise.
+TEST(KeyframeWorker, TheDestructorStopsTheMaking) {
+  std::promise<void> started_promise;
+  std::future<void> started = started_promise.get_future();
+  {
+    Worker w("thing", [&](int64_t k, const int& c) {
+      const std::stop_token stop = current_stop_token();
+      started_promise.set_value();
+      while (!stop.stop_requested()) std::this_thread::yield();
+      throw_if_stopped(stop);
+      return Made{k, c};
+    });
+    w.want(1, {5}, 10, 4);
+    started.wait();
+  }
+  SUCCEED();
 }
 
 TEST(KeyframeWorker, OnlyMakeableKeysAreMade) {

@@ -2,10 +2,12 @@
 // photons, in any shares, it is build_light_volume's volume bit for bit, with the deep light
 // diffused too and whatever the threads; before, a volume of fewer photons on the same grid whose
 // distance to the full one shrinks as photon noise does; bad counts, an early volume and a build
-// whose trace was stopped part-way refused.
+// whose trace was stopped part-way refused; builds for several suns from one setup each the
+// direct build's volume.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <stop_token>
 #include <vector>
@@ -80,6 +82,38 @@ TEST(LightVolumeProgressive, AllItsSharesMakeTheOneShotVolumeBitForBit) {
     EXPECT_TRUE(build.done());
     expect_same_volume(build.volume(), whole);
   }
+}
+
+// A setup (the grid, media and covered cells, whatever the sun) made once serves builds for any
+// sun: each is the volume built from the clouds directly, bit for bit, with the deep light
+// diffused too. Settings that need another grid or depth are refused.
+TEST(LightVolumeProgressive, ASetupServesEverySunBitForBit) {
+  const auto thick = std::make_shared<const std::vector<CloudVolume>>(
+      std::vector<CloudVolume>{slab(6.0, 16, 48, DualLobePhase{0.6, 0.0, 1.0}, 0.99)});
+  LightVolumeSettings s = small_settings(1 << 14);
+  s.diffusion_depth = 2.0;
+  const auto setup = std::make_shared<const LightVolumeSetup>(thick, s);
+  EXPECT_TRUE(setup->fits(s));
+  for (const glm::dvec3 to_sun : {glm::dvec3(0.0, 1.0, 0.0), glm::normalize(glm::dvec3(0.6, 0.5, -0.2))}) {
+    Light sun = overhead_sun();
+    sun.direction_to_sun = to_sun;
+    const LightVolume direct = build_light_volume(*thick, sun, s);
+    LightVolumeBuild build(setup, sun, s);
+    build.trace(s.photons);
+    expect_same_volume(build.volume(), direct);
+  }
+  LightVolumeSettings other_grid = s;
+  other_grid.resolution = 24;
+  EXPECT_FALSE(setup->fits(other_grid));
+  EXPECT_THROW(LightVolumeBuild(setup, overhead_sun(), other_grid), std::invalid_argument);
+  LightVolumeSettings other_depth = s;
+  other_depth.diffusion_depth = 3.0;
+  EXPECT_FALSE(setup->fits(other_depth));
+  LightVolumeSettings more_photons = s;  // the same grid (photons_per_cell does not refine it here)
+  more_photons.photons = 1 << 15;
+  EXPECT_TRUE(setup->fits(more_photons));
+  EXPECT_THROW(LightVolumeBuild(nullptr, overhead_sun(), s), std::invalid_argument);
+  EXPECT_THROW(LightVolumeSetup(nullptr, s), std::invalid_argument);
 }
 
 // With the light deeper than 2 transport mean free paths diffused: the diffusion's source tallies

@@ -137,16 +137,17 @@ bool SkyRenderer::update_light_volume(const ViewState& s, int64_t k, double blen
   light.settings = s.slices.multiple.light_volume;
   const int direction = s.speed >= 0.0 ? 1 : -1;
   // A new light (the sun dragged in the panel, new optics) gets a quick volume first, of a
-  // kPreviewShare-th of the photons, then its full one: the new sun's light is on screen after
-  // two quick builds, and the full volume replaces it when made (docs/viewer.md).
+  // kPreviewShare-th of the photons for keyframe k alone (drawn for the whole pair), then its
+  // full ones: the new sun's light is on screen after one quick build, and the full volumes
+  // replace it when made (docs/viewer.md).
   KeyframeLight preview = light;
   preview.settings.photons = std::max<std::int64_t>(kPreviewMinPhotons, light.settings.photons / kPreviewShare);
   shown_preview_ = false;
   if (!wait && preview.settings.photons < light.settings.photons && !(preview_of_ && *preview_of_ == light)) {
-    volumes_->request(preview, k, direction);
-    const std::shared_ptr<const LightVolume> pa = volumes_->get(preview, k), pb = volumes_->get(preview, k + 1);
-    if (!pa || !pb) return shown_a_ != nullptr;  // the last one shown, if any, until the preview is made
-    show_light_volume(pa, pb, blend, 0.0);
+    volumes_->request(preview, k, direction, 1);
+    const std::shared_ptr<const LightVolume> pa = volumes_->get(preview, k);
+    if (!pa) return shown_a_ != nullptr;  // the last one shown, if any, until the preview is made
+    show_light_volume(pa, pa, 0.0, 0.0);
     preview_of_ = light;
     shown_preview_ = true;
     return true;

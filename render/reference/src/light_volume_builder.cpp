@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <iterator>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -620,19 +621,99 @@ void add_diffused_light(const CellGrid& g, LightVolume& v, const CellMedium& med
 
 }  // namespace
 
-// Everything a build holds between its calls: the grid, the media, the launch rectangle, the
-// cells' coverage and medium, and the photons' tallies so far.
-struct LightVolumeBuild::State {
-  LightVolumeSettings settings;
+// What a setup holds: the clouds (the media point into them), the grid, the media, the cells'
+// coverage and medium, and where photons hand over to diffusion or fly in the similar media.
+struct LightVolumeSetup::Data {
+  std::shared_ptr<const std::vector<CloudVolume>> clouds;  // may alias a caller's list without owning it
+  LightVolumeSettings settings;                            // those it was made for
   LightVolume grid;
   CellGrid g;
   std::vector<TracedCloud> media;
-  LaunchRect rect;
-  std::unique_ptr<tbb::task_arena> arena;
   Coverage coverage;
   CellMedium medium;
-  Handover handover;
+  Handover handover;  // its medium points at `medium`: a Data never moves (held by pointer)
   Similarity similar;
+  double seconds = 0.0;
+};
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string grid_text(const LightVolume& v) {
+  return std::to_string(v.size[0]) + "x" + std::to_string(v.size[1]) + "x" + std::to_string(v.size[2]);
+}
+
+}  // namespace
+
+LightVolumeSetup::LightVolumeSetup(std::shared_ptr<const std::vector<CloudVolume>> clouds, const LightVolumeSettings& settings)
+    : d_(std::make_unique<Data>()) {
+  if (!clouds) throw std::invalid_argument("light volume clouds: none given");
+  Data& d = *d_;
+  d.clouds = std::move(clouds);
+  d.settings = settings;
+  d.grid = light_volume_grid(*d.clouds, settings);
+  const LightVolume& v = d.grid;
+  if (light_volume_bytes(v) > kMaxBytes)
+    throw std::length_error("light volume: " + grid_text(v) + " cells would take " + std::to_string(light_volume_bytes(v) >> 20) +
+                            " MiB, more than 2048");
+  const auto start = std::chrono::steady_clock::now();
+  d.g = CellGrid{v.size[0], v.size[1], v.size[2]};
+  d.media = media_of(*d.clouds);
+  const int concurrency = settings.threads > 0 ? settings.threads : int{tbb::task_arena::automatic};
+  tbb::task_arena arena(concurrency);
+  const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)
+  d.coverage = coverage_of(v, d.g, d.media, arena, stop);
+  // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
+  // Where photons fly in the similar media (similarity_depth > 0): the cells deep enough.
+  if (settings.diffusion_depth > 0.0 || settings.similarity_depth > 0.0)
+    arena.execute([&] { d.medium = cell_medium(v, d.g, *d.clouds); });
+  if (settings.diffusion_depth > 0.0) {
+    d.handover.deep = cells_deeper_than(d.g, v.cell_m, d.medium, settings.diffusion_depth);
+    d.handover.medium = &d.medium;
+  }
+  d.similar = Similarity{similar_media(*d.clouds), {}};
+  if (settings.similarity_depth > 0.0) d.similar.deep = cells_deeper_than(d.g, v.cell_m, d.medium, settings.similarity_depth);
+  d.seconds = seconds_since(start);
+}
+
+LightVolumeSetup::~LightVolumeSetup() = default;
+const LightVolume& LightVolumeSetup::grid() const { return d_->grid; }
+double LightVolumeSetup::seconds() const { return d_->seconds; }
+
+bool LightVolumeSetup::fits(const LightVolumeSettings& settings) const {
+  const Data& d = *d_;
+  if (settings.diffusion_depth != d.settings.diffusion_depth || settings.similarity_depth != d.settings.similarity_depth)
+    return false;
+  const LightVolume grid = light_volume_grid(*d.clouds, settings);
+  return std::equal(std::begin(grid.size), std::end(grid.size), std::begin(d.grid.size)) && grid.world_min == d.grid.world_min && grid.cell_m == d.grid.cell_m;
+}
+
+// Everything a build holds between its calls: its setup (the grid, the media, the cells'
+// coverage and medium), the launch rectangle, and the photons' tallies so far.
+struct LightVolumeBuild::State {
+  explicit State(std::shared_ptr<const LightVolumeSetup> made)
+      : setup(std::move(made)),
+        grid(setup->d_->grid),
+        g(setup->d_->g),
+        media(setup->d_->media),
+        coverage(setup->d_->coverage),
+        medium(setup->d_->medium),
+        handover(setup->d_->handover),
+        similar(setup->d_->similar) {}
+  std::shared_ptr<const LightVolumeSetup> setup;
+  const LightVolume& grid;
+  const CellGrid& g;
+  const std::vector<TracedCloud>& media;
+  const Coverage& coverage;
+  const CellMedium& medium;
+  const Handover& handover;
+  const Similarity& similar;
+  LightVolumeSettings settings;
+  LaunchRect rect;
+  std::unique_ptr<tbb::task_arena> arena;
   std::unique_ptr<PhotonTallies> tallies;
   std::int64_t traced = 0;
   double seconds = 0.0;  // spent on the build so far
@@ -644,48 +725,44 @@ struct LightVolumeBuild::State {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// The light, checked: photons come from the sun only.
+const Light& sun_only(const Light& light) {
+  validate(light);
+  if (light.kind != LightKind::Sun)
+    throw std::invalid_argument("light volume light: photons come from the sun only; a lamp takes the octaves method of multiple scattering");
+  return light;
+}
+
+// A setup over a caller's list, without copying or owning it (the caller keeps it alive).
+std::shared_ptr<const LightVolumeSetup> borrowed_setup(const std::vector<CloudVolume>& clouds, const LightVolumeSettings& settings) {
+  return std::make_shared<const LightVolumeSetup>(std::shared_ptr<const std::vector<CloudVolume>>(std::shared_ptr<void>(), &clouds),
+                                                  settings);
 }
 
 }  // namespace
 
 LightVolumeBuild::LightVolumeBuild(const std::vector<CloudVolume>& clouds, const Light& light,
                                    const LightVolumeSettings& settings)
-    : s_(std::make_unique<State>()) {
-  validate(light);
-  if (light.kind != LightKind::Sun)
-    throw std::invalid_argument("light volume light: photons come from the sun only; a lamp takes the octaves method of multiple scattering");
+    : LightVolumeBuild((sun_only(light), borrowed_setup(clouds, settings)), light, settings) {}
+
+LightVolumeBuild::LightVolumeBuild(std::shared_ptr<const LightVolumeSetup> setup, const Light& light,
+                                   const LightVolumeSettings& settings) {
+  sun_only(light);
+  if (!setup) throw std::invalid_argument("light volume build: no setup given");
+  if (!setup->fits(settings))
+    throw std::invalid_argument("light volume build: its settings need another grid or depths than the setup's " +
+                                grid_text(setup->grid()) + " cells");
+  s_ = std::make_unique<State>(std::move(setup));
   State& s = *s_;
-  s.grid = light_volume_grid(clouds, settings);
-  const LightVolume& v = s.grid;
-  if (light_volume_bytes(v) > kMaxBytes)
-    throw std::length_error("light volume: " + std::to_string(v.size[0]) + "x" + std::to_string(v.size[1]) + "x" +
-                            std::to_string(v.size[2]) + " cells would take " + std::to_string(light_volume_bytes(v) >> 20) +
-                            " MiB, more than 2048");
   const auto start = std::chrono::steady_clock::now();
   s.settings = settings;
-  s.g = CellGrid{v.size[0], v.size[1], v.size[2]};
-  s.media = media_of(clouds);
-  s.rect = launch_rect(v, light.direction_to_sun);
+  s.rect = launch_rect(s.grid, light.direction_to_sun);
   const int concurrency = settings.threads > 0 ? settings.threads : int{tbb::task_arena::automatic};
   s.arena = std::make_unique<tbb::task_arena>(concurrency);
-  const std::stop_token stop = current_stop_token();  // this call's, taken on its own thread (cancel.hpp)
-
-  s.coverage = coverage_of(v, s.g, s.media, *s.arena, stop);
-  // Where light diffuses (diffusion_depth > 0): the cells deep inside, from the cells' mean optics.
-  // Where photons fly in the similar media (similarity_depth > 0): the cells deep enough.
-  if (settings.diffusion_depth > 0.0 || settings.similarity_depth > 0.0)
-    s.arena->execute([&] { s.medium = cell_medium(v, s.g, clouds); });
-  if (settings.diffusion_depth > 0.0) {
-    s.handover.deep = cells_deeper_than(s.g, v.cell_m, s.medium, settings.diffusion_depth);
-    s.handover.medium = &s.medium;
-  }
-  s.similar = Similarity{similar_media(clouds), {}};
-  if (settings.similarity_depth > 0.0) s.similar.deep = cells_deeper_than(s.g, v.cell_m, s.medium, settings.similarity_depth);
   const std::size_t threads = static_cast<std::size_t>(std::max(1, s.arena->max_concurrency()));
-  s.tallies = std::make_unique<PhotonTallies>(s.g, v, s.handover.on(), settings, threads, stop);
-  s.seconds = seconds_since(start);
+  s.tallies = std::make_unique<PhotonTallies>(s.g, s.grid, s.handover.on(), settings, threads, current_stop_token());
+  // The build's time includes its setup's, as when it was made for this build alone.
+  s.seconds = s.setup->seconds() + seconds_since(start);
 }
 
 LightVolumeBuild::~LightVolumeBuild() = default;

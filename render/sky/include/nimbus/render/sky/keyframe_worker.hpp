@@ -3,9 +3,11 @@
 // behind SkyKeyframes (the clouds' keyframes) and KeyframeLightVolumes (their light volumes).
 //
 // Every value is made under a context (a light, say; Context{} when there is none): setting a new
-// context drops the values made under the old one, and a value whose making began under an old
-// context is discarded when done. A failure stops the worker; its message is kept and rethrown by
-// wait().
+// context drops the values made under the old one, and the value being made under the old one
+// is stopped: make() runs under a stop token of its own (nimbus/base/cancel.hpp), which a new
+// context or the destructor stops, so a long make() that polls it ends at once (throwing
+// Cancelled, which is no failure) and the worker turns to the new context's keys. A failure stops
+// the worker; its message is kept and rethrown by wait().
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -17,16 +19,20 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stop_token>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
+#include "nimbus/base/cancel.hpp"
+
 namespace nimbus::render {
 
 struct KeyframeWorkerStats {
   int64_t made = 0;          // values made (all contexts)
+  int64_t stopped = 0;       // makings stopped by a new context before they were done
   double seconds_total = 0;  // making them, all
   double seconds_last = 0;   // the last one
   bool busy = false;         // making one now
@@ -51,11 +57,13 @@ class KeyframeWorker {
       : what_(std::move(what)), make_(std::move(make)), makeable_(std::move(makeable)) {
     worker_ = std::thread([this] { run(); });
   }
-  // Stops the worker after the value it is making (make() may poll stopping() to end sooner).
+  // Stops the worker: the value being made is stopped (a make() that polls its stop token ends
+  // at once; one that does not is waited for).
   ~KeyframeWorker() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stop_ = true;
+      making_.request_stop();
     }
     stopping_ = true;
     wake_.notify_all();
@@ -110,7 +118,7 @@ class KeyframeWorker {
     std::lock_guard<std::mutex> lock(mutex_);
     return stats_;
   }
-  // True once the destructor has begun: a long make() may stop early (by throwing).
+  // True once the destructor has begun.
   bool stopping() const { return stopping_; }
 
  private:
@@ -120,6 +128,7 @@ class KeyframeWorker {
     context_ = context;
     values_.clear();
     ++generation_;
+    making_.request_stop();  // what is being made under the old context is wasted: stop it
     return true;
   }
 
@@ -141,13 +150,20 @@ class KeyframeWorker {
       if (stop_ || !error_.empty()) return;
       const Context context = context_;
       const uint64_t generation = generation_;
+      making_ = std::stop_source();
+      const std::stop_token stop = making_.get_token();
       stats_.busy = true;
       lock.unlock();
       const auto start = std::chrono::steady_clock::now();
       Value made;
       std::string failure;
+      bool stopped = false;
       try {
+        const StopScope scope(stop);
         made = std::make_shared<const T>(make_(key, context));
+      } catch (const Cancelled& e) {
+        stopped = true;
+        failure = what_ + " " + std::to_string(key) + ": " + e.what();
       } catch (const std::exception& e) {
         failure = what_ + " " + std::to_string(key) + ": " + e.what();
       }
@@ -159,6 +175,8 @@ class KeyframeWorker {
         stats_.seconds_total += seconds;
         stats_.seconds_last = seconds;
         if (generation == generation_) values_[key] = made;  // else the context moved on while it was made
+      } else if (stopped && stop.stop_requested()) {
+        ++stats_.stopped;  // by a new context (or the destructor): not a failure
       } else if (!stop_) {
         error_ = failure;
       }
@@ -175,6 +193,7 @@ class KeyframeWorker {
   uint64_t generation_ = 0;
   std::map<int64_t, Value> values_;  // under context_
   std::vector<int64_t> wanted_;
+  std::stop_source making_;  // the stop of the value being made (under the lock)
   std::string error_;
   KeyframeWorkerStats stats_;
   bool stop_ = false;

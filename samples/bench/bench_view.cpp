@@ -17,6 +17,7 @@
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
 #include "bench_view_accumulated.hpp"
+#include "gl_limits.hpp"
 #include "nimbus/render/core/grain_filter.hpp"
 #include "nimbus/render/core/progressive_frame.hpp"
 #include "nimbus/render/core/image_resample.hpp"
@@ -80,8 +81,9 @@ struct PathResult {
   int stale = 0, stand_in = 0;    // frames drawn with an earlier light volume / the octaves standing in
   int64_t volumes = 0;            // light volumes made during the path
   double volume_s = 0.0;          // their build time
-  // GPU time per pass, per frame (timer queries where the driver has them: FrameStats), ms.
-  std::map<std::string, std::vector<double>> pass_ms;
+  // GPU time per pass, per frame (timer queries where the driver has them: FrameStats), ms, and
+  // fragment shader invocations (< 0: not counted).
+  std::map<std::string, std::vector<double>> pass_ms, pass_fragments;
   std::string timing;             // how the GPU times were taken
   int preview = 0;                // frames drawn with the new sun's quick volume
   // The sun drag: per drag, real ms from its last step to the first frame lit by a volume of the
@@ -97,7 +99,13 @@ const char* const kPasses[] = {"scene shadow maps", "scene surfaces", "shadow vo
 void add_pass_times(PathResult& r, const render::FrameStats& s) {
   const double t[] = {s.scene.shadow_maps_ms, s.scene.surfaces_ms, s.scene.shadow_volume_ms, s.scene.shafts_ms,
                       s.clouds.light_ms,      s.clouds.slices_ms,  s.clouds.composite_ms,    s.scene.total_ms + s.clouds.total_ms};
-  for (std::size_t i = 0; i < std::size(kPasses); ++i) r.pass_ms[kPasses[i]].push_back(t[i]);
+  const double n[] = {s.scene.shadow_maps_fragments, s.scene.surfaces_fragments, s.scene.shadow_volume_fragments,
+                      s.scene.shafts_fragments,      s.clouds.light_fragments,  s.clouds.slices_fragments,
+                      s.clouds.composite_fragments,  -1.0};
+  for (std::size_t i = 0; i < std::size(kPasses); ++i) {
+    r.pass_ms[kPasses[i]].push_back(t[i]);
+    r.pass_fragments[kPasses[i]].push_back(n[i]);
+  }
   if (r.timing.empty()) r.timing = s.clouds.timing.empty() ? s.scene.timing : s.clouds.timing;
 }
 
@@ -226,6 +234,48 @@ void print_still_view(const render::ViewState& start, const viewer::ViewerOption
   }
 }
 
+// Each pass's time against the device's limit for its fragments (gl_limits.hpp, measured in the
+// same run at the same size): the slices and the light buffer blend every fragment, the other
+// passes write theirs. Rows: the median frame's fragments (millions), the time they would take
+// at the limit, and the pass's time as a multiple of it. A pass far above 1x spends its time in
+// its shader's own work (texture samples, arithmetic), not in filling pixels.
+template <class Rows>
+void print_pass_limits(const Rows& rows) {
+  if (rows.empty()) return;
+  bool counted = false;
+  for (const auto& row : rows)
+    for (const auto& [pass, fragments] : row.result.pass_fragments)
+      for (double f : fragments) counted = counted || f >= 0.0;
+  std::printf("\n## Each pass against the device's limit for its fragments (%s)\n\n", rows.front().limits.device.c_str());
+  if (!counted) {
+    std::printf("The driver does not count fragment shader invocations (GL_ARB_pipeline_statistics_query).\n");
+    return;
+  }
+  std::printf("Limits measured in this run (`nimbus bench gl`), M/s: ");
+  std::map<std::pair<int, int>, bool> shown;
+  for (const auto& row : rows) {
+    const GlLimits& l = row.limits;
+    if (shown[{l.width, l.height}]) continue;
+    shown[{l.width, l.height}] = true;
+    std::printf("%dx%d: %.0f shaded, %.0f blended, %.0f 3D samples, %.0f read back; ", l.width, l.height,
+                l.fragments_per_s * 1e-6, l.blended_per_s * 1e-6, l.samples_3d_per_s * 1e-6, l.readback_pixels_per_s * 1e-6);
+  }
+  std::printf("\n\n| size | path | quality | pass | median ms | fragments (M) | ms at the fill limit | multiple of the limit |\n");
+  std::printf("|---|---|---|---|---:|---:|---:|---:|\n");
+  for (const auto& row : rows) {
+    for (const char* pass : kPasses) {
+      const auto it = row.result.pass_fragments.find(pass);
+      if (it == row.result.pass_fragments.end()) continue;
+      const double fragments = percentile(it->second, 0.5), ms = percentile(row.result.pass_ms.at(pass), 0.5);
+      if (!(fragments > 0.0)) continue;
+      const bool blends = std::string(pass) == "cloud slices" || std::string(pass) == "cloud light";
+      const double limit_ms = 1e3 * fragments / (blends ? row.limits.blended_per_s : row.limits.fragments_per_s);
+      std::printf("| %s | %s | %.1f | %.2f | %.2f | %.1fx |\n", row.name.c_str(), pass, ms, fragments * 1e-6, limit_ms,
+                  ms / std::max(limit_ms, 1e-9));
+    }
+  }
+}
+
 int run_bench_view(const BenchViewArgs& a) {
   std::vector<std::pair<int, int>> sizes;
   {
@@ -272,9 +322,12 @@ int run_bench_view(const BenchViewArgs& a) {
   struct PassRow {
     std::string name;
     PathResult result;
+    GlLimits limits;
   };
   std::vector<PassRow> pass_rows;
+  std::map<std::pair<int, int>, GlLimits> limits;  // the device's rates at each size, this run
   for (const auto& [w, h] : sizes) {
+    limits[{w, h}] = measure_gl_limits(w, h);
     struct Row {
       Path path;
       bool adaptive;
@@ -329,7 +382,7 @@ int run_bench_view(const BenchViewArgs& a) {
                     row.name, percentile(r.temporal_ms, 0.5));
       char name[96];
       std::snprintf(name, sizeof name, "%dx%d | %s | %s", w, h, row.name, row.adaptive ? "adaptive" : "full (anchor)");
-      pass_rows.push_back({name, r});
+      pass_rows.push_back({name, r, limits.at({w, h})});
     }
   }
   // Where the GPU's time goes, pass by pass: what a faster device changes.
@@ -345,6 +398,7 @@ int run_bench_view(const BenchViewArgs& a) {
     for (const char* p : kPasses) std::printf(" %.1f |", percentile(row.result.pass_ms.at(p), 0.5));
     std::printf("\n");
   }
+  print_pass_limits(pass_rows);
   // Every level on one still state: what it costs and what it gives up.
   std::printf("\n## The adaptive quality's levels on the default view (time paused; best of 3 frames)\n\n");
   std::printf("| size | level | render scale | slices | frame ms | speed-up | rel. RMSE vs full quality |\n");

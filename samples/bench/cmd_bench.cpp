@@ -12,6 +12,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   add_bench_airlight(*bench, action);
   add_bench_clouds(*bench, action);
   add_bench_view(*bench, action);
+  add_bench_gl(*bench, action);
   add_bench_look(*bench, action);
   add_bench_sky(*bench, action);
 }

@@ -42,6 +42,7 @@ void add_bench_shafts(CLI::App& bench, Action& action);
 void add_bench_airlight(CLI::App& bench, Action& action);
 void add_bench_clouds(CLI::App& bench, Action& action);
 void add_bench_view(CLI::App& bench, Action& action);
+void add_bench_gl(CLI::App& bench, Action& action);
 void add_bench_look(CLI::App& bench, Action& action);
 void add_bench_sky(CLI::App& bench, Action& action);
 

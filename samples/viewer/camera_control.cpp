@@ -67,4 +67,21 @@ CameraPose fly_move(const CameraPose& p, const glm::dvec3& move, double speed, d
   return {p.eye + step, p.look_at + step};
 }
 
+CameraPose keep_eye_above(const CameraPose& p, double min_y) {
+  if (!(p.eye.y < min_y)) return p;
+  const glm::dvec3 offset = p.eye - p.look_at;
+  const double r = glm::length(offset);
+  if (p.look_at.y > min_y && r > 0.0) {
+    // look_at.y + r sin(pitch) = min_y, a pitch in (-90, 0) degrees.
+    double yaw = 0, pitch = 0;
+    angles(offset, yaw, pitch);
+    pitch = std::asin(std::clamp((min_y - p.look_at.y) / r, -1.0, 1.0));
+    CameraPose out{p.look_at + r * direction(yaw, pitch), p.look_at};
+    out.eye.y = std::max(out.eye.y, min_y);  // not a rounding error under it
+    return out;
+  }
+  const glm::dvec3 rise(0.0, min_y - p.eye.y, 0.0);
+  return {p.eye + rise, p.look_at + rise};
+}
+
 }  // namespace nimbus::viewer

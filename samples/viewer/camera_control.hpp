@@ -24,5 +24,10 @@ CameraPose zoom(const CameraPose& pose, double notches);
 // up, forward: each -1, 0 or 1) carries eye and target at speed_m_s for dt_s.
 CameraPose fly_look(const CameraPose& pose, double dx_px, double dy_px);
 CameraPose fly_move(const CameraPose& pose, const glm::dvec3& move, double speed_m_s, double dt_s);
+// The pose with its eye at least min_eye_y high (render y, up): a tumble that would take the eye
+// under the ground stops on it (the eye slides up its sphere about the target, keeping its
+// distance and heading); where the target is that low too (a pan, a flight) eye and target rise
+// together. A pose already high enough is returned as it is.
+CameraPose keep_eye_above(const CameraPose& pose, double min_eye_y);
 
 }  // namespace nimbus::viewer

@@ -120,6 +120,17 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
       el = std::max(sun.elevation_deg, volume::kSunElevationRangeDeg.lo);
       az = sun.azimuth_deg;
       moved = true;
+    } else if (moved) {
+      // The time of day follows a sun set by its elevation and azimuth: the nearest time on this
+      // day's path, and how far off the path that sun is.
+      const app::SunTime t = app::nearest_sun_time({el, az}, panel.latitude_deg, panel.day_of_year);
+      panel.hour = t.hour;
+      panel.off_path_deg = t.off_path_deg;
+    }
+    if (day_moved) panel.off_path_deg = 0.0;
+    if (panel.off_path_deg > 0.5) {
+      ImGui::TextDisabled("sun %.0f deg off this day's path", panel.off_path_deg);
+      tip("the elevation and azimuth set a sun this latitude and day never have; the time shown is the nearest one");
     }
     if (moved) viewer.set_sun(el, az);
   }

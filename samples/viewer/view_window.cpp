@@ -132,6 +132,12 @@ int run_interactive(Window& window, Viewer& viewer) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
   PanelState panel;
+  {  // the time of day of the state's sun, not a fixed hour
+    const app::SunTime t = app::nearest_sun_time({viewer.state().sky.sun_elevation_deg, viewer.state().sky.sun_azimuth_deg},
+                                                 panel.latitude_deg, panel.day_of_year);
+    panel.hour = t.hour;
+    panel.off_path_deg = t.off_path_deg;
+  }
   ImGui::StyleColorsDark();
   ImGui_ImplGlfw_InitForOpenGL(w, true);
   ImGui_ImplOpenGL3_Init("#version 450 core");

@@ -41,6 +41,7 @@ struct PanelState {
   double hour = 15.0;  // the time-of-day control (app/sun_path.hpp), local solar time
   double latitude_deg = app::kDefaultLatitudeDeg;
   double day_of_year = app::kDefaultDayOfYear;
+  double off_path_deg = 0.0;  // how far the sun set by elevation and azimuth is from the day's path
   volume::Sky edit;
   bool editing = false;
 };

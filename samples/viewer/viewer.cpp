@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "nimbus/render/core/cloud_framing.hpp"
+#include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/gl/shader_source.hpp"
 #include "nimbus/render/image/image_io.hpp"
@@ -36,7 +37,20 @@ Viewer::Viewer(render::ViewState state, ViewerOptions options)
   display_ = std::make_unique<Display>();
 }
 
-void Viewer::set_pose(const CameraPose& p) {
+std::optional<double> Viewer::lowest_eye_y() {
+  if (state_.scene == "none") return std::nullopt;
+  if (ground_of_ != state_.scene) {
+    ground_of_ = state_.scene;
+    const render::Scene scene = render::make_scene(state_.scene);
+    ground_y_ = scene.ground ? std::optional<double>(scene.ground->height_m + kEyeOverGround_m) : std::nullopt;
+  }
+  return ground_y_;
+}
+
+void Viewer::set_pose(const CameraPose& moved) {
+  // Over a scene with ground, no move takes the eye under it (camera_control.hpp).
+  const std::optional<double> lowest = lowest_eye_y();
+  const CameraPose p = lowest ? keep_eye_above(moved, *lowest) : moved;
   if (p.eye == state_.camera.eye && p.look_at == state_.camera.look_at) return;
   state_.camera.eye = p.eye;
   state_.camera.look_at = p.look_at;

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include "nimbus/render/image/image_io.hpp"
@@ -210,6 +211,28 @@ TEST(Viewer, ScreenshotEqualsRenderOfItsViewState) {
   const json saved = json::parse(in);
   EXPECT_EQ(meta["camera"], saved["camera"]);
   EXPECT_EQ(meta["time"]["sky"], saved["time"]["sky"]);
+}
+
+// A tumble that would take the eye under the ground (a drag of 300 pixels down pitches 90
+// degrees about a target 1.4 km up and 4.4 km away: 3 km under it) stops on the ground: the eye
+// 2 m up, as far from the target as before, the target where it was.
+TEST(Viewer, ATumbleNeverTakesTheEyeUnderTheGround) {
+  NIMBUS_REQUIRE_GL();
+  Dir d("ground");
+  const json state = small_state();
+  const json script = {{"size", {96, 54}}, {"frames", 2}, {"dt", 0.1},
+                       {"events", {{{"frame", 1}, {"drag", {30, -300}}, {"button", "left"}}}}};
+  const test::RunResult r = view(d, script, &state, "--state-out " + d / "last.json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(d / "last.json");
+  const json saved = json::parse(in);
+  const glm::dvec3 eye(saved["camera"]["eye"][0], saved["camera"]["eye"][1], saved["camera"]["eye"][2]);
+  const glm::dvec3 at(saved["camera"]["look_at"][0], saved["camera"]["look_at"][1], saved["camera"]["look_at"][2]);
+  // The state's camera was version 1 (y up): the saved one is z up.
+  const glm::dvec3 at_before(300.0, 0.0, 1400.0);
+  EXPECT_NEAR(eye.z, 2.0, 1e-6);
+  EXPECT_NEAR(glm::length(at - at_before), 0.0, 1e-6);
+  EXPECT_NEAR(glm::length(eye - at), glm::length(glm::dvec3(-600.0, -1100.0, 4200.0)), 1e-6);
 }
 
 // A still view refines: a paused script with "samples": 4 draws samples 0 to 3 and then nothing

@@ -301,6 +301,9 @@ CloudFrameStats frame_stats(GpuTimer& timer, int slices_drawn, const SliceAxis& 
   st.light_ms = timer.ms(kLight);
   st.slices_ms = timer.ms(kEye);
   st.composite_ms = timer.ms(kComposite);
+  st.light_fragments = timer.fragments(kLight);
+  st.slices_fragments = timer.fragments(kEye);
+  st.composite_fragments = timer.fragments(kComposite);
   st.total_ms = timer.total_ms();
   st.timing = timer.method() + " per pass";
   st.slices_drawn = slices_drawn;

@@ -6,8 +6,9 @@
 namespace nimbus::render {
 
 GpuTimer::GpuTimer(int slots, bool enabled, Clock clock)
-    : enabled_(enabled), ms_(static_cast<std::size_t>(slots > 0 ? slots : 0), 0.0) {
+    : enabled_(enabled), ms_(static_cast<std::size_t>(slots > 0 ? slots : 0), 0.0), fragments_(ms_.size(), 0.0) {
   if (!enabled_) return;
+  counts_ = epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query");
   GLint bits = 0;
   glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -22,6 +23,12 @@ void GpuTimer::finish() {
     ms_.at(static_cast<std::size_t>(slot)) += static_cast<double>(ns) * 1e-6;
   }
   pending_.clear();
+  for (const auto& [slot, query] : counting_) {
+    GLuint64 n = 0;
+    glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &n);
+    fragments_.at(static_cast<std::size_t>(slot)) += static_cast<double>(n);
+  }
+  counting_.clear();
 }
 
 double GpuTimer::total_ms() const {

@@ -242,6 +242,10 @@ ShaftFrameStats frame_stats(GpuTimer& timer, ShaftFrameStats st) {
   st.surfaces_ms = timer.ms(kSurfaces);
   st.shadow_volume_ms = timer.ms(kShadowVolume);
   st.shafts_ms = timer.ms(kShafts);
+  st.shadow_maps_fragments = timer.fragments(kShadowMaps);
+  st.surfaces_fragments = timer.fragments(kSurfaces);
+  st.shadow_volume_fragments = timer.fragments(kShadowVolume);
+  st.shafts_fragments = timer.fragments(kShafts);
   st.total_ms = timer.total_ms();
   st.timing = timer.method();
   return st;

@@ -2,6 +2,8 @@
 #include "nimbus/app/sun_path.hpp"
 
 #include <cmath>
+
+#include <glm/glm.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +35,42 @@ SunPosition sun_at(double hour, double latitude_deg, double day_of_year) {
   s.azimuth_deg = az < 0.0 ? az + 360.0 : az;
   if (s.azimuth_deg >= 360.0) s.azimuth_deg = 0.0;
   return s;
+}
+
+namespace {
+
+// Unit vector (east, north, up) of a sun.
+glm::dvec3 sun_vector(const SunPosition& p) {
+  const double el = glm::radians(p.elevation_deg), az = glm::radians(p.azimuth_deg);
+  return {std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)};
+}
+
+double angle_deg(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));  // stable near 0 and 180
+}
+
+}  // namespace
+
+SunTime nearest_sun_time(const SunPosition& sun, double latitude_deg, double day_of_year) {
+  const glm::dvec3 want = sun_vector(sun);
+  const auto off = [&](double hour) { return angle_deg(want, sun_vector(sun_at(hour, latitude_deg, day_of_year))); };
+  SunTime best{0.0, off(0.0)};
+  for (int step = 1; step < 144; ++step) {  // every 10 minutes
+    const double h = step / 6.0, d = off(h);
+    if (d < best.off_path_deg) best = {h, d};
+  }
+  // Refine by golden-section search over the 20 minutes about it, to within a minute.
+  double lo = best.hour - 1.0 / 6.0, hi = best.hour + 1.0 / 6.0;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  while (hi - lo > 1.0 / 120.0) {
+    const double a = hi - phi * (hi - lo), b = lo + phi * (hi - lo);
+    if (off(a) < off(b)) hi = b;
+    else lo = a;
+  }
+  const double h = 0.5 * (lo + hi), d = off(h);
+  if (d < best.off_path_deg) best = {h, d};
+  best.hour = std::fmod(best.hour + 24.0, 24.0);
+  return best;
 }
 
 }  // namespace nimbus::app

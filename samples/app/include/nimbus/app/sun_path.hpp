@@ -38,4 +38,15 @@ double solar_declination_deg(double day_of_year);
 // [-90, 90].
 SunPosition sun_at(double hour, double latitude_deg = kDefaultLatitudeDeg, double day_of_year = kDefaultDayOfYear);
 
+// The time of day whose sun (sun_at, at this latitude and day) is nearest a sun set by its
+// elevation and azimuth, and how far that sun is from it, degrees: the viewer's time-of-day
+// control follows the elevation and azimuth controls with it, and says when a sun they set is off
+// the day's path. The nearest within a minute of time (a sweep of 10-minute steps, refined).
+struct SunTime {
+  double hour = 12.0;           // [0, 24)
+  double off_path_deg = 0.0;    // angle between the given sun and that hour's
+};
+SunTime nearest_sun_time(const SunPosition& sun, double latitude_deg = kDefaultLatitudeDeg,
+                         double day_of_year = kDefaultDayOfYear);
+
 }  // namespace nimbus::app

@@ -25,6 +25,8 @@ namespace nimbus::render {
 
 struct CloudFrameStats {
   double light_ms = 0, slices_ms = 0, composite_ms = 0, total_ms = 0;  // GPU time per pass
+  // Fragment shader invocations per pass (GpuTimer::fragments); -1 where the driver does not count.
+  double light_fragments = -1, slices_fragments = -1, composite_fragments = -1;
   int slices_drawn = 0;           // over every light's pass
   int light_passes = 0;           // lights drawn (one slicing pass each)
   bool front_to_back = false;    // the eye composites under (light behind the viewer)

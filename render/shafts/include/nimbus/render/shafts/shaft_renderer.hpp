@@ -32,6 +32,8 @@ struct ShaftSettings {
 // Per-frame costs (GPU time per pass, ms) and what the shadow-volume pass built.
 struct ShaftFrameStats {
   double shadow_maps_ms = 0, surfaces_ms = 0, shadow_volume_ms = 0, shafts_ms = 0, total_ms = 0;
+  // Fragment shader invocations per pass (GpuTimer::fragments); -1 where the driver does not count.
+  double shadow_maps_fragments = -1, surfaces_fragments = -1, shadow_volume_fragments = -1, shafts_fragments = -1;
   std::size_t skirt_quads = 0;   // summed over lights
   bool skirt_overflow = false;   // a light's skirts exceeded max_skirt_quads
   std::string timing;            // how the times were taken

@@ -169,7 +169,11 @@ PathResult run_path(viewer::Viewer& v, Path path, int w, int h, int frames, bool
     }
     r.stand_in += v.state().slices.multiple.method == render::MultipleScatteringMethod::LightVolume && rep.info.multiple == "octaves";
     if (busy || v.keyframes().stats().made != made) r.longest_generating = std::max(r.longest_generating, rep.cpu_ms);
-    if (adaptive && error_every > 0 && f % error_every == 0) {
+    // Not while the sun is dragged or its light awaited: the full-quality frame, drawn by the same
+    // renderer, waits for the sun's full volumes, which would then be on screen sooner than the
+    // viewer alone makes them.
+    const bool awaiting_sun = path == Path::SunDrag && (f % kDragCycle < kDragSteps || drag_end >= 0.0);
+    if (adaptive && error_every > 0 && f % error_every == 0 && !awaiting_sun) {
       // Outside the clock: the viewer does not see the time this takes.
       const render::Image full = v.full_quality_frame(w, h);
       r.errors.push_back(render::compare_images(render::upscale_bilinear(v.frame(), w, h), full).rel_rmse);
@@ -190,7 +194,9 @@ std::string levels_text(const std::map<int, int>& levels, bool temporal) {
   for (const auto& [l, n] : levels) {
     const viewer::QualityLevel& q = (temporal ? viewer::kTemporalQualityLevels : viewer::kQualityLevels)[l];
     if (o.tellp() > 0) o << ", ";
-    o << "x" << q.render_scale << "/" << q.slice_share << ": " << n;
+    o << "x" << q.render_scale << "/" << q.slice_share;
+    if (q.light_share < 1.0) o << "/light " << q.light_share;
+    o << ": " << n;
   }
   return o.str();
 }
@@ -410,9 +416,7 @@ int run_bench_view(const BenchViewArgs& a) {
     const render::Image full = v.full_quality_frame(w, h);
     double full_ms = 0.0;
     for (int l = 0; l < viewer::kQualityLevelCount; ++l) {
-      render::FrameQuality q;
-      q.render_scale = viewer::kQualityLevels[l].render_scale;
-      q.slices = std::max(8, static_cast<int>(std::lround(start.slices.slices * viewer::kQualityLevels[l].slice_share)));
+      render::FrameQuality q = viewer::level_quality(viewer::kQualityLevels[l], start.slices.slices, start.slices.light_res);
       double best = 1e300;
       render::Image img;
       for (int rep = 0; rep < 3; ++rep) {

@@ -40,9 +40,7 @@ void print_accumulated_levels(const render::ViewState& start, const viewer::View
       mean.add(v.render_at(w, h, render::FrameQuality{1.0, 0, render::progressive_sample(static_cast<unsigned>(i))}), "still");
     for (int l = 0; l < viewer::kQualityLevelCount; ++l) {
       const viewer::QualityLevel& level = viewer::kTemporalQualityLevels[l];
-      render::FrameQuality q;
-      q.render_scale = level.render_scale;
-      q.slices = std::max(8, static_cast<int>(std::lround(start.slices.slices * level.slice_share)));
+      render::FrameQuality q = viewer::level_quality(level, start.slices.slices, start.slices.light_res);
       const render::Image one = render::upscale_bilinear(v.render_at(w, h, q), w, h);
       render::TemporalFrame accumulated;
       for (unsigned i = 1; i <= kAccumulated; ++i) {
@@ -66,8 +64,8 @@ void print_accumulated_motion(const render::ViewState& start, const std::vector<
   const viewer::QualityLevel& level = viewer::kTemporalQualityLevels[viewer::kQualityLevelCount - 1];
   constexpr int kFrames = 16;
   std::printf("\n## Accumulating while the camera turns (time paused; %d frames at %.2f of the pixels and %.2f of the "
-              "slices), against the last pose's still-view mean of %d samples\n\n",
-              kFrames, level.render_scale, level.slice_share, kConverged);
+              "slices, %.2f of the light buffer's side), against the last pose's still-view mean of %d samples\n\n",
+              kFrames, level.render_scale, level.slice_share, level.light_share, kConverged);
   std::printf("| size | degrees a frame | accumulated | the last frame alone |\n|---|---:|---:|---:|\n");
   for (const auto& [w, h] : sizes)
     for (const double deg : {0.0, 1.0, 1.8}) {
@@ -81,9 +79,7 @@ void print_accumulated_motion(const render::ViewState& start, const std::vector<
           const viewer::CameraPose p = viewer::tumble({s.camera.eye, s.camera.look_at}, deg / 0.3, 0.0);
           s.camera.eye = p.eye;
         }
-        render::FrameQuality q;
-        q.render_scale = level.render_scale;
-        q.slices = std::max(8, static_cast<int>(std::lround(start.slices.slices * level.slice_share)));
+        render::FrameQuality q = viewer::level_quality(level, start.slices.slices, start.slices.light_res);
         q.sample = {render::temporal_pixel_offset(i), i};
         render::PixelDepths depths;
         render::SkyFrameInfo info;

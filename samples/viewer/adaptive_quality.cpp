@@ -29,12 +29,16 @@ void AdaptiveQuality::update(bool moving, double frame_ms, double now_s) {
   }
 }
 
-render::FrameQuality AdaptiveQuality::quality(int full_slices) const {
-  const QualityLevel& q = level_values(level());
+render::FrameQuality level_quality(const QualityLevel& q, int full_slices, int full_light_res) {
   render::FrameQuality f;
   f.render_scale = q.render_scale;
   f.slices = std::max(8, static_cast<int>(std::lround(full_slices * q.slice_share)));
+  if (q.light_share < 1.0) f.light_res = std::max(16, static_cast<int>(std::lround(full_light_res * q.light_share)));
   return f;
+}
+
+render::FrameQuality AdaptiveQuality::quality(int full_slices, int full_light_res) const {
+  return level_quality(level_values(level()), full_slices, full_light_res);
 }
 
 }  // namespace nimbus::viewer

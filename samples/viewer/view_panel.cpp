@@ -50,6 +50,8 @@ std::string first_sentence(const std::string& text) {
 
 // Panel defaults: a quarter of the window's width, see-through, most sections closed.
 constexpr float kPanelShare = 0.25f;
+constexpr float kMinSliderWidth = 90.0f;        // pixels
+constexpr const char* kLongestLabel = "forward weight";  // the sliders' longest label
 constexpr float kPanelAlpha = 0.6f;
 
 // A shader that failed to reload: its error in a window of its own at the bottom, so the panel does not move.
@@ -73,8 +75,13 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
   shader_error_window(viewer.shader_error());
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(std::floor(display.x * kPanelShare), 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(160.0f, 60.0f), ImVec2(display.x, std::max(60.0f, display.y - 16.0f)));
+  // Wide enough for a slider and its longest label whole (a quarter of a 640-pixel window clipped
+  // them to "elevat"), never wider than the window.
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float label_w = ImGui::CalcTextSize(kLongestLabel).x + style.ItemInnerSpacing.x + 2.0f * style.WindowPadding.x;
+  const float min_w = std::min(display.x, label_w + kMinSliderWidth);
+  ImGui::SetNextWindowSize(ImVec2(std::max(min_w, std::floor(display.x * kPanelShare)), 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(min_w, 60.0f), ImVec2(display.x, std::max(60.0f, display.y - 16.0f)));
   ImGui::SetNextWindowBgAlpha(kPanelAlpha);
   // Collapsed (its arrow, or a double click on its title) it covers nothing: G then uses the whole view.
   const bool open = ImGui::Begin("nimbus");
@@ -83,7 +90,8 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     ImGui::End();
     return;
   }
-  ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f);  // the labels take the rest, clipped at the edge
+  // The sliders take what the longest label leaves.
+  ImGui::PushItemWidth(std::max(kMinSliderWidth, ImGui::GetWindowWidth() - label_w));
   // Two status lines that keep their place whatever they say.
   char status[160];
   if (r.temporal_frames > 0)
@@ -129,7 +137,9 @@ void draw_panel(Viewer& viewer, PanelState& panel) {
     }
     if (day_moved) panel.off_path_deg = 0.0;
     if (panel.off_path_deg > 0.5) {
-      ImGui::TextDisabled("sun %.0f deg off this day's path", panel.off_path_deg);
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+      ImGui::TextWrapped("sun %.0f deg off this day's path", panel.off_path_deg);  // whole at any width
+      ImGui::PopStyleColor();
       tip("the elevation and azimuth set a sun this latitude and day never have; the time shown is the nearest one");
     }
     if (moved) viewer.set_sun(el, az);

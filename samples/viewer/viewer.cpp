@@ -176,7 +176,7 @@ const render::Image& Viewer::draw(int width, int height, double now_s) {
   // on screen while the full volume is built) is motion too: a full-quality frame of it would be replaced when the full
   // volume lands, and drawn small the new light shows a frame sooner.
   const bool animating = moved_ || (options_.temporal && clock_runs) || light_settling_;
-  render::FrameQuality quality = adaptive_.quality(state_.slices.slices);
+  render::FrameQuality quality = adaptive_.quality(state_.slices.slices, state_.slices.light_res);
   if (options_.temporal && animating && !still) {
     frame_ = draw_temporal(width, height, quality, r);
   } else {

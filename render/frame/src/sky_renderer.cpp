@@ -20,6 +20,7 @@ FrameSettings frame_settings(const ViewState& s, const FrameQuality& q) {
   fs.method = CloudMethod::Slices;
   fs.slices = s.slices;
   if (q.slices > 0) fs.slices.slices = q.slices;
+  if (q.light_res > 0) fs.slices.light_res = q.light_res;
   // A fixed blue-noise pattern per sample: no banding, and no flicker while paused; a still
   // view's samples shift it, and their mean loses the grain (progressive_frame.hpp).
   fs.slices.frame = q.sample.jitter_frame;
@@ -101,6 +102,8 @@ void SkyRenderer::apply(const ViewState& s, const FrameQuality& q) {
   validate(s);
   if (!(q.render_scale > 0.0 && q.render_scale <= 1.0)) throw std::invalid_argument("frame quality render_scale: must be in (0, 1]");
   if (q.slices != 0 && (q.slices < 2 || q.slices > 4096)) throw std::invalid_argument("frame quality slices: must be 0 or in [2, 4096]");
+  if (q.light_res != 0 && (q.light_res < 16 || q.light_res > 4096))
+    throw std::invalid_argument("frame quality light_res: must be 0 or in [16, 4096]");
   const ViewState& a = *applied_;
   // The keyframes hold the clouds only: a new wind or sun needs none.
   if (clouds_of(a.sky) != clouds_of(s.sky)) keyframes_ = std::make_shared<SkyKeyframes>(s.sky, state_optics(s));

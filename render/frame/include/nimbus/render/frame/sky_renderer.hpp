@@ -31,6 +31,7 @@ struct FrameQuality {
   // A still view's progressive sample (progressive_sample(i), progressive_frame.hpp): its
   // sub-pixel offset and jitter. {} is the plain frame.
   ProgressiveSample sample;
+  int light_res = 0;          // the light buffer's side: 0, the state's; else [16, 4096]
 };
 
 // The pixels a frame of width x height is rendered at under a render scale: each side rounded,

@@ -21,10 +21,7 @@ struct BenchGlArgs {
 };
 
 int run_bench_gl(const BenchGlArgs& a) {
-  std::vector<std::pair<int, int>> sizes;
-  std::stringstream ss(a.sizes);
-  for (std::string item; std::getline(ss, item, ',');) sizes.push_back(parse_resolution("--sizes", item));
-  if (sizes.empty()) throw UsageError("--sizes: give at least one WxH");
+  const std::vector<std::pair<int, int>> sizes = parse_resolutions("--sizes", a.sizes);
   if (a.repeats < 1 || a.repeats > 100) throw UsageError("--repeats: must be in [1, 100]");
   const auto gl = render::GlContext::create_headless();
   std::printf("# nimbus bench gl: %s; each rate the best of %d runs, glFinish around each\n\n", gl->renderer().c_str(), a.repeats);

@@ -283,13 +283,7 @@ void print_pass_limits(const Rows& rows) {
 }
 
 int run_bench_view(const BenchViewArgs& a) {
-  std::vector<std::pair<int, int>> sizes;
-  {
-    std::stringstream ss(a.sizes);
-    std::string item;
-    while (std::getline(ss, item, ',')) sizes.push_back(parse_resolution("--sizes", item));
-  }
-  if (sizes.empty()) throw UsageError("--sizes: give at least one WxH");
+  const std::vector<std::pair<int, int>> sizes = parse_resolutions("--sizes", a.sizes);
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");

@@ -53,6 +53,14 @@ std::pair<int, int> parse_resolution(const std::string& flag, const std::string&
   return {w, h};
 }
 
+std::vector<std::pair<int, int>> parse_resolutions(const std::string& flag, const std::string& list) {
+  std::vector<std::pair<int, int>> sizes;
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');) sizes.push_back(parse_resolution(flag, item));
+  if (sizes.empty()) throw UsageError(flag + ": give at least one WxH");
+  return sizes;
+}
+
 void add_camera_options(CLI::App* cmd, CameraArgs& a) {
   cmd->add_option("--eye", a.eye, "Camera position X,Y,Z, metres (Z up: x east, y north)");
   cmd->add_option("--look-at", a.look_at, "Point the camera looks at, X,Y,Z, metres (Z up: x east, y north)");

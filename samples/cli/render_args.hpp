@@ -40,6 +40,9 @@ glm::dvec3 parse_world_vec3(const std::string& flag, const std::string& text);
 void check_exposure(const std::optional<double>& stops);
 // "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
+// A comma-separated list of WxH (the benches' --sizes); UsageError naming `flag` for a bad one
+// or an empty list.
+std::vector<std::pair<int, int>> parse_resolutions(const std::string& flag, const std::string& list);
 
 // The narrowest and widest --fov, degrees: below 1 degree a framed camera stands hundreds of
 // kilometres from its clouds, beyond the sky's atmosphere (an all-black picture); at 180 the

@@ -11,7 +11,6 @@
 #include <stdexcept>
 
 #include "nimbus/render/core/cloud_framing.hpp"
-#include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/gl/shader_source.hpp"
 #include "nimbus/render/image/image_io.hpp"
@@ -37,14 +36,10 @@ Viewer::Viewer(render::ViewState state, ViewerOptions options)
   display_ = std::make_unique<Display>();
 }
 
-std::optional<double> Viewer::lowest_eye_y() {
-  if (state_.scene == "none") return std::nullopt;
-  if (ground_of_ != state_.scene) {
-    ground_of_ = state_.scene;
-    const render::Scene scene = render::make_scene(state_.scene);
-    ground_y_ = scene.ground ? std::optional<double>(scene.ground->height_m + kEyeOverGround_m) : std::nullopt;
-  }
-  return ground_y_;
+std::optional<double> Viewer::lowest_eye_y() const {
+  const std::optional<render::Scene>& scene = renderer_->scene();  // the one drawn: no second copy
+  if (!scene || !scene->ground) return std::nullopt;
+  return scene->ground->height_m + kEyeOverGround_m;
 }
 
 void Viewer::set_pose(const CameraPose& moved) {

@@ -126,9 +126,7 @@ class Viewer {
   // Every camera move lands here: over a scene with ground, the eye stays kEyeOverGround_m above it.
   void set_pose(const CameraPose& p);
   static constexpr double kEyeOverGround_m = 2.0;  // as G's framing keeps the eye on the ground
-  std::optional<double> lowest_eye_y();           // render y; none without ground
-  std::string ground_of_;                         // the scene lowest_eye_y was found for
-  std::optional<double> ground_y_;
+  std::optional<double> lowest_eye_y() const;     // render y; none without ground
   std::string write_shot(render::Image shot);
 
   render::ViewState state_;

@@ -24,11 +24,6 @@ KeyframeLight setup_key(KeyframeLight light) {
   return light;
 }
 
-bool same_optics(const KeyframeLight& a, const KeyframeLight& b) {
-  return a.extinction_per_m == b.extinction_per_m && a.albedo == b.albedo && a.phase.g_forward == b.phase.g_forward &&
-         a.phase.g_back == b.phase.g_back && a.phase.forward_weight == b.phase.forward_weight;
-}
-
 }  // namespace
 
 KeyframeLightVolumes::KeyframeLightVolumes(std::shared_ptr<SkyKeyframes> keyframes)
@@ -41,7 +36,7 @@ std::shared_ptr<const LightVolumeSetup> KeyframeLightVolumes::setup(int64_t j, c
   const KeyframeLight key = setup_key(light);
   std::shared_ptr<const std::vector<CloudVolume>> clouds;
   for (const KeptSetup& kept : setups_) {
-    if (kept.j != j || !same_optics(kept.light, key)) continue;
+    if (kept.j != j || !kept.light.same_optics(key)) continue;
     if (kept.light == key && kept.setup->fits(light.settings)) return kept.setup;
     clouds = kept.clouds;  // the same density and optics under other settings
   }

@@ -90,6 +90,8 @@ class SkyRenderer {
   // The clouds as last drawn (moved); empty before the first frame.
   const std::vector<CloudVolume>& clouds() const;
   SkyKeyframes& keyframes() { return *keyframes_; }
+  // The scene drawn under the clouds (none for "none").
+  const std::optional<Scene>& scene() const { return frame_->scene(); }
   // The light volumes' builder (null before the light-volume method was first asked for).
   const KeyframeLightVolumes* light_volumes() const { return volumes_.get(); }
   std::shared_ptr<SkyKeyframes> shared_keyframes() const { return keyframes_; }

@@ -34,12 +34,12 @@ int run_bench_gl(const BenchGlArgs& a) {
 
 void print_gl_limits_header() {
   std::printf("| size | fragments shaded, M/s (RGBA32F) | fragments blended, M/s | 3D-texture samples, M/s (trilinear, R16F) | "
-              "pixels read back, M/s (RGBA32F) |\n|---|---:|---:|---:|---:|\n");
+              "pixels read back, M/s (RGBA32F) | slice round trips, 1/s |\n|---|---:|---:|---:|---:|---:|\n");
 }
 
 void print_gl_limits_row(const GlLimits& l) {
-  std::printf("| %dx%d | %.0f | %.0f | %.0f | %.0f |\n", l.width, l.height, l.fragments_per_s * 1e-6, l.blended_per_s * 1e-6,
-              l.samples_3d_per_s * 1e-6, l.readback_pixels_per_s * 1e-6);
+  std::printf("| %dx%d | %.0f | %.0f | %.0f | %.0f | %.0f |\n", l.width, l.height, l.fragments_per_s * 1e-6, l.blended_per_s * 1e-6,
+              l.samples_3d_per_s * 1e-6, l.readback_pixels_per_s * 1e-6, l.slice_round_trips_per_s);
   std::fflush(stdout);
 }
 

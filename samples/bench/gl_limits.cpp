@@ -36,12 +36,56 @@ void main() {
 }
 )";
 
+// A fragment that reads the other target's texel first, as a slice reads the light buffer that
+// the slice before it wrote: the driver must finish that target before this pass reads it.
+const char* const kDependent = R"(#version 450 core
+in vec2 uv;
+layout(location = 0) out vec4 colour;
+layout(binding = 1) uniform sampler2D before;
+void main() { colour = vec4(texelFetch(before, ivec2(0), 0).r + uv.x, uv.y, 0.5, 0.25); }
+)";
+
 double seconds_of(const auto& work) {
   glFinish();
   const auto t0 = Clock::now();
   work();
   glFinish();
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The slicer's round trip with almost no fragments: an 8x8 draw into the frame's RGBA32F target
+// that reads the light buffer, then an 8x8 draw into a 256^2 R32F light buffer that reads the
+// frame's target. What a slice costs beyond its fragments: the driver finishes each target
+// before the other pass reads it (on llvmpipe, a scene rasterized per switch).
+double slice_round_trips_per_s(const render::GlFramebuffer& eye_fb, const render::GlTexture& eye, const render::GlVertexArray& vao,
+                               int width, int height, int repeats) {
+  using namespace render;
+  constexpr int kLight = 256, kTiny = 8, kTrips = 64;
+  const GlTexture light = make_texture_2d(GL_R32F, kLight, kLight, TextureParams{GL_NEAREST, GL_NEAREST});
+  const GlFramebuffer light_fb = make_framebuffer({{GL_COLOR_ATTACHMENT0, light.id()}});
+  const ShaderProgram dependent =
+      ShaderProgram::from_sources({{"bench_gl_dependent.frag.glsl", kDependent}}, {"fullscreen.vert.glsl", "bench_gl_dependent.frag.glsl"});
+  dependent.use();
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  const auto trips = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      glBindFramebuffer(GL_FRAMEBUFFER, eye_fb.id());
+      glViewport(0, 0, std::min(kTiny, width), std::min(kTiny, height));
+      glBindTextureUnit(1, light.id());
+      draw_fullscreen_triangle(vao);
+      glBindFramebuffer(GL_FRAMEBUFFER, light_fb.id());
+      glViewport(0, 0, kTiny, kTiny);
+      glBindTextureUnit(1, eye.id());
+      draw_fullscreen_triangle(vao);
+    }
+  };
+  trips(2);  // compile and warm
+  double s = 1e300;
+  for (int r = 0; r < std::max(1, repeats); ++r) s = std::min(s, seconds_of([&] { trips(kTrips); }));
+  glDisable(GL_BLEND);
+  glViewport(0, 0, width, height);
+  return kTrips / s;
 }
 
 }  // namespace
@@ -94,6 +138,8 @@ GlLimits measure_gl_limits(int width, int height, int repeats) {
   glBindTextureUnit(0, density.id());
   const double sample_s = best([&] { draws(sample, kDraws); });
   out.samples_3d_per_s = pixels * kDraws * kSamples / std::max(sample_s - fill_s, 1e-9);
+  out.slice_round_trips_per_s = slice_round_trips_per_s(fb, target, vao, width, height, repeats);
+  glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
   std::vector<float> pixels_back(static_cast<std::size_t>(pixels) * 4);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   constexpr int kReads = 8;

@@ -1,7 +1,7 @@
 // `nimbus bench gl` (samples/bench/gl_limits.hpp): a tiny run prints a row per size whose every
-// rate is a positive number, and the GPU timer counts the fragments a full-screen pass shades
-// (one per pixel, give or take the driver's blocks at the frame's edge) where the driver counts
-// them; bad options are usage errors.
+// rate is a positive number (the slice round trip among them), and the GPU timer counts the
+// fragments a full-screen pass shades (one per pixel, give or take the driver's blocks at the
+// frame's edge) where the driver counts them; bad options are usage errors.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -23,7 +23,7 @@ TEST(BenchGl, TinyRunPrintsPositiveRatesPerSize) {
     const std::size_t at = r.output.find(size);
     ASSERT_NE(at, std::string::npos) << r.output;
     std::istringstream row(r.output.substr(at + std::string(size).size()));
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < 5; ++i) {  // four rates in M/s, then slice round trips per second
       double rate = -1.0;
       char bar = 0;
       row >> rate >> bar;

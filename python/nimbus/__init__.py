@@ -323,7 +323,7 @@ def _render_args(paths: list[str], scene: str, eye, look_at, up, fov, res, sun, 
 
 def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volume, str, os.PathLike]]], *,
            scene: str = "sky", eye: Optional[Sequence[float]] = None, look_at: Optional[Sequence[float]] = None,
-           up: Optional[Sequence[float]] = (0, 0, 1), fov: Optional[float] = 45, res: Optional[Sequence[int]] = (640, 360),
+           up: Optional[Sequence[float]] = None, fov: Optional[float] = None, res: Optional[Sequence[int]] = None,
            sun: Optional[Sequence[float]] = None, **options: Any):
     """Render clouds as ``nimbus render`` does, headless (EGL; Mesa's llvmpipe where there is no GPU):
     the same pixels as the program's EXR for the same flags, as a NumPy float32 array (height,
@@ -336,6 +336,9 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
     without eye and look_at the camera frames the clouds. sun: the direction towards the sun, Z up
     (or ``sun_elevation=35, sun_azimuth=135`` in degrees, or ``time_of_day=15`` with ``latitude``
     and ``day_of_year``, as the program's flags). fov: degrees (horizontal). res: (width, height).
+    up, fov and res left None take the program's defaults, so that a call and ``nimbus render``
+    with the same flags give the same picture: the scene's camera (1280x720, Z up), or with
+    scene="none" vdb_render's (512x512 at 44.8 degrees).
     options: the program's other flags by name, dashes as underscores: method="pathtrace",
     slices=256, spp=64, cloud_extinction=0.04, no_jitter=True, ms_photons=1 << 20, time=12.0 ...
     A switch takes True or False; every other option a number, a text or a sequence of numbers.

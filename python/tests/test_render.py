@@ -30,7 +30,18 @@ def test_render_over_the_sky_equals_the_program(run, tmp_path, humilis):
     v, path = humilis
     ours = nimbus.render([v], eye=(900, -1800, 300), look_at=(0, 0, 1000), res=(96, 54), ms_photons=1 << 18)
     theirs = program_image(run, tmp_path, path, "--scene", "sky", "--eye", "900,-1800,300", "--look-at", "0,0,1000",
-                           "--up", "0,0,1", "--fov", "45", "--res", "96x54", "--ms-photons", "262144")
+                           "--res", "96x54", "--ms-photons", "262144")
+    assert_same_pixels(ours, theirs)
+
+
+def test_camera_defaults_are_the_programs(run, tmp_path, humilis):
+    """No up, fov or res: the program's defaults, so the same call gives the same picture (it once
+    defaulted to fov 45 and 640x360 where the program uses the scene's camera)."""
+    v, path = humilis
+    ours = nimbus.render(v, scene="none", sun=(0.3, -0.5, 0.8), slices=32, ms_photons=1 << 16)
+    theirs = program_image(run, tmp_path, path, "--scene", "none", "--sun", "0.3,-0.5,0.8", "--slices", "32",
+                           "--ms-photons", "65536")
+    assert ours.shape == (512, 512, 4)
     assert_same_pixels(ours, theirs)
 
 
@@ -45,14 +56,14 @@ def test_path_tracer_options_pass_as_flags(run, tmp_path, humilis):
     ours = nimbus.render(path, scene="none", method="pathtrace", spp=2, res=(32, 18), sun=(0, 0, 1), seed=5,
                          cloud_phase="hg:0.6", no_jitter=False)
     theirs = program_image(run, tmp_path, path, "--scene", "none", "--method", "pathtrace", "--spp", "2", "--res", "32x18",
-                           "--sun", "0,0,1", "--seed", "5", "--cloud-phase", "hg:0.6", "--up", "0,0,1", "--fov", "45")
+                           "--sun", "0,0,1", "--seed", "5", "--cloud-phase", "hg:0.6")
     assert_same_pixels(ours, theirs)
 
 
 def test_render_generates_presets_as_the_program_does(run, tmp_path):
     ours = nimbus.render([], preset="smoke", voxel_size=0.5, res=(40, 30), scene="none", sun=(0, 0, 1))
     theirs = program_image(run, tmp_path, "--preset", "smoke", "--voxel-size", "0.5", "--res", "40x30", "--scene", "none",
-                           "--sun", "0,0,1", "--up", "0,0,1", "--fov", "45")
+                           "--sun", "0,0,1")
     assert_same_pixels(ours, theirs)
 
 

@@ -204,7 +204,8 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     """Generate a preset's cloud or gas at ``time`` seconds: the voxels ``nimbus generate`` makes for
     the same arguments (its file stores them as half floats unless ``--float``).
 
-    seed: None = the preset's own (1 for every shipped preset); an integer in [0, 2^32).
+    seed: None = the preset's own (each preset file sets one: 3 for cumulus-humilis, 7 for
+    cumulus-congestus); an integer in [0, 2^32).
     voxel_size: metres (None = the preset's); or res: voxels across the cloud's largest extent.
     overrides: ``--set`` as a dict, e.g. {"coverage": 0.7, "shapes.0.size": [700, 600, 350]}.
     params_file: a JSON file of overrides (``--params``).

@@ -55,6 +55,10 @@ def render(volumes_or_paths: Union[Volume, _Path, Iterable[Union[Volume, _Path]]
            fov: Optional[float] = ..., res: Optional[Sequence[int]] = ..., sun: Optional[_Vec3] = ...,
            **options: Any) -> numpy.typing.NDArray[numpy.float32]:
     """(height, width, 4) float32: linear, premultiplied RGBA, row 0 at the top."""
+def write_image(path: _Path, image: numpy.typing.ArrayLike, *, preview: Optional[_Path] = ...,
+                exposure: Optional[float] = ..., metadata: Optional[Mapping[str, str]] = ...) -> None: ...
+def read_image(path: _Path) -> tuple[numpy.typing.NDArray[numpy.float32], dict[str, str]]:
+    """((height, width, 4) float32 RGBA, row 0 at the top; the header's text attributes)."""
 def noise(kind: Literal["value", "gradient", "wavelet", "worley"], shape: Sequence[int], *, frequency: float = ...,
           fractal: Literal["none", "fbm", "turbulence", "ridged"] = ..., octaves: int = ..., seed: int = ...,
           time: Optional[float] = ..., lacunarity: float = ..., gain: float = ..., period: int = ...,

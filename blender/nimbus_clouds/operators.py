@@ -1,7 +1,7 @@
 # Operators: Add > Volume > nimbus Cloud, and Regenerate for the active nimbus cloud.
 import bpy
 
-from . import cache, generation, material, preferences, properties, volume_import
+from . import cache, generation, material, preferences, properties, render_settings, volume_import
 from .params import CloudParams
 
 SETTINGS = tuple(name for name in properties.cloud_properties(operator=True) if name != "preset")
@@ -92,9 +92,12 @@ class NIMBUS_OT_add_cloud(bpy.types.Operator):
             material.assign(vol, material.new_material(name))
             obj = volume_import.new_object(context, name, vol)
             store_settings(obj, self, job)
+            changed = render_settings.ready_cycles(context.scene)
         except Exception as e:  # noqa: every failure becomes a report, never a crash
             return refuse(self, e)
         placed_report(self, job)
+        if changed:
+            self.report({"INFO"}, "nimbus: for the cloud's light: " + "; ".join(changed))
         return {"FINISHED"}
 
     def draw(self, context):

@@ -197,9 +197,16 @@ def name_is(nodes, name, idname):
 
 def check_still(program, label):
     before = len(bpy.data.objects)
+    cycles = bpy.context.scene.cycles
+    cycles.volume_bounces, cycles.max_bounces, cycles.use_denoising = 0, 12, True  # Cycles' defaults
     t = time.time()
     r = add(preset="cumulus-humilis", voxel_size=VOXEL)
     check(r == {"FINISHED"}, f"{label}: Add nimbus Cloud finishes ({r}, {time.time() - t:.1f} s)")
+    check(cycles.volume_bounces >= 32 and cycles.max_bounces >= 32,
+          f"{label}: adding a cloud raises Cycles' bounces from 0 (single scattering: grey smoke) to 32 "
+          f"({cycles.volume_bounces}, {cycles.max_bounces})")
+    check(cycles.use_denoising == bool(cycles.denoiser),
+          f"{label}: denoising stays on only where this Blender has a denoiser ({cycles.denoiser!r})")
     obj = bpy.context.active_object
     if not check(obj is not None and obj.type == "VOLUME" and len(bpy.data.objects) == before + 1,
                  f"{label}: one new Volume object, active"):

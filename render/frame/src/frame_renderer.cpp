@@ -13,6 +13,13 @@
 
 namespace nimbus::render {
 
+namespace {
+
+// The GL texture format of the clouds' density textures.
+GLenum gl_format(VolumeFormat f) { return f == VolumeFormat::Float ? GL_R32F : GL_R16F; }
+
+}  // namespace
+
 void validate(const FrameSettings& s) {
   try {
     validate(s.slices);
@@ -34,8 +41,8 @@ void validate(const FrameSettings& s) {
   if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192)
     throw std::invalid_argument("frame settings cloud_shadow_res: must be in [16, 8192], got " +
                                 std::to_string(s.cloud_shadow_res));
-  if (s.volume_format != GL_R16F && s.volume_format != GL_R32F)
-    throw std::invalid_argument("frame settings volume_format: must be GL_R16F or GL_R32F");
+  if (s.volume_format != VolumeFormat::Half && s.volume_format != VolumeFormat::Float)
+    throw std::invalid_argument("frame settings volume_format: must be Half or Float");
 }
 
 FrameRenderer::FrameRenderer(const FrameDescription& frame)
@@ -120,9 +127,9 @@ void FrameRenderer::set_clouds(std::vector<CloudVolume> clouds) {
     reference_clouds_ = std::move(clouds);
     reference_moved_ = reference_clouds_;
   } else if (cloud_renderer_) {
-    cloud_renderer_->set_clouds(std::move(clouds), settings_.volume_format);
+    cloud_renderer_->set_clouds(std::move(clouds), gl_format(settings_.volume_format));
   } else {
-    cloud_renderer_ = std::make_unique<CloudRenderer>(std::move(clouds), settings_.volume_format);
+    cloud_renderer_ = std::make_unique<CloudRenderer>(std::move(clouds), gl_format(settings_.volume_format));
   }
 }
 

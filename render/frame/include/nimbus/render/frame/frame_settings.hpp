@@ -1,14 +1,14 @@
 // How the frame pipeline renders: the method (the half-angle slicer, or a CPU reference), each
 // method's settings, the scene's light-shaft method and its shadow maps, the clouds' texture format.
+// No GL type: a program or a view state holds it without the GL layer.
 #pragma once
-#include <epoxy/gl.h>
-
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/core/shaft_settings.hpp"
+#include "nimbus/render/core/volume_format.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
-#include "nimbus/render/shafts/shaft_renderer.hpp"
 
 namespace nimbus::render {
 
@@ -21,7 +21,7 @@ struct FrameSettings {
   ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
   ShaftSettings shaft_settings;
   int cloud_shadow_res = 512;        // texels per side of the clouds' shadow on the scene, [16, 8192]
-  GLenum volume_format = GL_R16F;    // cloud textures: GL_R16F or GL_R32F
+  VolumeFormat volume_format = VolumeFormat::Half;  // the clouds' density textures
 };
 
 // Throws std::invalid_argument naming the field (slices, reference, shafts, cloud_shadow_res,

@@ -243,8 +243,8 @@ void print_still_view(const render::ViewState& start, const viewer::ViewerOption
 // Each pass's time against the device's limit for its fragments (gl_limits.hpp, measured in the
 // same run at the same size): the slices and the light buffer blend every fragment, the other
 // passes write theirs. Rows: the median frame's fragments (millions), the time they would take
-// at the limit, and the pass's time as a multiple of it. A pass far above 1x spends its time in
-// its shader's own work (texture samples, arithmetic), not in filling pixels.
+// at the limit, and the pass's time as a multiple of it. A pass far above 1x spends its time
+// beyond filling pixels (docs/viewer.md, "The frame's limit", says where it was looked for).
 template <class Rows>
 void print_pass_limits(const Rows& rows) {
   if (rows.empty()) return;
@@ -282,8 +282,9 @@ void print_pass_limits(const Rows& rows) {
   }
 }
 
-int run_bench_view(const BenchViewArgs& a) {
-  const std::vector<std::pair<int, int>> sizes = parse_resolutions("--sizes", a.sizes);
+// Bad flags are usage errors, before any GL work.
+void check_args(const BenchViewArgs& a) {
+  parse_resolutions("--sizes", a.sizes);
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
@@ -293,15 +294,19 @@ int run_bench_view(const BenchViewArgs& a) {
       throw UsageError("--paths: unknown path '" + name + "' (known: orbit|orbit, octaves|orbit, temporal|time-lapse|"
                        "time-lapse, temporal|sun drag)");
   check_outputs({{"--strip", a.strip}});
-  const auto gl = render::GlContext::create_headless();
-  const render::ViewState start = [&] {
-    render::ViewState s = render::default_view_state();
-    if (a.repeat_to_m >= 0.0) s.slices.repeat_to_m = a.repeat_to_m;
-    return s;
-  }();
-  viewer::ViewerOptions options;
+}
+
+// The state every path starts from: the default view, its periodic tiles as asked.
+render::ViewState start_state(const BenchViewArgs& a) {
+  render::ViewState s = render::default_view_state();
+  if (a.repeat_to_m >= 0.0) s.slices.repeat_to_m = a.repeat_to_m;
+  return s;
+}
+
+// What the run measures, and the paths table's header.
+void print_header(const render::ViewState& start, const BenchViewArgs& a, const std::string& renderer) {
   std::printf("# nimbus bench view: the default sky (%zu clouds, %.0f m voxels, keyframes every %.0f s of sky time), %s\n",
-              start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, gl->renderer().c_str());
+              start.sky.clouds.size(), start.sky.voxel_size_m, start.sky.keyframe_interval_s, renderer.c_str());
   char ms[128];
   if (start.slices.multiple.method == render::MultipleScatteringMethod::LightVolume)
     std::snprintf(ms, sizeof ms, "light volume (%d cells, %lld photons; %d octaves before the first)", start.slices.multiple.light_volume.resolution,
@@ -319,27 +324,66 @@ int run_bench_view(const BenchViewArgs& a) {
               "error median / max | keyframes made (s each) | frames held | longest frame while generating | "
               "light volumes made (s each) | frames: stale volume / octaves |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---|---|---|---:|---:|---|---|\n");
-  struct PassRow {
-    std::string name;
-    PathResult result;
-    GlLimits limits;
-  };
-  std::vector<PassRow> pass_rows;
-  std::map<std::pair<int, int>, GlLimits> limits;  // the device's rates at each size, this run
-  for (const auto& [w, h] : sizes) {
-    limits[{w, h}] = measure_gl_limits(w, h);
-    struct Row {
-      Path path;
-      bool adaptive;
-      const char* name;
-      bool octaves = false;  // the octaves instead of the light volume: what the volume costs
-      bool temporal = false; // the moving frames accumulated (ViewerOptions::temporal)
+}
+
+// A row of the paths table: a path, with or without adaptive quality, the light volume or the octaves.
+struct Row {
+  Path path;
+  bool adaptive;
+  const char* name;
+  bool octaves = false;  // the octaves instead of the light volume: what the volume costs
+  bool temporal = false; // the moving frames accumulated (ViewerOptions::temporal)
+};
+const Row kRows[] = {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
+                     Row{Path::Orbit, true, "orbit"}, Row{Path::Orbit, true, "orbit, temporal", false, true},
+                     Row{Path::TimeLapse, true, "time-lapse"}, Row{Path::TimeLapse, true, "time-lapse, temporal", false, true},
+                     Row{Path::SunDrag, true, "sun drag", false, true}};
+
+// The row's line, and the sun drag's and the accumulation's lines under it.
+void print_row(const Row& row, const PathResult& r, int frames, int w, int h) {
+  const double med = percentile(r.ms, 0.5);
+  char err[64] = "-";
+  if (!r.errors.empty())
+    std::snprintf(err, sizeof err, "%.4f / %.4f", percentile(r.errors, 0.5), *std::max_element(r.errors.begin(), r.errors.end()));
+  char kf[64] = "0";
+  if (r.keyframes > 0) std::snprintf(kf, sizeof kf, "%lld (%.2f s)", static_cast<long long>(r.keyframes), r.keyframe_s / r.keyframes);
+  char gen[32] = "-";
+  if (r.longest_generating > 0) std::snprintf(gen, sizeof gen, "%.0f ms", r.longest_generating);
+  char lv[64] = "0";
+  if (r.volumes > 0) std::snprintf(lv, sizeof lv, "%lld (%.2f s)", static_cast<long long>(r.volumes), r.volume_s / r.volumes);
+  std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s | %s | %d / %d |\n", w, h, row.name,
+              row.adaptive ? "adaptive" : "full (anchor)", frames, med, percentile(r.ms, 0.95),
+              *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels, row.temporal).c_str(), err,
+              kf, r.held, gen, lv, r.stale, r.stand_in);
+  if (row.path == Path::SunDrag) {
+    const auto text = [](const std::vector<double>& xs) {
+      char t[64] = "never";
+      if (!xs.empty()) std::snprintf(t, sizeof t, "%.0f ms median, %.0f ms max", percentile(xs, 0.5), *std::max_element(xs.begin(), xs.end()));
+      return std::string(t);
     };
-    for (const Row& row : {Row{Path::Orbit, false, "orbit"}, Row{Path::Orbit, false, "orbit, octaves", true},
-                           Row{Path::Orbit, true, "orbit"}, Row{Path::Orbit, true, "orbit, temporal", false, true},
-                           Row{Path::TimeLapse, true, "time-lapse"},
-                           Row{Path::TimeLapse, true, "time-lapse, temporal", false, true},
-                           Row{Path::SunDrag, true, "sun drag", false, true}}) {
+    std::printf("|  | sun drag: %zu drags of %d steps of %.0f deg | new sun's first volume on screen: %s (%d frames "
+                "with its preview) | its full volume: %s | | | | | | | | | | | |\n",
+                r.sun_first_ms.size(), kDragSteps, kDragStepDeg, text(r.sun_first_ms).c_str(), r.preview,
+                text(r.sun_full_ms).c_str());
+  }
+  if (!r.temporal_ms.empty())
+    std::printf("|  | %s: the accumulation (TemporalFrame::add, CPU) %.1f ms median of the frame | | | | | | | | | | | | | |\n",
+                row.name, percentile(r.temporal_ms, 0.5));
+  std::fflush(stdout);
+}
+
+struct PassRow {
+  std::string name;
+  PathResult result;
+  GlLimits limits;
+};
+
+// Every chosen row at every size, printed as it is measured; their pass times for the tables after.
+std::vector<PassRow> run_rows(const BenchViewArgs& a, const render::ViewState& start, const viewer::ViewerOptions& options) {
+  std::vector<PassRow> pass_rows;
+  for (const auto& [w, h] : parse_resolutions("--sizes", a.sizes)) {
+    const GlLimits limits = measure_gl_limits(w, h);  // the device's rates at this size, this run
+    for (const Row& row : kRows) {
       if (!path_chosen(a.paths, row.name)) continue;
       if (row.path == Path::SunDrag && start.slices.multiple.method != render::MultipleScatteringMethod::LightVolume) continue;
       if (row.octaves && start.slices.multiple.method == render::MultipleScatteringMethod::Octaves) continue;
@@ -351,42 +395,18 @@ int run_bench_view(const BenchViewArgs& a) {
       v.adaptive().budget_ms = a.budget_ms;
       v.draw(w, h, 0.0);  // the first pair and every program, before timing
       const PathResult r = run_path(v, row.path, w, h, a.frames, row.adaptive, a.error_every);
-      const double med = percentile(r.ms, 0.5);
-      char err[64] = "-";
-      if (!r.errors.empty())
-        std::snprintf(err, sizeof err, "%.4f / %.4f", percentile(r.errors, 0.5), *std::max_element(r.errors.begin(), r.errors.end()));
-      char kf[64] = "0";
-      if (r.keyframes > 0) std::snprintf(kf, sizeof kf, "%lld (%.2f s)", static_cast<long long>(r.keyframes), r.keyframe_s / r.keyframes);
-      char gen[32] = "-";
-      if (r.longest_generating > 0) std::snprintf(gen, sizeof gen, "%.0f ms", r.longest_generating);
-      char lv[64] = "0";
-      if (r.volumes > 0) std::snprintf(lv, sizeof lv, "%lld (%.2f s)", static_cast<long long>(r.volumes), r.volume_s / r.volumes);
-      std::printf("| %dx%d | %s | %s | %d | %.0f | %.0f | %.0f | %.1f | %s | %s | %s | %d | %s | %s | %d / %d |\n", w, h, row.name,
-                  row.adaptive ? "adaptive" : "full (anchor)", a.frames, med, percentile(r.ms, 0.95),
-                  *std::max_element(r.ms.begin(), r.ms.end()), 1000.0 / med, levels_text(r.levels, row.temporal).c_str(), err,
-                  kf, r.held, gen, lv, r.stale, r.stand_in);
-      std::fflush(stdout);
-      if (row.path == Path::SunDrag) {
-        const auto text = [](const std::vector<double>& xs) {
-          char t[64] = "never";
-          if (!xs.empty()) std::snprintf(t, sizeof t, "%.0f ms median, %.0f ms max", percentile(xs, 0.5), *std::max_element(xs.begin(), xs.end()));
-          return std::string(t);
-        };
-        std::printf("|  | sun drag: %zu drags of %d steps of %.0f deg | new sun's first volume on screen: %s (%d frames "
-                    "with its preview) | its full volume: %s | | | | | | | | | | | |\n",
-                    r.sun_first_ms.size(), kDragSteps, kDragStepDeg, text(r.sun_first_ms).c_str(), r.preview,
-                    text(r.sun_full_ms).c_str());
-      }
-      if (!r.temporal_ms.empty())
-        std::printf("|  | %s: the accumulation (TemporalFrame::add, CPU) %.1f ms median of the frame | | | | | | | | | | | | | |\n",
-                    row.name, percentile(r.temporal_ms, 0.5));
+      print_row(row, r, a.frames, w, h);
       char name[96];
       std::snprintf(name, sizeof name, "%dx%d | %s | %s", w, h, row.name, row.adaptive ? "adaptive" : "full (anchor)");
-      pass_rows.push_back({name, r, limits.at({w, h})});
+      pass_rows.push_back({name, r, limits});
     }
   }
-  // Where the GPU's time goes, pass by pass: what a faster device changes.
-  std::printf("\n## GPU time per pass, median ms per frame, on %s (%s)\n\n", gl->renderer().c_str(),
+  return pass_rows;
+}
+
+// Where the GPU's time goes, pass by pass: what a faster device changes.
+void print_pass_times(const std::vector<PassRow>& pass_rows, const std::string& renderer) {
+  std::printf("\n## GPU time per pass, median ms per frame, on %s (%s)\n\n", renderer.c_str(),
               pass_rows.empty() ? "-" : pass_rows.front().result.timing.c_str());
   std::printf("| size | path | quality |");
   for (const char* p : kPasses) std::printf(" %s |", p);
@@ -399,7 +419,11 @@ int run_bench_view(const BenchViewArgs& a) {
     std::printf("\n");
   }
   print_pass_limits(pass_rows);
-  // Every level on one still state: what it costs and what it gives up.
+}
+
+// Every level on one still state: what it costs and what it gives up.
+void print_levels(const render::ViewState& start, const viewer::ViewerOptions& options,
+                  const std::vector<std::pair<int, int>>& sizes) {
   std::printf("\n## The adaptive quality's levels on the default view (time paused; best of 3 frames)\n\n");
   std::printf("| size | level | render scale | slices | frame ms | speed-up | rel. RMSE vs full quality |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
@@ -423,29 +447,42 @@ int run_bench_view(const BenchViewArgs& a) {
                   full_ms / best, render::compare_images(render::upscale_bilinear(img, w, h), full).rel_rmse);
     }
   }
+}
+
+// Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).
+void write_strip(const render::ViewState& start, viewer::ViewerOptions options, const std::string& path) {
+  options.wait_for_keyframes = true;
+  viewer::Viewer v(start, options);
+  v.adaptive().enabled = false;
+  v.state().speed = 30.0;
+  const int fw = 320, fh = 180, n = 6;
+  render::Image strip(fw * n, fh);
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) v.advance(1.0);
+    const render::Image& f = v.draw(fw, fh, 0.0);
+    for (int y = 0; y < fh; ++y)
+      for (int x = 0; x < fw; ++x)
+        for (int c = 0; c < 4; ++c) strip.pixel(i * fw + x, y)[c] = f.pixel(x, y)[c];
+  }
+  render::PreviewOptions po;
+  po.exposure_stops = start.exposure_stops;
+  render::write_png_preview(path, strip, po);
+  std::printf("\nstrip: %s (6 frames, 30 s of sky time apart)\n", path.c_str());
+}
+
+int run_bench_view(const BenchViewArgs& a) {
+  check_args(a);
+  const std::vector<std::pair<int, int>> sizes = parse_resolutions("--sizes", a.sizes);
+  const auto gl = render::GlContext::create_headless();
+  const render::ViewState start = start_state(a);
+  const viewer::ViewerOptions options;
+  print_header(start, a, gl->renderer());
+  print_pass_times(run_rows(a, start, options), gl->renderer());
+  print_levels(start, options, sizes);
   print_accumulated_levels(start, options, sizes);
   print_accumulated_motion(start, sizes);
   if (a.still_samples > 0) print_still_view(start, options, sizes, a.still_samples);
-  if (!a.strip.empty()) {
-    // Six frames of the time-lapse, 30 s of sky time apart, exactly their states (keyframes waited).
-    options.wait_for_keyframes = true;
-    viewer::Viewer v(start, options);
-    v.adaptive().enabled = false;
-    v.state().speed = 30.0;
-    const int fw = 320, fh = 180, n = 6;
-    render::Image strip(fw * n, fh);
-    for (int i = 0; i < n; ++i) {
-      if (i > 0) v.advance(1.0);
-      const render::Image& f = v.draw(fw, fh, 0.0);
-      for (int y = 0; y < fh; ++y)
-        for (int x = 0; x < fw; ++x)
-          for (int c = 0; c < 4; ++c) strip.pixel(i * fw + x, y)[c] = f.pixel(x, y)[c];
-    }
-    render::PreviewOptions po;
-    po.exposure_stops = start.exposure_stops;
-    render::write_png_preview(a.strip, strip, po);
-    std::printf("\nstrip: %s (6 frames, 30 s of sky time apart)\n", a.strip.c_str());
-  }
+  if (!a.strip.empty()) write_strip(start, options, a.strip);
   return 0;
 }
 

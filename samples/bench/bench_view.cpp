@@ -282,9 +282,8 @@ void print_pass_limits(const Rows& rows) {
   }
 }
 
-// Bad flags are usage errors, before any GL work.
+// Bad flags are usage errors, before any GL work (--sizes is checked where it is parsed).
 void check_args(const BenchViewArgs& a) {
-  parse_resolutions("--sizes", a.sizes);
   if (a.frames < 5 || a.frames > 100000) throw UsageError("--frames: must be in [5, 100000]");
   if (a.still_samples < 0 || a.still_samples > 4096) throw UsageError("--still-samples: must be in [0, 4096]");
   if (!(a.budget_ms > 0.0)) throw UsageError("--budget-ms: must be > 0");
@@ -379,9 +378,10 @@ struct PassRow {
 };
 
 // Every chosen row at every size, printed as it is measured; their pass times for the tables after.
-std::vector<PassRow> run_rows(const BenchViewArgs& a, const render::ViewState& start, const viewer::ViewerOptions& options) {
+std::vector<PassRow> run_rows(const BenchViewArgs& a, const std::vector<std::pair<int, int>>& sizes, const render::ViewState& start,
+                              const viewer::ViewerOptions& options) {
   std::vector<PassRow> pass_rows;
-  for (const auto& [w, h] : parse_resolutions("--sizes", a.sizes)) {
+  for (const auto& [w, h] : sizes) {
     const GlLimits limits = measure_gl_limits(w, h);  // the device's rates at this size, this run
     for (const Row& row : kRows) {
       if (!path_chosen(a.paths, row.name)) continue;
@@ -471,13 +471,13 @@ void write_strip(const render::ViewState& start, viewer::ViewerOptions options, 
 }
 
 int run_bench_view(const BenchViewArgs& a) {
-  check_args(a);
   const std::vector<std::pair<int, int>> sizes = parse_resolutions("--sizes", a.sizes);
+  check_args(a);
   const auto gl = render::GlContext::create_headless();
   const render::ViewState start = start_state(a);
   const viewer::ViewerOptions options;
   print_header(start, a, gl->renderer());
-  print_pass_times(run_rows(a, start, options), gl->renderer());
+  print_pass_times(run_rows(a, sizes, start, options), gl->renderer());
   print_levels(start, options, sizes);
   print_accumulated_levels(start, options, sizes);
   print_accumulated_motion(start, sizes);

@@ -20,6 +20,7 @@ import json
 import math
 import numbers
 import os
+import inspect
 import re
 import stat
 import tempfile
@@ -265,7 +266,7 @@ def _regular_file(path: str, kind: str) -> str:
 
 # render's options: nimbus render's flags by name (dashes as underscores), and whether each takes
 # a value (a switch takes True or False).
-_RENDER_FLAGS = {flag: takes_value for flag, takes_value in _nimbus._render_flags()}
+_RENDER_FLAGS = {flag: takes_value for flag, takes_value, _default, _help in _nimbus._render_flags()}
 _RENDER_NAMES = {flag: flag[2:].replace("-", "_") for flag in _RENDER_FLAGS} | {"--preset": "preset"}
 _RENDER_OWN = ("--eye", "--look-at", "--up", "--fov", "--res", "--sun", "--scene")
 
@@ -376,6 +377,42 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
             paths.append(path)
         return _call(_nimbus._render, args + paths, flags=_RENDER_NAMES, paths=names)
 
+
+# render's settings: the one table of nimbus's render settings (render_settings.hpp in the
+# library), which the program's flags and the viewer's state read too. Each that render takes is
+# a typed keyword argument of its signature, with the table's default (None where the table
+# says the default in words: it depends on the rest of the render), and a line of its docstring.
+_RENDER_SETTINGS = [dict(s, name=s["flag"].replace("-", "_")) for s in _nimbus._render_settings()
+                    if s["flag"] and "--" + s["flag"] in _RENDER_FLAGS and "--" + s["flag"] not in _RENDER_OWN]
+
+
+def _setting_default(s: Mapping[str, Any]) -> Optional[float]:
+    if s["default_text"]:
+        return None
+    return int(s["default"]) if s["integer"] else s["default"]
+
+
+def _render_signature(fn: Callable) -> inspect.Signature:
+    sig = inspect.signature(fn)
+    params = [p for p in sig.parameters.values() if p.kind != p.VAR_KEYWORD]
+    for s in _RENDER_SETTINGS:
+        kind = int if s["integer"] else float
+        params.append(inspect.Parameter(s["name"], inspect.Parameter.KEYWORD_ONLY, default=_setting_default(s),
+                                        annotation=Optional[kind] if s["default_text"] else kind))
+    return sig.replace(parameters=params + [sig.parameters["options"]])
+
+
+def _settings_doc() -> str:
+    lines = ["", "    Settings, from the one table the program's flags and the viewer's state share:"]
+    for s in _RENDER_SETTINGS:
+        value = _setting_default(s)
+        default = s["default_text"] or (str(value) if s["integer"] else f"{value:g}")
+        lines.append(f"    {s['name']}: {s['help']}, {s['range']}; default {default}.")
+    return "\n".join(lines) + "\n"
+
+
+render.__signature__ = _render_signature(render)
+render.__doc__ = (render.__doc__ or "") + _settings_doc()
 
 def noise(kind: str, shape: Sequence[int], *, frequency: float = 1.0, fractal: str = "fbm", octaves: int = 6,
           seed: int = 0, time: Optional[float] = None, lacunarity: float = 2.0, gain: float = 0.5, period: int = 0,

@@ -53,6 +53,12 @@ def read(path: _Path, *, grid: Optional[str] = ...) -> Volume: ...
 def render(volumes_or_paths: Union[Volume, _Path, Iterable[Union[Volume, _Path]]], *, scene: str = ...,
            eye: Optional[_Vec3] = ..., look_at: Optional[_Vec3] = ..., up: Optional[_Vec3] = ...,
            fov: Optional[float] = ..., res: Optional[Sequence[int]] = ..., sun: Optional[_Vec3] = ...,
+           # the one table of render settings (render_settings.hpp), in its order
+           slices: int = ..., light_res: int = ..., max_lights: int = ..., blur: float = ...,
+           repeat_to: Optional[float] = ..., cloud_shadow_res: int = ..., cloud_extinction: Optional[float] = ...,
+           multiple: Optional[int] = ..., ms_grid: int = ..., ms_photons: int = ..., ms_lobes: int = ...,
+           ms_diffusion_depth: float = ..., ms_similarity_depth: float = ..., ms_occlusion: float = ...,
+           ms_contribution: float = ..., ms_eccentricity: float = ...,
            **options: Any) -> numpy.typing.NDArray[numpy.float32]:
     """(height, width, 4) float32: linear, premultiplied RGBA, row 0 at the top."""
 def write_image(path: _Path, image: numpy.typing.ArrayLike, *, preview: Optional[_Path] = ...,

@@ -17,6 +17,8 @@
 #include "cli/cli.hpp"
 #include "cli/outputs.hpp"
 #include "cli/render_args.hpp"
+#include "cli/setting_flags.hpp"
+#include "bench_lists.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_framing.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
@@ -33,12 +35,6 @@ namespace {
 
 // The light volume's own default, unnamed in the rows' labels.
 const int kDefaultRefine = static_cast<int>(render::LightVolumeSettings{}.photons_per_cell);
-
-std::string number_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
 
 struct BenchLookArgs {
   std::string preset = "cumulus-mediocris";
@@ -65,29 +61,6 @@ struct BenchLookArgs {
   std::string plot;
   std::string images;  // when set: every case's reference, its standard error and each method's image, as EXR
 };
-
-std::vector<int> parse_ints(const std::string& flag, const std::string& text, int hi = 1 << 20, int lo = 1) {
-  std::vector<int> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(nimbus::parse_int_in(item, lo, hi, flag));
-  if (v.empty()) throw UsageError(flag + ": give at least one number");
-  return v;
-}
-
-std::vector<double> parse_doubles(const std::string& flag, const std::string& text, double lo, double hi) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const std::optional<double> x = nimbus::parse_double(item);
-    if (!x || !(*x >= lo && *x <= hi))
-      throw UsageError(flag + ": '" + item + "' is not a number in [" + number_text(lo) + ", " + number_text(hi) + "]");
-    v.push_back(*x);
-  }
-  if (v.empty()) throw UsageError(flag + ": give at least one number");
-  return v;
-}
 
 struct Octaves {
   std::string name;
@@ -118,18 +91,6 @@ render::Camera view_from_below(render::Camera cam, const std::vector<render::Clo
   return render::fit_far_plane(cam, clouds);
 }
 
-// A file-name part from a case or method name: lower-case letters, digits and '.', the rest '-'.
-std::string slug(const std::string& name) {
-  std::string s;
-  for (char c : name) {
-    const bool keep = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.';
-    const char out = keep ? c : (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : '-';
-    if (out != '-' || (!s.empty() && s.back() != '-')) s += out;
-  }
-  while (!s.empty() && s.back() == '-') s.pop_back();
-  return s;
-}
-
 // The reference's per-pixel standard error as an image (RGB; alpha 1), for --images.
 render::Image std_error_image(const render::PathTracedImage& ref) {
   render::Image img(ref.image.width, ref.image.height);
@@ -140,29 +101,6 @@ render::Image std_error_image(const render::PathTracedImage& ref) {
   img.metadata = ref.image.metadata;
   img.metadata["contents"] = "per-pixel standard error of the reference's mean, RGB";
   return img;
-}
-
-// Every item of --lighting and --phases names a case (a prefix of its name).
-void check_case_list(const std::string& flag, const std::string& list, const std::vector<std::string>& names) {
-  std::stringstream ss(list);
-  std::string item;
-  int items = 0;
-  while (std::getline(ss, item, ',')) {
-    bool found = false;
-    for (const std::string& n : names) found = found || (!item.empty() && n.rfind(item, 0) == 0);
-    if (!found) throw UsageError(flag + ": '" + item + "' names none of its cases");
-    ++items;
-  }
-  if (items == 0) throw UsageError(flag + ": give at least one case");
-}
-
-// Whether a case's name starts with an item of the list.
-bool chosen(const std::string& list, const std::string& name) {
-  std::stringstream ss(list);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty() && name.rfind(item, 0) == 0) return true;
-  return false;
 }
 
 struct Lighting {
@@ -184,8 +122,8 @@ std::vector<Octaves> method_rows(const BenchLookArgs& a) {
                                   {"3 octaves (a 0.5, b 0.5)", 3, 0.5, 0.5},
                                   {"3 octaves (a 0.5, b 0.6)", 3, 0.5, 0.6}};
   for (int grid : parse_ints("--ms-grid", a.ms_grid)) {
-    if (grid < 4 || grid > 192) throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(grid));
-    for (int photons : parse_ints("--ms-photons", a.ms_photons, 1 << 28))
+    check_flag(render::Setting::MsGrid, grid);
+    for (int photons : parse_ints("--ms-photons", a.ms_photons, int(render::setting(render::Setting::MsPhotons).max)))
       for (int lobes : parse_ints("--ms-lobes", a.ms_lobes, 2, 0))
         for (int fits : parse_ints("--ms-fits", a.ms_fits, 1, 0))
           for (int refine : parse_ints("--ms-refine", a.ms_refine, 1000000000, 0))

@@ -20,6 +20,7 @@
 #include "render_clouds.hpp"
 #include "render_modes.hpp"
 #include "render_view_state.hpp"
+#include "setting_flags.hpp"
 
 namespace nimbus::cli {
 namespace {
@@ -185,7 +186,7 @@ void add_render_command(CLI::App& app, Action& action) {
   cmd->add_option("--phase", a->phase, "Override the phase function: isotropic, hg:G, schlick:G, rayleigh");
   cmd->add_flag("--hide-bulbs", a->hide_bulbs, "Do not draw the lights' bulbs (as nimbus bench shafts does)");
   cmd->add_option("--preview", a->preview, "Also write a tone-mapped sRGB PNG preview here");
-  cmd->add_option("--exposure", a->exposure, "Preview exposure in stops (default: automatic)");
+  add_setting_option(cmd, render::Setting::Exposure, a->exposure);
   cmd->add_option("--view-state", a->view_state,
                   "Render a viewer state (nimbus view's Ctrl+S) at full quality, through the viewer's pipeline: --res times the "
                   "state's render scale");

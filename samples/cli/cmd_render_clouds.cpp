@@ -27,6 +27,7 @@
 #include "progress.hpp"
 #include "render_clouds.hpp"
 #include "render_clouds_plan.hpp"
+#include "setting_flags.hpp"
 
 namespace nimbus::cli {
 
@@ -118,54 +119,36 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--spot", a.spot, "Every --lamp is a spot shining along DX,DY,DZ");
   cmd->add_option("--spot-cone", a.spot_cone, "The spot's inner,outer cone half-angles, degrees")->capture_default_str();
-  cmd->add_option("--max-lights", a.max_lights, "Lights the slicer draws, one pass each: the strongest at the clouds, 1-8")
-      ->capture_default_str();
-  cmd->add_option("--slices", a.slices, "Half-angle slices")->capture_default_str();
-  cmd->add_option("--light-res", a.light_res, "Light buffer size, texels per side")->capture_default_str();
-  cmd->add_option("--repeat-to", a.repeat_to,
-                  "A periodic field (cumulus-field, stratocumulus-field) is drawn with copies of its tile out to this "
-                  "distance from the eye, metres, to the horizon; auto: 32000 under --scene sky, else 0 (one tile)")
-      ->capture_default_str();
-  cmd->add_option("--cloud-shadow-res", a.shadow_map_res, "Texels per side of the clouds' shadow on the scene")
-      ->capture_default_str();
+  add_setting_option(cmd, render::Setting::MaxLights, a.max_lights);
+  add_setting_option(cmd, render::Setting::Slices, a.slices);
+  add_setting_option(cmd, render::Setting::LightRes, a.light_res);
+  add_setting_option(cmd, render::Setting::RepeatTo, a.repeat_to);
+  add_setting_option(cmd, render::Setting::CloudShadowRes, a.shadow_map_res);
   cmd->add_option("--shafts", a.shafts, "The scene's light-shaft method under the clouds (see --method)")
       ->capture_default_str();
-  cmd->add_option("--cloud-extinction", a.cloud_extinction, "Cloud extinction per unit density, per metre (default 0.04)");
+  add_setting_option(cmd, render::Setting::CloudExtinction, a.cloud_extinction);
   cmd->add_option("--cloud-albedo", a.cloud_albedo, "Cloud single-scattering albedo, V or R,G,B (default 0.99)");
   cmd->add_option("--cloud-phase", a.cloud_phase, "Cloud phase: isotropic, hg:G or dual:GF,GB,W")->capture_default_str();
   cmd->add_option("--ambient", a.ambient, "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)")
       ->capture_default_str();
-  cmd->add_option("--multiple", a.multiple,
-                  "Multiple scattering: 0 = single scattering; octaves 1-3 (the octaves method, unless --ms-method "
-                  "light-volume, which takes 1 = on)");
+  add_setting_option(cmd, render::Setting::Multiple, a.multiple);
   cmd->add_option("--ms-method", a.ms_method,
                   "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
                   "the default) or octaves (the default when --multiple N > 0 is given alone)");
-  cmd->add_option("--ms-grid", a.ms_grid, "Light volume: cells along the clouds' longest axis at least, 4-192 (finer where its photons allow: about 1000 a cell)")->capture_default_str();
-  cmd->add_option("--ms-photons", a.ms_photons, "Light volume: photons from the sun, 1-268435456")->capture_default_str();
-  cmd->add_option("--ms-lobes", a.ms_lobes, "Light volume: scattering orders kept as lobes about the sun, 0-2 (0: harmonics alone)")
-      ->capture_default_str();
-  cmd->add_option("--ms-diffusion-depth", a.ms_diffusion,
-                  "Light volume: deeper than this many transport mean free paths inside the clouds, photons hand their "
-                  "light to a diffusion solve on its grid, 0-1000 (0: photons carry all of it)")
-      ->capture_default_str();
-  cmd->add_option("--ms-similarity-depth", a.ms_similarity,
-                  "Light volume: deeper than this many transport mean free paths inside the clouds, photons past "
-                  "their lobe orders fly in the similar medium (isotropic, sigma_s (1 - g)), 0-1000 (0: the true phase "
-                  "everywhere)")
-      ->capture_default_str();
+  add_setting_option(cmd, render::Setting::MsGrid, a.ms_grid);
+  add_setting_option(cmd, render::Setting::MsPhotons, a.ms_photons);
+  add_setting_option(cmd, render::Setting::MsLobes, a.ms_lobes);
+  add_setting_option(cmd, render::Setting::MsDiffusionDepth, a.ms_diffusion);
+  add_setting_option(cmd, render::Setting::MsSimilarityDepth, a.ms_similarity);
   cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
-  cmd->add_option("--blur", a.blur_deg, "Forward-scattering blur cone half-angle, degrees (0: off)")->capture_default_str();
+  add_setting_option(cmd, render::Setting::Blur, a.blur_deg);
   cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
   cmd->add_flag("--no-grain-filter", a.no_grain_filter,
                 "Slices: keep the jitter's grain (by default a still of fewer than 32 samples is filtered of it, guided by depth)");
-  cmd->add_option("--ms-occlusion", a.ms_occlusion, "Multiple-scattering octaves: extinction scale a per octave, (0, 1]")
-      ->capture_default_str();
-  cmd->add_option("--ms-contribution", a.ms_contribution, "Multiple-scattering octaves: radiance scale b per octave, [0, 1]")
-      ->capture_default_str();
-  cmd->add_option("--ms-eccentricity", a.ms_eccentricity, "Multiple-scattering octaves: phase asymmetry scale c per octave, [0, 1]")
-      ->capture_default_str();
+  add_setting_option(cmd, render::Setting::MsOcclusion, a.ms_occlusion);
+  add_setting_option(cmd, render::Setting::MsContribution, a.ms_contribution);
+  add_setting_option(cmd, render::Setting::MsEccentricity, a.ms_eccentricity);
   cmd->add_option("--spp", a.spp, "--method pathtrace: samples per pixel; --view-state: progressive samples averaged (sub-pixel offsets, shifted jitter: the slicer's grain goes), default 1")->capture_default_str();
   cmd->add_option("--bounces", a.bounces, "--method pathtrace: scattering events per path at most (1: single scattering)")
       ->capture_default_str();
@@ -250,6 +233,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
   CloudRenderPlan plan =
       plan_cloud_render(a, scene_name, scene_given, method_text, method_given, output, preview, exposure);
   check_cloud_render_files(a, plan, output, preview);
+  check_camera_flags(camera_args);  // applied per frame, once its clouds are loaded
   checks_done();
 
   render::FrameSettings& fs = plan.frame.settings;

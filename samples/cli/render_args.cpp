@@ -10,6 +10,7 @@
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "progress.hpp"
+#include "setting_flags.hpp"
 
 namespace nimbus::cli {
 
@@ -40,7 +41,7 @@ glm::dvec3 parse_world_vec3(const std::string& flag, const std::string& text) {
 }
 
 void check_exposure(const std::optional<double>& stops) {
-  if (stops && !(std::abs(*stops) <= 64.0)) throw UsageError("--exposure: must be in [-64, 64] stops");
+  check_flag(render::Setting::Exposure, stops);
 }
 
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text) {
@@ -65,8 +66,16 @@ void add_camera_options(CLI::App* cmd, CameraArgs& a) {
   cmd->add_option("--eye", a.eye, "Camera position X,Y,Z, metres (Z up: x east, y north)");
   cmd->add_option("--look-at", a.look_at, "Point the camera looks at, X,Y,Z, metres (Z up: x east, y north)");
   cmd->add_option("--up", a.up, "Camera up vector X,Y,Z (Z up; default 0,0,1)");
-  cmd->add_option("--fov", a.fov_deg, "Horizontal field of view, degrees");
+  add_setting_option(cmd, render::Setting::Fov, a.fov_deg);
   cmd->add_option("--res", a.res, "Image size WIDTHxHEIGHT");
+}
+
+void check_camera_flags(const CameraArgs& a) {
+  if (!a.eye.empty()) parse_world_vec3("--eye", a.eye);
+  if (!a.look_at.empty()) parse_world_vec3("--look-at", a.look_at);
+  if (!a.up.empty()) parse_world_vec3("--up", a.up);
+  check_flag(render::Setting::Fov, a.fov_deg);
+  if (!a.res.empty()) parse_resolution("--res", a.res);
 }
 
 render::Camera apply_camera_args(const CameraArgs& a, render::Camera c) {
@@ -74,8 +83,7 @@ render::Camera apply_camera_args(const CameraArgs& a, render::Camera c) {
   if (!a.look_at.empty()) c.look_at = parse_world_vec3("--look-at", a.look_at);
   if (!a.up.empty()) c.up = parse_world_vec3("--up", a.up);
   if (a.fov_deg) {
-    if (!(*a.fov_deg >= kMinFovDeg && *a.fov_deg <= kMaxFovDeg))
-      throw UsageError("--fov: must be in [1, 179] degrees, got " + number_text(*a.fov_deg));
+    check_flag(render::Setting::Fov, *a.fov_deg);
     c.fov_deg = *a.fov_deg;
   }
   if (!a.res.empty()) std::tie(c.width, c.height) = parse_resolution("--res", a.res);

@@ -22,6 +22,10 @@ struct CameraArgs {
 
 void add_camera_options(CLI::App* cmd, CameraArgs& args);
 
+// Each given camera flag on its own (its syntax and range), UsageError naming it: for a command
+// that applies them only after its checks (a camera framed on clouds it has yet to load).
+void check_camera_flags(const CameraArgs& args);
+
 // The scene's default camera with the given flags applied; bad values -> UsageError naming the flag.
 render::Camera apply_camera_args(const CameraArgs& args, render::Camera camera);
 
@@ -36,7 +40,8 @@ glm::dvec3 parse_vec3(const std::string& flag, const std::string& text);
 // in the renderer's frame (world_axes.hpp). Every position and direction flag goes through it.
 glm::dvec3 parse_world_vec3(const std::string& flag, const std::string& text);
 
-// --exposure: UsageError unless within [-64, 64] stops (2^64 already overflows a half float).
+// --exposure: UsageError unless within the table's range (render_settings.hpp; 2^64 already
+// overflows a half float).
 void check_exposure(const std::optional<double>& stops);
 // "WxH" -> width, height in [1, 16384]; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_resolution(const std::string& flag, const std::string& text);
@@ -44,10 +49,6 @@ std::pair<int, int> parse_resolution(const std::string& flag, const std::string&
 // or an empty list.
 std::vector<std::pair<int, int>> parse_resolutions(const std::string& flag, const std::string& list);
 
-// The narrowest and widest --fov, degrees: below 1 degree a framed camera stands hundreds of
-// kilometres from its clouds, beyond the sky's atmosphere (an all-black picture); at 180 the
-// projection has no extent.
-inline constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 179.0;
 
 // Runs a GPU render; a GL_OUT_OF_MEMORY on the way becomes std::runtime_error naming `size_flag`
 // and the size it asked for ("--res 16384x16384: ..."), since the frame's buffers are what grew.

@@ -12,10 +12,14 @@
 #include "frame_range.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 #include "render_args.hpp"
 #include "sun_flags.hpp"
 
 namespace nimbus::cli {
+
+// A setting's default for a still (render_settings.hpp).
+inline double still_default(render::Setting id) { return render::setting(id).still_default; }
 
 struct CloudRenderArgs {
   std::vector<std::string> files;    // VDB files (a '%04d'-style pattern with --frames)
@@ -30,28 +34,31 @@ struct CloudRenderArgs {
   std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp
   std::string spot;                  // DX,DY,DZ: every --lamp is a spot shining that way (no scene only)
   std::string spot_cone = "20,30";   // inner,outer half-angles of the spot's cone, degrees
-  int max_lights = 4;                // lights drawn by the slicer, one pass each
+  // The table's settings (render_settings.hpp) start at its defaults.
+  int max_lights = int(still_default(render::Setting::MaxLights));  // lights drawn by the slicer, one pass each
   bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
-  int slices = 128;
-  int light_res = 256;
+  int slices = int(still_default(render::Setting::Slices));
+  int light_res = int(still_default(render::Setting::LightRes));
   // Periodic clouds' copies out to this distance, metres: "auto" is 32000 under --scene sky, else 0.
   std::string repeat_to = "auto";
-  int shadow_map_res = 512;          // the clouds' shadow on the scene
+  int shadow_map_res = int(still_default(render::Setting::CloudShadowRes));  // the clouds' shadow on the scene
   std::string shafts = "raymarch:48";  // the scene's method under the clouds
   std::optional<double> cloud_extinction;
   std::string cloud_albedo;          // R,G,B
   std::string cloud_phase = "dual:0.7,-0.25,0.8";
   std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
-  std::optional<int> multiple;      // octaves 0-3; light-volume: 0 (off) or 1; unset: see --ms-method
+  std::optional<int> multiple;       // octaves; light-volume: 0 (off) or 1; unset: see --ms-method
   std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves
-  int ms_grid = 48;                  // light volume: cells along the clouds' longest axis
-  int64_t ms_photons = render::LightVolumeSettings{}.photons;  // light volume: photons from the sun
-  int ms_lobes = 2;                  // light volume: scattering orders kept as lobes, [0, 2]
-  double ms_diffusion = render::LightVolumeSettings{}.diffusion_depth;  // light volume: diffusion deeper than this (transport mfp; 0: off)
-  double ms_similarity = render::LightVolumeSettings{}.similarity_depth;  // light volume: similar medium deeper than this (transport mfp; 0: off)
+  int ms_grid = int(still_default(render::Setting::MsGrid));  // light volume: cells along the clouds' longest axis
+  int64_t ms_photons = int64_t(still_default(render::Setting::MsPhotons));  // light volume: photons from the sun
+  int ms_lobes = int(still_default(render::Setting::MsLobes));  // light volume: scattering orders kept as lobes
+  double ms_diffusion = still_default(render::Setting::MsDiffusionDepth);  // light volume: diffusion deeper than this (transport mfp; 0: off)
+  double ms_similarity = still_default(render::Setting::MsSimilarityDepth);  // light volume: similar medium deeper than this (transport mfp; 0: off)
   uint64_t ms_seed = 1;              // light volume
-  double ms_occlusion = 0.5, ms_contribution = 0.5, ms_eccentricity = 0.5;  // octaves' a, b, c
-  double blur_deg = 0.0;
+  double ms_occlusion = still_default(render::Setting::MsOcclusion);  // octaves' a, b, c
+  double ms_contribution = still_default(render::Setting::MsContribution);
+  double ms_eccentricity = still_default(render::Setting::MsEccentricity);
+  double blur_deg = still_default(render::Setting::Blur);
   bool no_jitter = false;
   bool no_grain_filter = false;      // slices: leave the jitter's grain in the picture (grain_filter.hpp)
   int spp = 64;                      // pathtrace: samples per pixel

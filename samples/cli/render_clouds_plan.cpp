@@ -12,6 +12,7 @@
 #include "nimbus/render/core/sun_setup.hpp"
 #include "nimbus/volume/voxel_size.hpp"
 #include "outputs.hpp"
+#include "setting_flags.hpp"
 
 namespace nimbus::cli {
 
@@ -44,8 +45,7 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
       throw UsageError(std::string("--ms-method: ") + e.what());
     }
   }
-  if (a.multiple && (*a.multiple < 0 || *a.multiple > 3))
-    throw UsageError("--multiple: must be in [0, 3], got " + std::to_string(*a.multiple));
+  if (a.multiple) check_flag(render::Setting::Multiple, *a.multiple);
   if (ms.method == render::MultipleScatteringMethod::LightVolume) {
     if (!sun) throw UsageError("--ms-method: light-volume traces photons from the sun, and nothing gives one (--sun)");
     if (a.multiple && *a.multiple > 1)
@@ -64,28 +64,21 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     refuse_if_given_without(a, flag, !light_volume && ms.octaves > 0,
                             "applies to the octaves of multiple scattering (--multiple 1-3 with --ms-method octaves), "
                             "which this render does not use");
-  if (a.ms_grid < 4 || a.ms_grid > 192)
-    throw UsageError("--ms-grid: must be in [4, 192] cells, got " + std::to_string(a.ms_grid));
-  if (a.ms_photons < 1 || a.ms_photons > (int64_t{1} << 28))
-    throw UsageError("--ms-photons: must be in [1, 268435456], got " + std::to_string(a.ms_photons));
+  // Each value against the one table's range (render_settings.hpp), named by its flag.
+  check_flag(render::Setting::MsGrid, a.ms_grid);
+  check_flag(render::Setting::MsPhotons, double(a.ms_photons));
+  check_flag(render::Setting::MsLobes, a.ms_lobes);
+  check_flag(render::Setting::MsDiffusionDepth, a.ms_diffusion);
+  check_flag(render::Setting::MsSimilarityDepth, a.ms_similarity);
+  check_flag(render::Setting::MsOcclusion, a.ms_occlusion);
+  check_flag(render::Setting::MsContribution, a.ms_contribution);
+  check_flag(render::Setting::MsEccentricity, a.ms_eccentricity);
   ms.light_volume.resolution = a.ms_grid;
   ms.light_volume.photons = a.ms_photons;
-  if (a.ms_lobes < 0 || a.ms_lobes > 2) throw UsageError("--ms-lobes: must be in [0, 2], got " + std::to_string(a.ms_lobes));
   ms.light_volume.lobe_orders = a.ms_lobes;
-  if (!std::isfinite(a.ms_diffusion) || a.ms_diffusion < 0.0 || a.ms_diffusion > 1000.0)
-    throw UsageError("--ms-diffusion-depth: must be in [0, 1000] transport mean free paths (0: off), got " +
-                     std::to_string(a.ms_diffusion));
   ms.light_volume.diffusion_depth = a.ms_diffusion;
   ms.light_volume.seed = a.ms_seed;
-  auto check = [](double v, bool ok, const char* flag, const char* range) {
-    if (!std::isfinite(v) || !ok) throw UsageError(std::string(flag) + ": must be in " + range + ", got " + std::to_string(v));
-  };
-  check(a.ms_similarity, a.ms_similarity >= 0.0 && a.ms_similarity <= 1000.0, "--ms-similarity-depth",
-        "[0, 1000] transport mean free paths (0: off)");
   ms.light_volume.similarity_depth = a.ms_similarity;
-  check(a.ms_occlusion, a.ms_occlusion > 0.0 && a.ms_occlusion <= 1.0, "--ms-occlusion", "(0, 1]");
-  check(a.ms_contribution, a.ms_contribution >= 0.0 && a.ms_contribution <= 1.0, "--ms-contribution", "[0, 1]");
-  check(a.ms_eccentricity, a.ms_eccentricity >= 0.0 && a.ms_eccentricity <= 1.0, "--ms-eccentricity", "[0, 1]");
   ms.occlusion = a.ms_occlusion;
   ms.contribution = a.ms_contribution;
   ms.eccentricity = a.ms_eccentricity;
@@ -142,7 +135,7 @@ void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const s
     for (const auto& [flag, name] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
       if (has_frame_field(name)) throw UsageError(flag + ": '" + echo(name) + "' holds a frame field but no --frames was given");
   check_exposure(exposure);
-  if (a.shadow_map_res < 16 || a.shadow_map_res > 8192) throw UsageError("--cloud-shadow-res: must be in [16, 8192]");
+  check_flag(render::Setting::CloudShadowRes, a.shadow_map_res);
 }
 
 // Stage 3: the clouds' optics (the scene's gas, the flags, the sky's ambient light).
@@ -150,8 +143,7 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
   render::CloudOptics& optics = p.frame.optics;
   const std::optional<render::Scene>& scene = p.frame.scene;
   if (a.cloud_extinction) {
-    if (!(std::abs(*a.cloud_extinction) <= kMaxFlagMagnitude))
-      throw UsageError("--cloud-extinction: must be at most 1e12 per metre (per unit density)");
+    check_flag(render::Setting::CloudExtinction, *a.cloud_extinction);
     optics.extinction_per_m = *a.cloud_extinction;
   } else if (scene && scene->cloud_extinction_per_m) {
     optics.extinction_per_m = *scene->cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
@@ -247,6 +239,10 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
 
 // Stage 5: the renderer's settings: the method, the slicer, the scene's shaft method.
 void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
+  check_flag(render::Setting::Slices, a.slices);
+  check_flag(render::Setting::LightRes, a.light_res);
+  check_flag(render::Setting::MaxLights, a.max_lights);
+  check_flag(render::Setting::Blur, a.blur_deg);
   render::CloudSliceSettings slices;
   slices.slices = a.slices;
   slices.light_res = a.light_res;
@@ -263,13 +259,13 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
                           "--method " + p.method + " draws each cloud once (the " +
                               (p.cloud_method == render::CloudMethod::PathTrace ? "path tracer" : "reference renderer") +
                               " does not repeat a periodic field); only --method slices draws its copies");
+  const render::RenderSetting& repeat_to = render::setting(render::Setting::RepeatTo);
   if (a.repeat_to == "auto") {
-    slices.repeat_to_m = p.frame.scene && p.frame.scene->name == "sky" ? 32000.0 : 0.0;
+    slices.repeat_to_m = p.frame.scene && p.frame.scene->name == "sky" ? repeat_to.still_default : 0.0;
   } else {
     const std::optional<double> r = parse_double(a.repeat_to);
-    if (!r || !(*r >= 0.0 && *r <= render::kMaxRepeatToM))
-      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in [0, " +
-                       number_text(render::kMaxRepeatToM) + "] metres");
+    if (!r || !render::in_range(repeat_to, *r))
+      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in " + render::range_text(repeat_to));
     slices.repeat_to_m = *r;
   }
   try {

@@ -38,7 +38,7 @@ std::vector<ImageFlag> render_image_flags() {
   std::vector<ImageFlag> flags;
   for (const CLI::Option* o : cmd->get_options())
     if (o->get_name() != "--help" && o->get_name() != "file")
-      flags.push_back({o->get_name(), o->get_expected_max() != 0});
+      flags.push_back({o->get_name(), o->get_expected_max() != 0, o->get_default_str(), o->get_description()});
   return flags;
 }
 

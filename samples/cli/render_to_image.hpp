@@ -14,11 +14,14 @@ namespace nimbus::cli {
 // one `nimbus render` would write to its EXR, in float (row 0 at the top, premultiplied).
 render::Image render_clouds_image(const std::vector<std::string>& args);
 
-// A flag it takes, as spelled on the command line ("--slices", "--eye", ...), and whether it takes
-// a value (a switch does not).
+// A flag it takes, as spelled on the command line ("--slices", "--eye", ...), whether it takes
+// a value (a switch does not), its default as `--help` shows it (empty where it has none or
+// says it in words) and its help text.
 struct ImageFlag {
   std::string name;
   bool takes_value = true;
+  std::string default_text;
+  std::string help;
 };
 std::vector<ImageFlag> render_image_flags();
 

@@ -241,7 +241,7 @@ TEST_F(HostileCli, OutputsAreCheckedBeforeTheWork) {
 // now each flag is refused up front, naming itself.
 TEST_F(HostileCli, ExtremeValuesAreRefusedBeforeTheyBecomeNaN) {
   expect_refused({
-      {with(kTinyClouds, {"--cloud-extinction", "1e300", "-o", "{d}/c.exr"}), 2, "--cloud-extinction: must be at most 1e12"},
+      {with(kTinyClouds, {"--cloud-extinction", "1e300", "-o", "{d}/c.exr"}), 2, "--cloud-extinction: must be in [0, 1e+12] per metre"},
       {with(kTinyClouds, {"--ambient", "1e300,1,1", "-o", "{d}/c.exr"}), 2, "--ambient: '1e300,1,1' must be three numbers within +-1e12"},
       {with(kTinyClouds, {"--lamp", "0,0,0.1", "--lamp-intensity", "1e38", "-o", "{d}/c.exr"}), 2,
        "--lamp-intensity: '1e38' must be within +-1e12"},

@@ -224,7 +224,7 @@ TEST_F(HostileSurfaces, NonsenseIsRefusedNamingTheInput) {
       {with(kSteamFrames, {"--frames", "0-1", "--fps", "1e-300", "-o", "{d}/f.%04d.vdb"}), 2,
        "--fps: frame 1 would be at t = 1e+300 s"},
       {{"render", "--view-state", "{d}/state_extinction.json", "-o", "{d}/o.exr"}, 2,
-       "optics: cloud extinction_per_m must be in [0, 1e12] per metre"},
+       "optics.extinction: must be in [0, 1e+12] per metre"},
   });
 }
 

@@ -474,7 +474,7 @@ def m_state_strings(doc, rng, ctx):
         ("renderer", "shafts", "raymarch:" + "1" * HUGE), ("renderer", "shafts", "analytic:table:1e3"),
         ("renderer", "shafts", "raymarch:24\nx"), ("renderer", "shafts", "reference"),
         ("optics", "ms_method", "Octaves"), ("optics", "ms_method", "light-volume\x00"),
-        ("optics", "ms_photons", 67108865), ("optics", "ms_photons", -9223372036854775808),
+        ("optics", "ms_photons", 268435457), ("optics", "ms_photons", -9223372036854775808),
         ("optics", "ms_photons", 1.5), ("renderer", "light_res", 4097), ("renderer", "render_scale", 0.0099),
         ("camera", "fov", 179.0001), ("camera", "eye", [1e308, 0, 0]), ("time", "sky", 1e9 + 1),
         (None, "scene", "sky\n"), (None, "scene", "\x1b[31msky"), (None, "scene", "x" * HUGE), (None, "nimbus", {"deep": [1]}),

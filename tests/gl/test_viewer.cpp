@@ -407,7 +407,7 @@ TEST(Viewer, BadInputGetsOneLineAndItsExitCode) {
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("missing.json"), std::string::npos);
   json bad_state = small_state();
-  bad_state["renderer"]["slices"] = 2;
+  bad_state["renderer"]["slices"] = 1;  // below the range (render_settings.hpp)
   write(d / "bad_state.json", bad_state);
   r = run_nimbus("render --view-state " + d / "bad_state.json" + " -o " + d / "x.exr");
   EXPECT_EQ(r.code, 2) << r.output;

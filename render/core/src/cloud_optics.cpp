@@ -10,6 +10,7 @@
 
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/phase.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
 namespace {
@@ -22,8 +23,8 @@ void validate_g(double g, const char* field) {
 
 void validate(const CloudOptics& o) {
   // Beyond 1e12 per metre (as the CLI's flags) the slicer's optical depths overflow its floats.
-  require(std::isfinite(o.extinction_per_m) && o.extinction_per_m >= 0.0 && o.extinction_per_m <= 1e12,
-          "cloud extinction_per_m must be in [0, 1e12] per metre");
+  require(in_range(setting(Setting::CloudExtinction), o.extinction_per_m),
+          "cloud extinction_per_m must be in " + range_text(setting(Setting::CloudExtinction)));
   for (int c = 0; c < 3; ++c)
     require(std::isfinite(o.albedo[c]) && o.albedo[c] >= 0.0 && o.albedo[c] <= 1.0,
             "cloud albedo must be in [0, 1] per channel");
@@ -37,34 +38,24 @@ void validate(const CloudOptics& o) {
 }
 
 void validate(const MultipleScattering& m) {
-  require(m.octaves >= 0 && m.octaves <= 3, "multiple-scattering octaves must be in [0, 3]");
-  require(std::isfinite(m.occlusion) && m.occlusion > 0.0 && m.occlusion <= 1.0,
-          "multiple-scattering occlusion must be in (0, 1]");
-  require(std::isfinite(m.contribution) && m.contribution >= 0.0 && m.contribution <= 1.0,
-          "multiple-scattering contribution must be in [0, 1]");
-  require(std::isfinite(m.eccentricity) && m.eccentricity >= 0.0 && m.eccentricity <= 1.0,
-          "multiple-scattering eccentricity must be in [0, 1]");
+  check_setting(Setting::Multiple, m.octaves, "multiple-scattering octaves");
+  check_setting(Setting::MsOcclusion, m.occlusion, "multiple-scattering occlusion");
+  check_setting(Setting::MsContribution, m.contribution, "multiple-scattering contribution");
+  check_setting(Setting::MsEccentricity, m.eccentricity, "multiple-scattering eccentricity");
   require(m.method == MultipleScatteringMethod::Octaves || m.method == MultipleScatteringMethod::LightVolume,
           "multiple-scattering method is not one of octaves, light-volume");
   validate(m.light_volume);
 }
 
 void validate(const LightVolumeSettings& s) {
-  require(s.resolution >= 4 && s.resolution <= 192,
-          "light volume resolution must be in [4, 192] cells, got " + std::to_string(s.resolution));
-  require(s.photons >= 1 && s.photons <= (std::int64_t{1} << 28),
-          "light volume photons must be in [1, 268435456], got " + std::to_string(s.photons));
+  check_setting(Setting::MsGrid, s.resolution, "light volume resolution");
+  check_setting(Setting::MsPhotons, double(s.photons), "light volume photons");
   require(std::isfinite(s.photons_per_cell) && s.photons_per_cell >= 0.0 && s.photons_per_cell <= 1e9,
           "light volume photons per cell must be in [0, 1e9] (0: the resolution exactly), got " +
               std::to_string(s.photons_per_cell));
-  require(s.lobe_orders >= 0 && s.lobe_orders <= 2,
-          "light volume lobe orders must be in [0, 2], got " + std::to_string(s.lobe_orders));
-  require(std::isfinite(s.diffusion_depth) && s.diffusion_depth >= 0.0 && s.diffusion_depth <= 1000.0,
-          "light volume diffusion depth must be in [0, 1000] transport mean free paths (0: off), got " +
-              std::to_string(s.diffusion_depth));
-  require(std::isfinite(s.similarity_depth) && s.similarity_depth >= 0.0 && s.similarity_depth <= 1000.0,
-          "light volume similarity depth must be in [0, 1000] transport mean free paths (0: off), got " +
-              std::to_string(s.similarity_depth));
+  check_setting(Setting::MsLobes, s.lobe_orders, "light volume lobe orders");
+  check_setting(Setting::MsDiffusionDepth, s.diffusion_depth, "light volume diffusion depth (0: off)");
+  check_setting(Setting::MsSimilarityDepth, s.similarity_depth, "light volume similarity depth (0: off)");
   require(s.threads >= 0, "light volume threads must be >= 0 (0 = all cores)");
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "nimbus/render/core/cloud_slice_settings.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 
 #include "nimbus/base/validate.hpp"
 
@@ -22,22 +23,15 @@ const char* branch_name(CloudSliceSettings::Branch b) {
 }  // namespace
 
 void validate(const CloudSliceSettings& s) {
-  if (s.slices < 2 || s.slices > 4096)
-    throw std::invalid_argument("slice settings slices: must be in [2, 4096], got " + std::to_string(s.slices));
-  if (s.light_res < 16 || s.light_res > 4096)
-    throw std::invalid_argument("slice settings light_res: must be in [16, 4096], got " + std::to_string(s.light_res));
-  // A cone of half-angle pi/2 or more has no finite radius.
-  if (!std::isfinite(s.blur_cone_rad) || s.blur_cone_rad < 0.0 || !(s.blur_cone_rad < 0.5 * M_PI))
-    throw std::invalid_argument("slice settings blur_cone_rad: must be in [0, pi/2), got " +
-                                std::to_string(s.blur_cone_rad));
+  check_setting(Setting::Slices, s.slices, "slice settings slices");
+  check_setting(Setting::LightRes, s.light_res, "slice settings light_res");
+  // A cone of half-angle pi/2 or more has no finite radius (the table's blur is in degrees).
+  check_setting(Setting::Blur, s.blur_cone_rad * 180.0 / M_PI, "slice settings blur_cone_rad (in degrees)");
   if (s.branch != CloudSliceSettings::Branch::Auto && s.branch != CloudSliceSettings::Branch::FrontToBack &&
       s.branch != CloudSliceSettings::Branch::BackToFront)
     throw std::invalid_argument("slice settings branch: not one of auto, front-to-back, back-to-front");
-  if (s.max_lights < 1 || s.max_lights > 8)
-    throw std::invalid_argument("slice settings max_lights: must be in [1, 8], got " + std::to_string(s.max_lights));
-  if (!(s.repeat_to_m >= 0.0 && s.repeat_to_m <= kMaxRepeatToM))
-    throw std::invalid_argument("slice settings repeat_to_m: must be in [0, " + number_text(kMaxRepeatToM) + "] metres, got " +
-                                number_text(s.repeat_to_m));
+  check_setting(Setting::MaxLights, s.max_lights, "slice settings max_lights");
+  check_setting(Setting::RepeatTo, s.repeat_to_m, "slice settings repeat_to_m");
   try {
     validate(s.multiple);
   } catch (const std::invalid_argument& e) {

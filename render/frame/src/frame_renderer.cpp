@@ -10,6 +10,7 @@
 #include "nimbus/render/clouds/cloud_shadow.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
 #include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
 
@@ -38,9 +39,7 @@ void validate(const FrameSettings& s) {
   }
   if (s.shafts.kind == ShaftMethod::Kind::Reference)
     throw std::invalid_argument("frame settings shafts: the scene under GPU clouds needs a GPU method, not reference");
-  if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192)
-    throw std::invalid_argument("frame settings cloud_shadow_res: must be in [16, 8192], got " +
-                                std::to_string(s.cloud_shadow_res));
+  check_setting(Setting::CloudShadowRes, s.cloud_shadow_res, "frame settings cloud_shadow_res");
   if (s.volume_format != VolumeFormat::Half && s.volume_format != VolumeFormat::Float)
     throw std::invalid_argument("frame settings volume_format: must be Half or Float");
 }

@@ -10,6 +10,7 @@
 #include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/sky_ranges.hpp"
 #include "nimbus/render/core/camera.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 #include "nimbus/render/core/scene.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/render/core/world_axes.hpp"
@@ -53,6 +54,10 @@ void members(const json& v, const std::string& key, F f) {
 }  // namespace
 
 void validate(const ViewState& s) {
+  // A number the JSON holds, against the one table's range, named by its key.
+  const auto check = [](Setting id, double value) {
+    check_setting(id, value, "view state " + std::string(setting(id).view_key));
+  };
   volume::validate(s.sky);
   if (s.scene != "none") {
     // By name: building the scene (its sky's atmosphere tables for another sun) every frame
@@ -64,9 +69,8 @@ void validate(const ViewState& s) {
       bad("view state scene: unknown name '" + echo(s.scene) + "' (known: " + known + "none)");
     }
   }
-  // Below 1 degree the view holds a speck of sky (the CLI's --fov has the same range).
-  if (!(s.camera.fov_deg >= 1.0 && s.camera.fov_deg <= 179.0))
-    bad("view state camera.fov: must be in [1, 179] degrees, got " + number_text(s.camera.fov_deg));
+  // Below 1 degree the view holds a speck of sky (the table's range, the CLI's --fov's).
+  check(Setting::Fov, s.camera.fov_deg);
   try {
     validate(s.camera);
   } catch (const std::invalid_argument& e) {
@@ -75,32 +79,31 @@ void validate(const ViewState& s) {
   const std::string time_range = "must be in " + volume::range_text(volume::kSkyTimeRangeS) + " seconds of sky time";
   if (!volume::kSkyTimeRangeS.holds(s.sky_time_s)) bad("view state time.sky: " + time_range);
   if (!volume::kSkyTimeRangeS.holds(s.evolution_time_s)) bad("view state time.evolution: " + time_range);
-  if (!(s.speed >= 0.0 && s.speed <= 1000.0)) bad("view state time.speed: must be in [0, 1000]");
+  check(Setting::Speed, s.speed);
+  check(Setting::CloudExtinction, s.optics.extinction_per_m);
   try {
     validate(s.optics);
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state optics: ") + e.what());
   }
   const MultipleScattering& ms = s.slices.multiple;
-  if (ms.octaves < 0 || ms.octaves > 3) bad("view state optics.multiple: must be in [0, 3]");
-  if (ms.light_volume.resolution < 4 || ms.light_volume.resolution > 192) bad("view state optics.ms_grid: must be in [4, 192] cells");
-  if (ms.light_volume.photons < 1024 || ms.light_volume.photons > (std::int64_t{1} << 26))
-    bad("view state optics.ms_photons: must be in [1024, 67108864]");
-  if (s.slices.slices < 8 || s.slices.slices > 1024) bad("view state renderer.slices: must be in [8, 1024]");
-  if (s.slices.light_res < 32 || s.slices.light_res > 4096) bad("view state renderer.light_res: must be in [32, 4096]");
-  if (!(s.slices.repeat_to_m >= 0.0 && s.slices.repeat_to_m <= kMaxRepeatToM))
-    bad("view state renderer.repeat_to: must be in [0, " + number_text(kMaxRepeatToM) + "] metres");
+  check(Setting::Multiple, ms.octaves);
+  check(Setting::MsGrid, ms.light_volume.resolution);
+  check(Setting::MsPhotons, double(ms.light_volume.photons));
+  check(Setting::Slices, s.slices.slices);
+  check(Setting::LightRes, s.slices.light_res);
+  check(Setting::RepeatTo, s.slices.repeat_to_m);
   try {
     validate(s.slices);  // what the JSON does not hold: the defaults, or a program's own
     validate(s.grain_filter);
   } catch (const std::invalid_argument& e) {
     bad(std::string("view state renderer: ") + e.what());
   }
-  if (s.cloud_shadow_res < 16 || s.cloud_shadow_res > 8192) bad("view state renderer.cloud_shadow_res: must be in [16, 8192]");
+  check(Setting::CloudShadowRes, s.cloud_shadow_res);
   // The renderer draws no less than 1 % of the window's size (sky_renderer.cpp); below it the
   // scale would be silently raised.
-  if (!(s.render_scale >= 0.01 && s.render_scale <= 1.0)) bad("view state renderer.render_scale: must be in [0.01, 1]");
-  if (!(s.exposure_stops >= -20.0 && s.exposure_stops <= 20.0)) bad("view state renderer.exposure: must be in [-20, 20] stops");
+  check(Setting::RenderScale, s.render_scale);
+  check(Setting::Exposure, s.exposure_stops);
   if (s.shafts.kind == ShaftMethod::Kind::Reference)
     bad("view state renderer.shafts: the scene under GPU clouds needs a GPU method, not reference");
 }

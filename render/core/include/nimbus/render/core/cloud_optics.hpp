@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/light.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
 
@@ -21,7 +22,7 @@ struct DualLobePhase {
 };
 
 struct CloudOptics {
-  double extinction_per_m = 0.04;  // sigma_t per unit density, per metre (grey)
+  double extinction_per_m = setting(Setting::CloudExtinction).still_default;  // sigma_t per unit density, per metre (grey)
   glm::dvec3 albedo{0.99};         // sigma_s / sigma_t per channel, [0, 1] (chromatic allowed)
   DualLobePhase phase;
   // Isotropic sky radiance that lights every point of the cloud unshadowed (W sr^-1 m^-2 per
@@ -31,33 +32,34 @@ struct CloudOptics {
 
 // How the light volume (light_volume.hpp) is built: photons from the sun through the clouds
 // (render/reference light_volume_builder.hpp), tallied on a grid of cube cells over the clouds' box.
+// The ranges, and the defaults of what a front end sets, are the one table's (render_settings.hpp).
 struct LightVolumeSettings {
-  int resolution = 48;             // cells along the box's longest axis at least, [4, 192] (the others in proportion)
+  int resolution = int(setting(Setting::MsGrid).still_default);  // cells along the box's longest axis at least (the others in proportion)
   // Finer cells where the photons allow (light_volume_grid): as narrow as leaves each cell's face
   // about this many photons launched over the box's largest face, but no finer than the clouds'
   // voxels nor 128 along the longest axis. 0 keeps `resolution` exactly. [0, 1e9]
   double photons_per_cell = 1000.0;
-  std::int64_t photons = 1 << 21;  // photons launched from the sun, [1, 1 << 28]
+  std::int64_t photons = std::int64_t(setting(Setting::MsPhotons).still_default);  // launched from the sun
   std::uint64_t seed = 1;          // the same seed gives the same volume, whatever the threads
   int threads = 0;                 // 0 = all cores
   // Scattering orders 1..lobe_orders kept as Henyey-Greenstein lobes about the sun's direction
-  // (light_volume.hpp, eq. MS-3) beside the l <= 2 harmonics; [0, 2], 0 = harmonics alone.
-  int lobe_orders = 2;
+  // (light_volume.hpp, eq. MS-3) beside the l <= 2 harmonics; 0 = harmonics alone.
+  int lobe_orders = int(setting(Setting::MsLobes).still_default);
   // Linear fits of the fluence inside each cell (light_volume.hpp, eq. MS-4); false: cell means.
   bool fits = true;
   // Deep in the clouds light diffuses: a photon that scatters (after its lobe orders) in a cell
   // at least this many transport mean free paths inside the clouds hands its light to a diffusion
   // solve on the grid (render/reference light_volume_diffusion.hpp, eq. MS-5) instead of walking
-  // on. 0: photons carry all the light. [0, 1000]
-  double diffusion_depth = 0.0;
+  // on. 0: photons carry all the light.
+  double diffusion_depth = setting(Setting::MsDiffusionDepth).still_default;
   // Deep in the clouds light forgets its direction: a photon past its lobe orders that scatters in
   // a cell at least this many transport mean free paths inside the clouds flies on in the similar
   // medium (render/reference light_volume_builder.hpp): isotropic scattering with
   // sigma_s' = sigma_s (1 - g), the similarity relation (Wyman, Patterson & Wilson 1989; Zhao et
   // al. 2014), 1 / (1 - albedo g) fewer, longer flights. 0, the default: the true phase everywhere
   // (measured in docs/clouds.md: 1.1-1.3x faster, and the stratus sheet seen from below 2 points
-  // worse under HG 0.7). [0, 1000]
-  double similarity_depth = 0.0;
+  // worse under HG 0.7).
+  double similarity_depth = setting(Setting::MsSimilarityDepth).still_default;
   bool operator==(const LightVolumeSettings&) const = default;
 };
 
@@ -72,10 +74,11 @@ enum class MultipleScatteringMethod {
 // asymmetry scaled by c^k. octaves = 0 is single scattering.
 struct MultipleScattering {
   MultipleScatteringMethod method = MultipleScatteringMethod::Octaves;
-  int octaves = 0;            // extra octaves, [0, 3] (Octaves only)
-  double occlusion = 0.5;     // a, (0, 1]
-  double contribution = 0.5;  // b, [0, 1]
-  double eccentricity = 0.5;  // c, [0, 1]
+  int octaves = 0;            // extra octaves (Octaves only)
+  // a, b, c: the ranges and defaults are the table's (render_settings.hpp)
+  double occlusion = setting(Setting::MsOcclusion).still_default;
+  double contribution = setting(Setting::MsContribution).still_default;
+  double eccentricity = setting(Setting::MsEccentricity).still_default;
   LightVolumeSettings light_volume;  // LightVolume only
 };
 

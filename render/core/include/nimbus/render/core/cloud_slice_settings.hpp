@@ -4,12 +4,15 @@
 #pragma once
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/image.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
 
 struct CloudSliceSettings {
-  int slices = 128;        // planes across the clouds' extent along the slicing axis, [2, 4096]
-  int light_res = 256;     // light buffer side, texels, [16, 4096]
+  // The ranges of these settings, and the defaults of those a front end sets, are the table's
+  // (render_settings.hpp).
+  int slices = int(setting(Setting::Slices).still_default);        // planes across the clouds' extent along the slicing axis
+  int light_res = int(setting(Setting::LightRes).still_default);   // light buffer side, texels
   bool jitter = true;      // blue-noise offset of each pixel's sample within its slab (no banding)
   unsigned frame = 0;      // varies the jitter from frame to frame
   bool ambient = true;     // add each cloud's optics.ambient_radiance
@@ -21,17 +24,17 @@ struct CloudSliceSettings {
   // (the half-angle rule); the others force one, for tests at the switch.
   enum class Branch { Auto, FrontToBack, BackToFront } branch = Branch::Auto;
   // Lights drawn, one slicing pass (and light buffer) each: the strongest at the clouds' centre
-  // (strongest_lights, light.hpp); the rest are left out and named in the metadata. [1, 8]
-  int max_lights = 4;
+  // (strongest_lights, light.hpp); the rest are left out and named in the metadata.
+  int max_lights = int(setting(Setting::MaxLights).still_default);
   // A periodic cloud (CloudVolume::period_m) is drawn with copies of its tile out to this
   // distance from the eye, metres, so that a field fills the sky to the horizon (cloud_tiles.hpp);
-  // 0: one tile. [0, kMaxRepeatToM]
+  // 0: one tile, the library's default (a front end's "auto" is the table's: 32 km under the sky).
   double repeat_to_m = 0.0;
 };
 
 // The farthest a periodic field is repeated, metres: --repeat-to and a view state's
 // renderer.repeat_to (the copies each way are bounded too: kMaxRepeatsPerAxis, cloud_tiles.hpp).
-inline constexpr double kMaxRepeatToM = 1e6;
+inline constexpr double kMaxRepeatToM = setting(Setting::RepeatTo).max;
 
 void validate(const CloudSliceSettings& settings);
 

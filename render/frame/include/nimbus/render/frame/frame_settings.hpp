@@ -4,6 +4,7 @@
 #pragma once
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/render/core/shaft_settings.hpp"
 #include "nimbus/render/core/volume_format.hpp"
@@ -20,7 +21,8 @@ struct FrameSettings {
   // The scene under the clouds: a GPU method (not Reference), and its shadow maps.
   ShaftMethod shafts{ShaftMethod::Kind::RayMarch, 48, {}, Jitter::BlueNoise};
   ShaftSettings shaft_settings;
-  int cloud_shadow_res = 512;        // texels per side of the clouds' shadow on the scene, [16, 8192]
+  // Texels per side of the clouds' shadow on the scene (its range: render_settings.hpp).
+  int cloud_shadow_res = int(setting(Setting::CloudShadowRes).still_default);
   VolumeFormat volume_format = VolumeFormat::Half;  // the clouds' density textures
 };
 

@@ -17,6 +17,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/grain_filter.hpp"
+#include "nimbus/render/core/render_settings.hpp"
 #include "nimbus/render/core/shaft_method.hpp"
 #include "nimbus/volume/sky.hpp"
 
@@ -34,37 +35,37 @@ struct ViewState {
     Camera c;
     c.eye = {-600.0, 250.0, 5200.0};
     c.look_at = {400.0, 1500.0, -1500.0};
-    c.fov_deg = 60.0;
+    c.fov_deg = setting(Setting::Fov).view_default;
     return c;
   }();
   // Clocks: sky time drives the wind's drift; evolution time the keyframes. They run together,
   // except that evolution waits while its keyframes are still being made.
   double sky_time_s = 0.0;
   double evolution_time_s = 0.0;
-  double speed = 10.0;      // sky seconds per real second, [0, 1000]
+  double speed = setting(Setting::Speed).view_default;  // sky seconds per real second
   bool paused = false;
   // Cloud optics: extinction, albedo, phase. Their ambient_radiance is not the state's: the
   // sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither saved nor read.
-  CloudOptics optics{0.04, glm::dvec3(0.99), DualLobePhase{0.7, -0.25, 0.8}, glm::dvec3(0.0)};
+  CloudOptics optics{setting(Setting::CloudExtinction).view_default, glm::dvec3(0.99), DualLobePhase{0.7, -0.25, 0.8},
+                     glm::dvec3(0.0)};
   // The slicer at full quality (the viewer's adaptive quality lowers slices and scale in
-  // motion): slices [8, 1024], light_res [32, 4096], jitter (one fixed blue-noise pattern: no
-  // flicker), and multiple scattering: the photon-traced light volume (built per keyframe in the
-  // background: keyframe_light_volumes.hpp), or octaves (0-3; also drawn while the first light
-  // volume is being built). Light volume photons [1024, 1 << 26]: 2^19, a quarter of `nimbus
-  // render`'s, so that a keyframe's volume is made in about half a second on 2 cores
-  // (docs/viewer.md; 0.4-0.5 points more error); cells along the longest axis [4, 192]. A
-  // periodic field's tiles are repeated to 32 km from the eye, within the aerial perspective's
-  // 40 km reach ("repeat_to", [0, 1e6] m; 0: one tile). The JSON holds these fields only; the
-  // others keep CloudSliceSettings' defaults.
+  // motion), jitter (one fixed blue-noise pattern: no flicker), and multiple scattering: the
+  // photon-traced light volume (built per keyframe in the background: keyframe_light_volumes.hpp),
+  // or octaves (also drawn while the first light volume is being built). A periodic field's tiles
+  // are repeated out to repeat_to, within the aerial perspective's 40 km reach. Every number the
+  // JSON holds takes its range and its default from the one table (render_settings.hpp), whose
+  // view_default is the viewer's where it trades error for speed (2^19 photons, a quarter of
+  // `nimbus render`'s: a keyframe's volume in about half a second on 2 cores, 0.4-0.5 points more
+  // error, docs/viewer.md). The others keep CloudSliceSettings' defaults.
   CloudSliceSettings slices = [] {
     CloudSliceSettings s;
-    s.slices = 128;
-    s.light_res = 256;
+    s.slices = int(setting(Setting::Slices).view_default);
+    s.light_res = int(setting(Setting::LightRes).view_default);
     s.multiple.method = MultipleScatteringMethod::LightVolume;
-    s.multiple.octaves = 2;
-    s.multiple.light_volume.resolution = 48;
-    s.multiple.light_volume.photons = 1 << 19;
-    s.repeat_to_m = 32000.0;
+    s.multiple.octaves = int(setting(Setting::Multiple).view_default);
+    s.multiple.light_volume.resolution = int(setting(Setting::MsGrid).view_default);
+    s.multiple.light_volume.photons = std::int64_t(setting(Setting::MsPhotons).view_default);
+    s.repeat_to_m = setting(Setting::RepeatTo).view_default;
     return s;
   }();
   ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)
@@ -76,9 +77,9 @@ struct ViewState {
   // A still's grain filter (grain_filter.hpp): on while a still is the mean of few jittered
   // frames ("grain_filter" in the JSON, true or false; the rest of it keeps its defaults).
   GrainFilter grain_filter;
-  int cloud_shadow_res = 256; // [16, 8192]
-  double render_scale = 1.0;  // (0, 1]: the frame is rendered at this share of the window's size
-  double exposure_stops = 0.0;  // display and PNG screenshots: radiance times 2^stops, [-20, 20]
+  int cloud_shadow_res = int(setting(Setting::CloudShadowRes).view_default);
+  double render_scale = setting(Setting::RenderScale).view_default;  // the frame's share of the window's size
+  double exposure_stops = setting(Setting::Exposure).view_default;   // display and PNG screenshots: radiance times 2^stops
 };
 
 // Throws std::invalid_argument naming the field.

@@ -100,8 +100,14 @@ inline constexpr std::array<RenderSetting, std::size_t(Setting::Count)> kRenderS
 
 constexpr const RenderSetting& setting(Setting id) { return kRenderSettings[std::size_t(id)]; }
 
-// True when `value` is finite and within the setting's range (and whole, for an integer setting).
-bool in_range(const RenderSetting& s, double value);
+// True when `value` is within the setting's range (so finite: a NaN fails every comparison, an
+// infinity the bound), and whole for an integer setting. Constexpr: the table's own defaults are
+// checked with it at compile time (render_settings.cpp).
+constexpr bool in_range(const RenderSetting& s, double v) {
+  if (s.min_open ? !(v > s.min) : !(v >= s.min)) return false;
+  if (s.max_open ? !(v < s.max) : !(v <= s.max)) return false;
+  return !s.integer || v == double(std::int64_t(v));  // within the range, so the cast is defined
+}
 // "[4, 192] cells", "(0, 1]", "[0, 90) degrees".
 std::string range_text(const RenderSetting& s);
 // Throws std::invalid_argument "<name>: must be in <range_text>, got <value>" unless in_range.

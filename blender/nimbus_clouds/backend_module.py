@@ -41,17 +41,19 @@ class ModuleBackend:
             self._presets[name] = self.nimbus.preset(name)
         return self._presets[name]
 
-    def plan(self, preset, *, seed=None, voxel_size=None, res=None, time=0.0, overrides=None):
+    def plan(self, preset, *, seed=None, voxel_size=None, res=None, time=0.0, overrides=None, size=1.0):
         return self.nimbus.plan(preset, seed=seed, voxel_size=voxel_size, res=res, time=time,
-                                overrides=overrides or None)
+                                overrides=overrides or None, size=size)
 
-    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides):
-        volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size, time=time, overrides=overrides or None)
+    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0):
+        volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size, time=time, overrides=overrides or None,
+                                      size=size)
         _write_atomic(volume, path)
 
-    def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame):
+    def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame,
+                          size=1.0):
         """Writes folder/(pattern % frame) for frames first..last; frame n at time (n - start_frame) / fps."""
         for frame in range(first, last + 1):
             volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size,
-                                          time=(frame - start_frame) / fps, overrides=overrides or None)
+                                          time=(frame - start_frame) / fps, overrides=overrides or None, size=size)
             _write_atomic(volume, os.path.join(folder, pattern % frame))

@@ -11,7 +11,7 @@ from . import checks, overrides
 class Job:
     params: object
     backend: object
-    voxel_size: object          # metres, or None for the preset's
+    voxel_size: object          # metres, or None for the preset's (times the size factor)
     overrides: dict
     plan: dict
     paths: list = field(default_factory=list)  # one file, or one per frame
@@ -22,7 +22,7 @@ class Job:
 def _file_stem(params, voxel_size, over):
     """preset-<hash of everything that shapes the file>: the same inputs give the same name."""
     key = {"preset": params.preset, "seed": params.seed, "voxel_size": voxel_size, "overrides": over,
-           "time": params.time,
+           "size": float(params.size), "time": params.time,
            "frames": [params.frame_first, params.frame_last, params.fps] if params.animated else None}
     digest = hashlib.sha1(json.dumps(key, sort_keys=True).encode()).hexdigest()[:12]
     safe = "".join(c if c.isalnum() or c in "-_" else "_" for c in params.preset)
@@ -39,9 +39,10 @@ def prepare(params, backend, limit_gib, folder):
     except (ValueError, KeyError) as e:
         raise ValueError(f"preset '{params.preset}': {e}") from None
     over = overrides.build(doc, params)
-    voxel_size = overrides.voxel_size(doc, params)
+    voxel_size = float(params.voxel_size) if params.voxel_size > 0 else None  # None: the preset's, times the size
     time = params.frame_time(params.frame_first) if params.animated else params.time
-    plan = backend.plan(params.preset, seed=params.seed, voxel_size=voxel_size, time=time, overrides=over)
+    plan = backend.plan(params.preset, seed=params.seed, voxel_size=voxel_size, time=time, overrides=over,
+                        size=float(params.size))
     text = f"{voxel_size:g} m" if voxel_size else f"{float(plan['voxel_size']):g} m (the preset's)"
     checks.check_plan(plan, limit_gib, text)
     job = Job(params, backend, voxel_size, over, plan)
@@ -62,10 +63,10 @@ def run(job):
     if p.animated:
         job.backend.generate_sequence(job.folder, job.pattern, p.preset, seed=p.seed, voxel_size=job.voxel_size,
                                       overrides=job.overrides, first=p.frame_first, last=p.frame_last,
-                                      fps=p.fps, start_frame=p.start_frame())
+                                      fps=p.fps, start_frame=p.start_frame(), size=float(p.size))
     else:
         job.backend.generate_still(job.paths[0], p.preset, seed=p.seed, voxel_size=job.voxel_size,
-                                   time=p.time, overrides=job.overrides)
+                                   time=p.time, overrides=job.overrides, size=float(p.size))
     missing = [path for path in job.paths if not os.path.isfile(path)]
     if missing:
         raise RuntimeError(f"nimbus did not write {missing[0]}")

@@ -1,18 +1,13 @@
-# The cloud material with nimbus's optics: extinction 0.04/m per unit density, albedo 0.99, dual-lobe HG phase.
+# The cloud material with nimbus's optics, as the library gives them (the plan's "optics":
+# nimbus.plan, nimbus generate --plan-json): extinction per unit density, albedo, dual-lobe HG phase.
 #
 # sigma_t = extinction x density; one Volume Scatter node, sigma_s = albedo x sigma_t, whose HG
-# anisotropy is g_f (0.7) at a random 80 % of points and g_b (-0.25) at the rest (White Noise of the
-# shading point: a new lobe for every scattering event, so the phase is the 0.8/0.2 mixture in
+# anisotropy is g_f at a random share w of points and g_b at the rest (White Noise of the shading
+# point: a new lobe for every scattering event, so the phase is the w/(1 - w) mixture in
 # expectation); Volume Absorption, sigma_a = (1 - albedo) x sigma_t. Two Volume Scatter nodes (or
 # Principled Volume, one lobe) cannot hold the mixture: Cycles 3.4 sums the phase functions of
 # several scatter closures without their weights (docs/blender.md, measured).
 import bpy
-
-EXTINCTION = 0.04       # per metre per unit density (nimbus render --cloud-extinction)
-ALBEDO = 0.99           # single-scattering albedo (--cloud-albedo)
-FORWARD_G = 0.7         # --cloud-phase dual:0.7,-0.25,0.8
-BACKWARD_G = -0.25
-FORWARD_WEIGHT = 0.8
 
 # Node names (stable: the panel and the tests find the nodes by them).
 N_DENSITY = "nimbus density"
@@ -49,8 +44,9 @@ def _math(nodes, name, operation, location, b=None):
     return n
 
 
-def build_tree(mat, extinction=EXTINCTION, albedo=ALBEDO):
-    """Replaces mat's nodes with nimbus's optics."""
+def build_tree(mat, optics):
+    """Replaces mat's nodes with nimbus's optics (the plan's "optics" dict)."""
+    extinction, albedo, phase = float(optics["extinction_per_m"]), float(optics["albedo"]), optics["phase"]
     mat.use_nodes = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     nodes.clear()
@@ -62,7 +58,7 @@ def build_tree(mat, extinction=EXTINCTION, albedo=ALBEDO):
     alb = _node(nodes, "ShaderNodeValue", N_ALBEDO, (-900, -350), "albedo")
     alb.outputs[0].default_value = albedo
     weight = _node(nodes, "ShaderNodeValue", N_WEIGHT, (-900, -150), "forward lobe weight")
-    weight.outputs[0].default_value = FORWARD_WEIGHT
+    weight.outputs[0].default_value = float(phase["forward_weight"])
 
     sigma_t = _math(nodes, N_SIGMA_T, "MULTIPLY", (-650, 150))
     links.new(density.outputs["Fac"], sigma_t.inputs[0])
@@ -77,9 +73,9 @@ def build_tree(mat, extinction=EXTINCTION, albedo=ALBEDO):
     links.new(noise.outputs["Value"], forward.inputs[0])
     links.new(weight.outputs[0], forward.inputs[1])
     g_f = _node(nodes, "ShaderNodeValue", N_G_FORWARD, (-900, -750), "forward lobe g")
-    g_f.outputs[0].default_value = FORWARD_G
+    g_f.outputs[0].default_value = float(phase["g_forward"])
     g_b = _node(nodes, "ShaderNodeValue", N_G_BACKWARD, (-900, -900), "backward lobe g")
-    g_b.outputs[0].default_value = BACKWARD_G
+    g_b.outputs[0].default_value = float(phase["g_back"])
     spread = _math(nodes, N_G_SPREAD, "SUBTRACT", (-650, -800))
     links.new(g_f.outputs[0], spread.inputs[0])
     links.new(g_b.outputs[0], spread.inputs[1])
@@ -105,9 +101,9 @@ def build_tree(mat, extinction=EXTINCTION, albedo=ALBEDO):
     return mat
 
 
-def new_material(name, extinction=EXTINCTION, albedo=ALBEDO):
+def new_material(name, optics):
     mat = bpy.data.materials.new(name)
-    build_tree(mat, extinction, albedo)
+    build_tree(mat, optics)
     mat["nimbus_optics"] = 1  # marks the material as the add-on's
     return mat
 

@@ -89,7 +89,7 @@ class NIMBUS_OT_add_cloud(bpy.types.Operator):
             name = f"nimbus {params.preset}"
             first = params.frame_first if params.animated else None
             vol = volume_import.new_volume(name, job.paths, first)
-            material.assign(vol, material.new_material(name))
+            material.assign(vol, material.new_material(name, job.plan["optics"]))
             obj = volume_import.new_object(context, name, vol)
             store_settings(obj, self, job)
             changed = render_settings.ready_cycles(context.scene)
@@ -125,7 +125,7 @@ class NIMBUS_OT_regenerate(bpy.types.Operator):
             job = generate(context, params)
             volume_import.point_volume(obj.data, job.paths, params.frame_first if params.animated else None)
             if not obj.data.materials or obj.data.materials[0] is None:
-                material.assign(obj.data, material.new_material(obj.name))
+                material.assign(obj.data, material.new_material(obj.name, job.plan["optics"]))
             obj.nimbus.backend_used = job.backend.describe()
             obj.nimbus.voxel_size_used = float(job.plan["voxel_size"])
             properties.place(obj)

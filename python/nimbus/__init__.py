@@ -23,7 +23,6 @@ import os
 import inspect
 import re
 import stat
-import tempfile
 from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
 
 from . import _nimbus
@@ -173,35 +172,45 @@ def _coverage_map(value: Any) -> Any:
 # The flags of `nimbus generate` that generate's arguments stand for (their errors name them).
 _GENERATE_FLAGS = {"--preset": "preset", "--seed": "seed", "--voxel-size": "voxel_size", "--res": "res",
                    "--time": "time", "--set": "overrides", "--params": "params_file",
-                   "--coverage-map": "coverage_map"}
+                   "--coverage-map": "coverage_map", "--size": "size"}
 
 
 def _generate_request(preset: str, seed: Optional[int], voxel_size: Optional[float], res: Optional[int],
                       time: float, overrides: Optional[Mapping[str, Any]], params_file: Optional[str],
-                      coverage_map: Any = None) -> tuple:
+                      coverage_map: Any = None, size: float = 1.0) -> tuple:
     return (_text(preset, "preset"), None if seed is None else _int(seed, "seed", 0, 0xFFFFFFFF),
             None if voxel_size is None else _number(voxel_size, "voxel_size"),
             None if res is None else _int(res, "res", 1, 4096),
-            _number(time, "time"), _sets(overrides), "" if params_file is None else _path(params_file, "params_file"),
-            _coverage_map(coverage_map))
+            _number(time, "time"), _sets(overrides), _number(size, "size"),
+            "" if params_file is None else _path(params_file, "params_file"), _coverage_map(coverage_map))
 
 
 def plan(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float] = None, res: Optional[int] = None,
          time: float = 0.0, overrides: Optional[Mapping[str, Any]] = None, params_file: Optional[str] = None,
-         coverage_map: Any = None) -> dict:
-    """What ``generate`` would make, without making it (cheap): a dict with ``voxel_size`` (m),
-    ``dims`` (voxels along x, y, z of the cloud's box), ``dense_bytes`` (that box as float32) and
-    ``bounds_m`` ((x0, y0, z0), (x1, y1, z1)) voxel centres in metres, None when empty.
+         coverage_map: Any = None, size: float = 1.0) -> dict:
+    """What ``generate`` would make, without making it (cheap): ``nimbus generate --plan-json``'s
+    plan as a dict, with ``voxel_size`` (m), ``size`` (the size factor), ``time`` (s), ``dims``
+    (voxels along x, y, z of the cloud's box), ``dense_bytes`` (that box as float32), ``bounds_m``
+    ((x0, y0, z0), (x1, y1, z1)) voxel centres in metres and ``index_box`` (the same in voxels),
+    None when empty, and ``optics``: the look ``render`` gives the cloud where no option says
+    otherwise (``extinction_per_m``, ``albedo``, ``phase``: ``g_forward``, ``g_back``,
+    ``forward_weight``).
 
     Raises ValueError exactly where ``generate`` would for its arguments.
     """
-    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map)
-    return _call(_nimbus._plan, *request, flags=_GENERATE_FLAGS)
+    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map, size)
+    d = json.loads(_call(_nimbus._plan, *request, flags=_GENERATE_FLAGS))
+    d["dims"] = tuple(d["dims"])
+    for key in ("bounds_m", "index_box"):
+        if d[key] is not None:
+            d[key] = tuple(tuple(corner) for corner in d[key])
+    return d
 
 
 def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[float] = None, res: Optional[int] = None,
              time: float = 0.0, overrides: Optional[Mapping[str, Any]] = None, params_file: Optional[str] = None,
-             coverage_map: Any = None, progress: Optional[Callable[[float], Any]] = None) -> Volume:
+             coverage_map: Any = None, size: float = 1.0,
+             progress: Optional[Callable[[float], Any]] = None) -> Volume:
     """Generate a preset's cloud or gas at ``time`` seconds: the voxels ``nimbus generate`` makes for
     the same arguments (its file stores them as half floats unless ``--float``).
 
@@ -213,6 +222,8 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     coverage_map: where clouds form (``--coverage-map``): a grey PNG path (red channel), or a 2-D
         array of values in [0, 1], row 0 the north edge, stretched over the field's area (or the
         preset's coverage_map_extent); 0 no cloud, 1 as without a map. docs/volume.md, Coverage maps.
+    size: the size factor (``--size``, 0.01-100): the cloud this many times as large about its base
+        centre, its noise with it, after the overrides; the preset's voxel size grows with it.
     progress: called now and then with the fraction done (0..1), on the calling thread; an
         exception it raises stops this call (and no other) and is raised here.
 
@@ -223,27 +234,25 @@ def generate(preset: str, *, seed: Optional[int] = None, voxel_size: Optional[fl
     """
     if progress is not None and not callable(progress):
         raise TypeError(f"progress: expected a callable (it is called with the fraction done), got {_type_name(progress)}")
-    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map)
+    request = _generate_request(preset, seed, voxel_size, res, time, overrides, params_file, coverage_map, size)
     return _call(_nimbus._generate, *request, progress, flags=_GENERATE_FLAGS)
 
 
 def read(path: Union[str, os.PathLike], *, grid: Optional[str] = None) -> Volume:
-    """Read a fog volume from an OpenVDB file: ``grid`` (default: "density", else the first float
-    grid). Files nimbus wrote are checked against their seal; any other file is read by a separate
-    program with a memory and time limit, so that a damaged or hostile file cannot crash Python.
-    Negative values (which a density cannot hold) are read as 0, as ``nimbus render`` reads them.
+    """Read a float grid from an OpenVDB file: ``grid`` (default: "density", else the first float
+    grid), its values as the file holds them (a ``nimbus noise`` field keeps its negative half;
+    ``Volume.grid`` names the grid). Files nimbus wrote are checked against their seal; any other
+    file is read by a separate program with a memory and time limit, so that a damaged or hostile
+    file cannot crash Python. ``render`` reads negative values as 0, as ``nimbus render`` reads a
+    file's, and says so in a warning; ``Volume.write`` refuses them (a file nimbus writes holds a
+    density).
 
     Raises FileNotFoundError/OSError for a missing, unreadable or non-regular path (a directory, a
     FIFO), ValueError for an unknown grid, RuntimeError for a file that is not a readable fog
     volume (each naming the file).
     """
     p = _regular_file(_path(path, "path"), "VDB")
-    volume, negatives = _call(_nimbus._read, p, None if grid is None else _text(grid, "grid"), flags={"--grid": "grid"})
-    if negatives:
-        import warnings
-
-        warnings.warn(f"{p}: {negatives} negative values read as 0 (a density cannot be negative)", stacklevel=2)
-    return volume
+    return _call(_nimbus._read, p, None if grid is None else _text(grid, "grid"), flags={"--grid": "grid"})
 
 
 def _regular_file(path: str, kind: str) -> str:
@@ -362,20 +371,24 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
         raise TypeError(f"volumes_or_paths: expected a Volume, a VDB path or a list of them, "
                         f"got {_type_name(volumes_or_paths)}")
     args = _render_args([], scene, eye, look_at, up, fov, res, sun, options)  # every option checked first
-    with tempfile.TemporaryDirectory(prefix="nimbus-render-") as tmp:
-        paths, names = [], {}
-        for i, item in enumerate(items):
-            argument = "volumes_or_paths" if single else f"volumes_or_paths[{i}]"
-            if isinstance(item, Volume):
-                path = os.path.join(tmp, f"volume-{i}.vdb")
-                _call(item._write, path, False, flags={})  # float: the very voxels, sealed, read back in-process
-                names[path] = f"{argument} (a Volume)"
-            elif isinstance(item, (str, bytes, os.PathLike)):
-                path = _regular_file(_path(item, argument), "VDB")
-            else:
-                raise TypeError(f"{argument}: {_type_name(item)} is neither a Volume nor a path")
-            paths.append(path)
-        return _call(_nimbus._render, args + paths, flags=_RENDER_NAMES, paths=names)
+    # Volumes are rendered from memory, each as the file it would be written to (in float) would
+    # be; paths are read as the program reads them. Both keep the order given.
+    paths, volumes = [], []
+    for i, item in enumerate(items):
+        argument = "volumes_or_paths" if single else f"volumes_or_paths[{i}]"
+        if isinstance(item, Volume):
+            volumes.append((len(paths), item, f"{argument} (a Volume)"))
+        elif isinstance(item, (str, bytes, os.PathLike)):
+            paths.append(_regular_file(_path(item, argument), "VDB"))
+        else:
+            raise TypeError(f"{argument}: {_type_name(item)} is neither a Volume nor a path")
+    image, warnings_said = _call(_nimbus._render, args + paths, volumes, flags=_RENDER_NAMES)
+    if warnings_said:
+        import warnings
+
+        for text in warnings_said:
+            warnings.warn(text, stacklevel=2)
+    return image
 
 
 # render's settings: the one table of nimbus's render settings (render_settings.hpp in the

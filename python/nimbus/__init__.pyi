@@ -12,11 +12,13 @@ _Path = Union[str, os.PathLike[str]]
 _Vec3 = Sequence[float]
 
 class Volume:
-    """A density volume: voxels, their place in the world (metres) and the file's metadata."""
+    """A density volume (or a float grid read from a file): voxels, their place in the world (metres)
+    and the file's metadata."""
 
     @property
     def density(self) -> numpy.typing.NDArray[numpy.float32]:
-        """float32 [x, y, z], a writable view of the volume's voxels (Fortran order, no copy)."""
+        """float32 [x, y, z], a writable view of the volume's voxels (Fortran order, no copy): a
+        density, or a read grid's values as its file holds them."""
     @property
     def origin(self) -> tuple[int, int, int]:
         """Index of density[0, 0, 0]; its centre is at origin * voxel_size metres."""
@@ -28,6 +30,9 @@ class Volume:
         """4x4 rows taking (i, j, k, 1) to world metres; None for a frustum transform."""
     @property
     def linear(self) -> bool: ...
+    @property
+    def grid(self) -> str:
+        """The grid's name: "density", or the one read from a file ("noise")."""
     @property
     def up_axis(self) -> Literal["z", "y"]: ...
     @property
@@ -45,10 +50,11 @@ def presets() -> list[str]: ...
 def preset(name: str) -> dict[str, Any]: ...
 def plan(preset: str, *, seed: Optional[int] = ..., voxel_size: Optional[float] = ..., res: Optional[int] = ...,
          time: float = ..., overrides: Optional[Mapping[str, Any]] = ..., params_file: Optional[_Path] = ...,
-         coverage_map: Any = ...) -> dict[str, Any]: ...
+         coverage_map: Any = ..., size: float = ...) -> dict[str, Any]: ...
 def generate(preset: str, *, seed: Optional[int] = ..., voxel_size: Optional[float] = ..., res: Optional[int] = ...,
              time: float = ..., overrides: Optional[Mapping[str, Any]] = ..., params_file: Optional[_Path] = ...,
-             coverage_map: Any = ..., progress: Optional[Callable[[float], Any]] = ...) -> Volume: ...
+             coverage_map: Any = ..., size: float = ...,
+             progress: Optional[Callable[[float], Any]] = ...) -> Volume: ...
 def read(path: _Path, *, grid: Optional[str] = ...) -> Volume: ...
 def render(volumes_or_paths: Union[Volume, _Path, Iterable[Union[Volume, _Path]]], *, scene: str = ...,
            eye: Optional[_Vec3] = ..., look_at: Optional[_Vec3] = ..., up: Optional[_Vec3] = ...,

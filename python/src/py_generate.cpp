@@ -44,37 +44,22 @@ void set_coverage_map(cli::GenerateRequest& r, const py::object& map) {
   }
 }
 
-py::dict plan(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
-              std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
-              const py::object& coverage_map) {
+// The plan as generate_plan.hpp's JSON text (the package makes it a dict).
+std::string plan(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
+                 std::optional<int> res, double time_s, std::vector<std::string> sets, double size,
+                 const std::string& params_file, const py::object& coverage_map) {
   check_time(time_s);
-  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file, "", nullptr};
+  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), size, params_file, "", nullptr};
   set_coverage_map(request, coverage_map);
   const cli::GeneratePlan p = cli::plan_generate(request);
-  cli::check_generate_time(p, time_s);
-  const openvdb::CoordBBox box = cli::check_generate_memory(p, time_s);  // as generate refuses it, before any voxel
-  py::dict d;
-  d["voxel_size"] = p.voxel_size_m;
-  if (box.empty()) {
-    d["dims"] = py::make_tuple(0, 0, 0);
-    d["dense_bytes"] = 0;
-    d["bounds_m"] = py::none();
-    return d;
-  }
-  const openvdb::Coord n = box.dim();
-  d["dims"] = py::make_tuple(n.x(), n.y(), n.z());
-  d["dense_bytes"] = uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()) * sizeof(float);
-  const double vs = p.voxel_size_m;  // voxel (i, j, k) is centred at (i, j, k) * voxel size
-  d["bounds_m"] = py::make_tuple(py::make_tuple(box.min().x() * vs, box.min().y() * vs, box.min().z() * vs),
-                                 py::make_tuple(box.max().x() * vs, box.max().y() * vs, box.max().z() * vs));
-  return d;
+  return cli::plan_json(p, time_s).dump();  // refuses as generate does, before any voxel
 }
 
 Volume generate(const std::string& preset, std::optional<uint32_t> seed, std::optional<double> voxel_size,
-                std::optional<int> res, double time_s, std::vector<std::string> sets, const std::string& params_file,
-                const py::object& coverage_map, const py::object& progress) {
+                std::optional<int> res, double time_s, std::vector<std::string> sets, double size,
+                const std::string& params_file, const py::object& coverage_map, const py::object& progress) {
   check_time(time_s);
-  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), params_file, "", nullptr};
+  cli::GenerateRequest request{preset, seed, voxel_size, res, std::move(sets), size, params_file, "", nullptr};
   set_coverage_map(request, coverage_map);
   Volume v;
   std::atomic<double> fraction{0.0};
@@ -96,6 +81,7 @@ Volume generate(const std::string& preset, std::optional<uint32_t> seed, std::op
         info.seed = p.params.seed;
         info.time = time_s;
         info.up_axis = 'z';
+        cli::add_period_metadata(p.params, info);  // as nimbus generate writes it
         v = volume_from_grid(*density, 'z', volume::export_metadata(info));
         if (auto temperature = volume::generate_temperature(p.params, *density)) v.extra.push_back(temperature);
       },

@@ -57,17 +57,24 @@ volume::ExportInfo export_info(const Volume& v) {
   return info;
 }
 
-void check_density(const volume::DenseBox& box) {
+}  // namespace
+
+void check_density(const volume::DenseBox& box, const std::string& grid, bool negatives_allowed) {
   for (std::size_t n = 0; n < box.values.size(); ++n) {
     const float d = box.values[n];
-    if (std::isfinite(d) && d >= 0.0f) continue;
+    if (std::isfinite(d) && (d >= 0.0f || negatives_allowed)) continue;
     const int64_t sx = box.size[0], sy = box.size[1];
     const int64_t i = int64_t(n) % sx, j = (int64_t(n) / sx) % sy, k = int64_t(n) / (sx * sy);
-    throw std::invalid_argument("density[" + std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) +
-                                "] is " + (std::isnan(d) ? "NaN" : std::isinf(d) ? "infinite" : "negative") +
-                                ": a density is finite and >= 0");
+    const std::string what = std::isnan(d) ? "NaN" : std::isinf(d) ? "infinite" : "negative";
+    const std::string where = "density[" + std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) + "]";
+    if (negatives_allowed) throw std::invalid_argument(where + " is " + what + ": a value must be finite");
+    throw std::invalid_argument(where + " is " + what + ": a density is finite and >= 0" +
+                                (grid == "density" ? "" : " (this volume's grid is '" + grid +
+                                 "', read from a file: clip it first, np.maximum(v.density, 0, out=v.density))"));
   }
 }
+
+namespace {
 
 py::object meta_to_python(const volume::MetaValue& v) {
   if (const std::string* s = std::get_if<std::string>(&v)) return py::str(*s);
@@ -110,10 +117,10 @@ Volume volume_from_array(const py::array& input, double voxel_size, const std::a
   return v;
 }
 
-// The volume, and how many negative values were read as 0.
-std::pair<Volume, uint64_t> read_volume(const std::filesystem::path& path, const std::optional<std::string>& grid) {
+// The volume, its values as the file holds them: a density's, or any other grid's (a noise
+// field's negative half stays negative).
+Volume read_volume(const std::filesystem::path& path, const std::optional<std::string>& grid) {
   Volume v;
-  uint64_t negatives = 0;
   run_interruptible([&] {
     volume::VdbReadOptions options;
     options.grid = grid;
@@ -122,15 +129,8 @@ std::pair<Volume, uint64_t> read_volume(const std::filesystem::path& path, const
     if (const volume::MetaValue* u = find_meta(file.metadata, "up_axis"))
       if (const std::string* s = std::get_if<std::string>(u); s && (*s == "z" || *s == "y")) up = (*s)[0];
     v = volume_from_grid(*file.grid, up, file.metadata);
-    // A density cannot be negative: read as 0, as nimbus render reads them (cloud_source.hpp).
-    for (float& d : v.box.values) {
-      if (d < 0.0f) {
-        d = 0.0f;
-        ++negatives;
-      }
-    }
   });
-  return {std::move(v), negatives};
+  return v;
 }
 
 }  // namespace
@@ -140,6 +140,7 @@ Volume volume_from_grid(const openvdb::FloatGrid& grid, char up_axis, volume::Me
   v.box = volume::dense_active_box(grid);
   v.transform = grid.transform().copy();
   v.up_axis = up_axis;
+  if (!grid.getName().empty()) v.grid = grid.getName();
   volume::Metadata kept;
   for (auto& [k, value] : metadata)
     if (k != "nimbus_checksum") kept.emplace_back(k, value);
@@ -148,7 +149,7 @@ Volume volume_from_grid(const openvdb::FloatGrid& grid, char up_axis, volume::Me
 }
 
 void write_volume(const Volume& v, const std::filesystem::path& path, bool half_float) {
-  check_density(v.box);
+  check_density(v.box, v.grid);
   cli::check_outputs({{"path", path.string()}});  // as the program checks -o: a writable file in a directory that exists
   openvdb::FloatGrid::Ptr density = volume::grid_from_dense_box(v.box, *v.transform);
   std::vector<openvdb::FloatGrid::ConstPtr> grids{density};
@@ -159,8 +160,6 @@ void write_volume(const Volume& v, const std::filesystem::path& path, bool half_
   eo.half_float = half_float;
   volume::write_volume_vdb(path, grids, export_info(v), eo);
 }
-
-namespace {
 
 // The Volume behind a Python object. Volume.__new__ makes an object whose Volume was never
 // constructed (pybind11 leaves its value null): TypeError, never a null dereference.
@@ -174,8 +173,6 @@ Volume& volume_of(const py::handle self) {
                          "nimbus.read or nimbus.Volume.from_array");
   return *v;
 }
-
-}  // namespace
 
 void bind_volume(py::module_& m) {
   py::class_<Volume>(m, "Volume")
@@ -216,6 +213,7 @@ void bind_volume(py::module_& m) {
                                return rows;
                              })
       .def_property_readonly("linear", [](py::object self) { return volume_of(self).transform->isLinear(); })
+      .def_property_readonly("grid", [](py::object self) { return volume_of(self).grid; })
       .def_property_readonly("up_axis", [](py::object self) { return std::string(1, volume_of(self).up_axis); })
       .def_property_readonly("metadata",
                              [](py::object self) {

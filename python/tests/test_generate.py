@@ -24,6 +24,8 @@ def assert_same_voxels(a, b, atol=0.0):
     ("steam", ["--res", "40", "--set", "density=0.5"], {"res": 40, "overrides": {"density": 0.5}}),
     ("cumulus-mediocris", ["--voxel-size", "20", "--set", "coverage=0.7", "--set", "shapes.0.size=[700,600,350]"],
      {"voxel_size": 20.0, "overrides": {"coverage": 0.7, "shapes.0.size": [700, 600, 350]}}),
+    ("cumulus-humilis", ["--size", "2.5"], {"size": 2.5}),
+    ("stratocumulus-field", ["--size", "0.5", "--voxel-size", "40"], {"size": 0.5, "voxel_size": 40.0}),
 ])
 def test_generate_equals_the_program_voxel_for_voxel(run, tmp_path, preset, flags, kwargs):
     ours = nimbus.generate(preset, **kwargs)
@@ -59,6 +61,36 @@ def test_plan_names_the_box_generate_fills():
     last = (np.array(v.origin) + np.array(v.density.shape) - 1) * 12.0
     assert np.all(first >= lo - 1e-9) and np.all(last <= hi + 1e-9)
     assert all(n >= m for n, m in zip(p["dims"], v.density.shape))
+
+
+def test_plan_is_the_programs_plan_json(run):
+    """One plan for every front end: Python's dict is `nimbus generate --plan-json`'s, key for key,
+    and the default look in it is the one nimbus render uses (no optics flag given)."""
+    import json
+    for flags, kwargs in (([], {}), (["--size", "2", "--time", "60"], {"size": 2.0, "time": 60.0}),
+                          (["--res", "50", "--seed", "4"], {"res": 50, "seed": 4})):
+        _, out, _ = run("generate", "--preset", "cumulus-humilis", "--plan-json", *flags)
+        theirs = json.loads(out)
+        ours = nimbus.plan("cumulus-humilis", **kwargs)
+        assert set(ours) == set(theirs)
+        assert ours["dims"] == tuple(theirs["dims"]) and ours["voxel_size"] == theirs["voxel_size"]
+        assert ours["bounds_m"] == tuple(tuple(c) for c in theirs["bounds_m"])
+        assert ours["optics"] == theirs["optics"]
+    assert nimbus.plan("cumulus-humilis")["optics"] == {
+        "extinction_per_m": 0.04, "albedo": 0.99, "phase": {"g_forward": 0.7, "g_back": -0.25, "forward_weight": 0.8}}
+
+
+def test_the_size_factor_grows_the_cloud_about_its_base():
+    one, two = nimbus.plan("cumulus-humilis"), nimbus.plan("cumulus-humilis", size=2.0)
+    assert two["voxel_size"] == 2 * one["voxel_size"] and two["dims"] == one["dims"]  # the preset's voxels, grown
+    (lo1, hi1), (lo2, hi2) = one["bounds_m"], two["bounds_m"]
+    assert lo2[2] == pytest.approx(lo1[2], abs=one["voxel_size"])  # the base stays at its altitude
+    for a in (0, 1):
+        assert hi2[a] - lo2[a] == pytest.approx(2 * (hi1[a] - lo1[a]), rel=0.05)
+    with pytest.raises(ValueError, match=r"^size: must be within \[0.01, 100\], got 0$"):
+        nimbus.generate("cumulus-humilis", size=0)
+    with pytest.raises(TypeError, match="^size: expected a number"):
+        nimbus.plan("cumulus-humilis", size="big")
 
 
 def test_plan_refuses_what_generate_refuses():

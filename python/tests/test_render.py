@@ -51,6 +51,42 @@ def test_render_of_a_path_equals_the_render_of_its_volume(humilis):
     np.testing.assert_array_equal(nimbus.render(v, **options), nimbus.render(str(path), **options))
 
 
+def test_volumes_render_from_memory_in_the_order_given(tmp_path, humilis):
+    """A y-up Volume and a path, in either order, render as their two files do: the Volume is
+    the cloud its file would be, and keeps its place among the paths."""
+    v, path = humilis
+    y_path = tmp_path / "y.vdb"
+    nimbus.Volume.from_array(np.asarray(v.density)[::2, ::2, ::2], 24.0, origin=(20, 30, 2), up_axis="y").write(
+        y_path, half_float=False)
+    y = nimbus.read(y_path)
+    assert y.up_axis == "y"
+    options = dict(scene="none", res=(48, 27), sun=(0.3, -0.5, 0.8), ms_photons=1 << 16, slices=48)
+    for items, files in (([y, path], [str(y_path), str(path)]), ([path, y], [str(path), str(y_path)])):
+        np.testing.assert_array_equal(nimbus.render(items, **options), nimbus.render(files, **options))
+
+
+def test_a_volume_with_negative_values_renders_them_as_0_with_a_warning(humilis):
+    """No file between: write refuses a negative value, render takes the Volume as it is and reads
+    the negative values as 0, as nimbus render reads a file's."""
+    v, _ = humilis
+    dense = np.array(v.density)
+    negative = nimbus.Volume.from_array(dense, 12.0, origin=v.origin)
+    clipped = nimbus.Volume.from_array(dense, 12.0, origin=v.origin)
+    negative.density[dense == 0] = -1.0  # the empty voxels become negative
+    options = dict(scene="none", res=(32, 18), sun=(0.3, -0.5, 0.8), ms_photons=1 << 16, slices=32)
+    with pytest.warns(UserWarning, match=r"volumes_or_paths \(a Volume\): grid 'density' holds \d+ negative"):
+        ours = nimbus.render(negative, **options)
+    np.testing.assert_array_equal(ours, nimbus.render(clipped, **options))
+
+
+def test_a_volume_made_nan_through_its_view_is_refused_by_name(humilis):
+    v, _ = humilis
+    bad = nimbus.Volume.from_array(np.array(v.density), 12.0)
+    bad.density[3, 3, 3] = np.nan
+    with pytest.raises(ValueError, match=r"^volumes_or_paths\[1\] \(a Volume\): density\[3, 3, 3\] is NaN"):
+        nimbus.render([v, bad], scene="none", res=(16, 16))
+
+
 def test_path_tracer_options_pass_as_flags(run, tmp_path, humilis):
     v, path = humilis
     ours = nimbus.render(path, scene="none", method="pathtrace", spp=2, res=(32, 18), sun=(0, 0, 1), seed=5,

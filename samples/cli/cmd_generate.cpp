@@ -44,6 +44,8 @@ struct GenerateArgs {
   FrameArgs frame;
   std::string brick;  // "I/N" or "I/AxBxC"
   std::vector<std::string> sets;
+  double size = 1.0;
+  bool plan_json = false;
   std::string params;
   std::string up = "z";
   bool full_float = false;
@@ -145,9 +147,23 @@ int run_generate_sky(const GenerateArgs& a) {
   return 0;
 }
 
+// --plan-json: the plan at the first frame's time, as JSON on stdout (generate_plan.hpp); no file.
+int print_plan_json(const GenerateArgs& a, const GeneratePlan& plan, const FrameRange& range, bool brick) {
+  if (brick) throw UsageError("--plan-json: the plan is of the whole cloud, not of a --brick");
+  if (!a.output.empty()) throw UsageError("--plan-json: writes no file; leave out -o");
+  const nlohmann::json j = plan_json(plan, range.time(range.first));
+  checks_done();
+  std::printf("%s\n", j.dump(2).c_str());
+  return 0;
+}
+
 int run_generate(const GenerateArgs& a) {
-  if (a.output.empty()) throw UsageError("-o: an output file is required");
-  if (!a.sky.empty()) return run_generate_sky(a);
+  if (a.output.empty() && !a.plan_json) throw UsageError("-o: an output file is required");
+  if (!a.sky.empty()) {
+    if (a.plan_json) throw UsageError("--plan-json: a plan is of one preset, not of --sky");
+    if (a.size != 1.0) throw UsageError("--size: not with --sky (each cloud of the sky has its own size)");
+    return run_generate_sky(a);
+  }
   if (a.preset.empty()) throw UsageError("--preset: required (or --sky SKY.json for a sky's clouds)");
   if (a.up != "y" && a.up != "z") throw UsageError("--up: '" + a.up + "' must be y or z");
   const FrameRange range = parse_frames(a.frame);
@@ -162,8 +178,9 @@ int run_generate(const GenerateArgs& a) {
     brick = parse_brick(a.brick);
   }
 
-  GenerateRequest request{a.preset, a.seed, a.voxel_size, a.res, a.sets, a.params, a.coverage_map, nullptr};
+  GenerateRequest request{a.preset, a.seed, a.voxel_size, a.res, a.sets, a.size, a.params, a.coverage_map, nullptr};
   const GeneratePlan plan = plan_generate(request);
+  if (a.plan_json) return print_plan_json(a, plan, range, brick.has_value());
   const volume::CloudParams& params = plan.params;
   volume::GenerateOptions opt;
   opt.voxel_size = plan.voxel_size_m;
@@ -220,11 +237,7 @@ int run_generate(const GenerateArgs& a) {
   info.up_axis = a.up[0];
   if (sequence) info.fps = range.fps;
   // A periodic field says so: renderers draw its copies to the horizon (render/core cloud_source.hpp).
-  if (const std::optional<volume::PeriodicTile> tile = volume::periodic_tile(params)) {
-    char period[64];
-    std::snprintf(period, sizeof period, "%.17g %.17g", tile->size_m.x, tile->size_m.y);
-    info.extra.emplace_back(std::string(volume::kPeriodMetadataKey), std::string(period));
-  }
+  add_period_metadata(params, info);
   if (tag) {  // a brick's keys after the field's own, which merge keeps
     const volume::Metadata keys = volume::brick_metadata(*tag);
     info.extra.insert(info.extra.end(), keys.begin(), keys.end());
@@ -292,11 +305,17 @@ void add_generate_command(CLI::App& app, Action& action) {
   cmd->add_option("--brick", a->brick,
                   "only brick I (0-based) of N, or of AxBxC along x, y, z: 128-voxel-aligned boxes that nimbus merge "
                   "joins (docs/farm.md)");
+  cmd->add_option("--size", a->size,
+                  "size factor: the cloud this many times as large about its base centre, its noise with it, and the "
+                  "preset's voxel size too (after --set and --params; 0.01-100)")
+      ->capture_default_str();
   cmd->add_option("--set", a->sets, "override a parameter: key=value (repeatable; nimbus presets show NAME; positions and winds are Z up: x east, y north)");
   cmd->add_option("--params", a->params, "JSON file of parameter overrides");
   cmd->add_option("--up", a->up, "up axis of the written file: z (Blender, and nimbus's own world) or y (Houdini: the grid is turned)")->capture_default_str();
   cmd->add_flag("--float", a->full_float, "store 32-bit floats (default: half floats)");
-  cmd->add_option("-o,--output", a->output, "output .vdb file")->required();
+  cmd->add_option("-o,--output", a->output, "output .vdb file (required, but with --plan-json)");
+  cmd->add_flag("--plan-json", a->plan_json,
+                "print the plan as JSON (voxel size, box, memory, the default optics: docs/cli.md) and write nothing");
   cmd->callback([&action, a] { action = [a] { return run_generate(*a); }; });
 }
 

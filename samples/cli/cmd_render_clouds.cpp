@@ -48,7 +48,14 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
   const bool sequence = range.sequence;
   std::vector<render::CloudVolume> clouds;
   const render::UpAxis up = render::parse_up_axis(a.up);
-  for (const std::string& pattern : a.files) {
+  auto memory = a.memory.begin();
+  const auto memory_before = [&](std::size_t file) {
+    for (; memory != a.memory.end() && memory->position <= file; ++memory)
+      clouds.push_back(render::cloud_from_grid(*memory->grid, memory->period_m, optics, memory->name));
+  };
+  for (std::size_t n = 0; n < a.files.size(); ++n) {
+    memory_before(n);
+    const std::string& pattern = a.files[n];
     const std::string path = frame_path(pattern, frame, sequence && has_frame_field(pattern));
     render::CloudFileOptions fo;
     fo.level_set_to_fog = a.level_set_to_fog;
@@ -71,6 +78,7 @@ std::vector<render::CloudVolume> load_clouds(const CloudRenderArgs& a, const std
       throw std::runtime_error(named(e));
     }
   }
+  memory_before(a.files.size());
   for (const render::PresetCloud& preset : presets) {
     Progress progress("generating " + preset.name);
     std::mutex m;
@@ -95,6 +103,7 @@ std::string describe_clouds(const CloudRenderArgs& a, int frame, bool sequence) 
   std::string text;
   for (const std::string& f : a.files)
     text += (text.empty() ? "" : ", ") + frame_path(f, frame, sequence && has_frame_field(f));
+  for (const MemoryCloud& m : a.memory) text += (text.empty() ? "" : ", ") + m.name;
   for (const std::string& p : a.presets) text += (text.empty() ? "--preset " : ", --preset ") + p;
   return text + (sequence ? " (frame " + std::to_string(frame) + ")" : "");
 }
@@ -127,7 +136,7 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--shafts", a.shafts, "The scene's light-shaft method under the clouds (see --method)")
       ->capture_default_str();
   add_setting_option(cmd, render::Setting::CloudExtinction, a.cloud_extinction);
-  cmd->add_option("--cloud-albedo", a.cloud_albedo, "Cloud single-scattering albedo, V or R,G,B (default 0.99)");
+  cmd->add_option("--cloud-albedo", a.cloud_albedo, "Cloud single-scattering albedo, V or R,G,B (default " + number_text(render::kCloudAlbedo) + ")");
   cmd->add_option("--cloud-phase", a.cloud_phase, "Cloud phase: isotropic, hg:G or dual:GF,GB,W")->capture_default_str();
   cmd->add_option("--ambient", a.ambient, "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)")
       ->capture_default_str();

@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "cli.hpp"
 #include "frame_range.hpp"
 #include "nimbus/base/memory.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/volume/cloud_scale.hpp"
 #include "nimbus/volume/generate.hpp"
 #include "nimbus/volume/preset.hpp"
 #include "nimbus/volume/voxel_size.hpp"
@@ -23,6 +26,11 @@ GeneratePlan plan_generate(const GenerateRequest& r) {
     }
   }
   if (r.res && (*r.res < 1 || *r.res > 4096)) throw UsageError("--res: must be in [1, 4096]");
+  try {
+    volume::check_size_factor(r.size, "--size");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   GeneratePlan plan;
   try {
     plan.doc = volume::load_preset(r.preset);
@@ -37,9 +45,15 @@ GeneratePlan plan_generate(const GenerateRequest& r) {
       volume::validate(plan.params);
     }
     plan.voxel_size_m = volume::preset_voxel_size(plan.doc, r.preset);
+    if (r.size != 1.0) {
+      plan.params = volume::scale_cloud(plan.params, r.size);
+      volume::validate(plan.params);  // a field's diameters, say, may leave their range
+      plan.voxel_size_m *= r.size;
+    }
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  plan.size = r.size;
   if (r.voxel_size) plan.voxel_size_m = *r.voxel_size;
   // The model itself refuses what its parameters cannot give (densities beyond the float range):
   // std::invalid_argument.
@@ -72,6 +86,43 @@ openvdb::CoordBBox check_generate_memory(const GeneratePlan& plan, double time_s
   ensure_fits_in_memory(uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()), sizeof(float),
                         "the cloud's bounding box at this voxel size");
   return box;
+}
+
+nlohmann::json plan_json(const GeneratePlan& plan, double time_s) {
+  check_generate_time(plan, time_s);
+  const openvdb::CoordBBox box = check_generate_memory(plan, time_s);
+  const double vs = plan.voxel_size_m;  // voxel (i, j, k) is centred at (i, j, k) * voxel size
+  nlohmann::json j;
+  j["voxel_size"] = vs;
+  j["size"] = plan.size;
+  j["time"] = time_s;
+  if (box.empty()) {
+    j["dims"] = {0, 0, 0};
+    j["dense_bytes"] = 0;
+    j["bounds_m"] = nullptr;
+    j["index_box"] = nullptr;
+  } else {
+    const openvdb::Coord n = box.dim(), lo = box.min(), hi = box.max();
+    j["dims"] = {n.x(), n.y(), n.z()};
+    j["dense_bytes"] = uint64_t(n.x()) * uint64_t(n.y()) * uint64_t(n.z()) * sizeof(float);
+    j["bounds_m"] = {{lo.x() * vs, lo.y() * vs, lo.z() * vs}, {hi.x() * vs, hi.y() * vs, hi.z() * vs}};
+    j["index_box"] = {{lo.x(), lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()}};
+  }
+  const render::CloudOptics optics;  // the look's defaults: render/core cloud_optics.hpp
+  j["optics"] = {{"extinction_per_m", optics.extinction_per_m},
+                 {"albedo", render::kCloudAlbedo},
+                 {"phase", {{"g_forward", render::kCloudPhase.g_forward},
+                            {"g_back", render::kCloudPhase.g_back},
+                            {"forward_weight", render::kCloudPhase.forward_weight}}}};
+  return j;
+}
+
+void add_period_metadata(const volume::CloudParams& params, volume::ExportInfo& info) {
+  if (const std::optional<volume::PeriodicTile> tile = volume::periodic_tile(params)) {
+    char period[64];
+    std::snprintf(period, sizeof period, "%.17g %.17g", tile->size_m.x, tile->size_m.y);
+    info.extra.emplace_back(std::string(volume::kPeriodMetadataKey), std::string(period));
+  }
 }
 
 }  // namespace nimbus::cli

@@ -11,6 +11,7 @@
 #include "cli.hpp"
 #include "frame_range.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/render_settings.hpp"
 #include "render_args.hpp"
@@ -21,8 +22,18 @@ namespace nimbus::cli {
 // A setting's default for a still (render_settings.hpp).
 inline double still_default(render::Setting id) { return render::setting(id).still_default; }
 
+// A cloud held in memory (the Python module's Volume), rendered among the files as the file it
+// would be written to: its grid made ready by render::cloud_grid_in_memory.
+struct MemoryCloud {
+  std::string name;                   // in errors: "volumes_or_paths[1] (a Volume)"
+  openvdb::FloatGrid::ConstPtr grid;  // y-up, no negative value
+  glm::dvec3 period_m{0.0};           // its periodic tile's world x and y periods, as render x and z
+  std::size_t position = 0;           // its place among the clouds: before files[position]
+};
+
 struct CloudRenderArgs {
   std::vector<std::string> files;    // VDB files (a '%04d'-style pattern with --frames)
+  std::vector<MemoryCloud> memory;   // clouds in memory, in order of position (not a flag)
   std::vector<std::string> presets;  // generated at --time or per frame
   std::string grid;                  // grid name in the files (default: density, else the first float grid)
   std::string up = "auto";           // up axis of the files: auto (their metadata, else y), y or z
@@ -45,7 +56,7 @@ struct CloudRenderArgs {
   std::string shafts = "raymarch:48";  // the scene's method under the clouds
   std::optional<double> cloud_extinction;
   std::string cloud_albedo;          // R,G,B
-  std::string cloud_phase = "dual:0.7,-0.25,0.8";
+  std::string cloud_phase = render::to_string(render::kCloudPhase);  // "dual:0.7,-0.25,0.8"
   std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
   std::optional<int> multiple;       // octaves; light-volume: 0 (off) or 1; unset: see --ms-method
   std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves

@@ -42,7 +42,7 @@ std::vector<ImageFlag> render_image_flags() {
   return flags;
 }
 
-render::Image render_clouds_image(const std::vector<std::string>& args) {
+render::Image render_clouds_image(const std::vector<std::string>& args, std::vector<MemoryCloud> memory) {
   ImageArgs a;
   const auto cmd = image_command(a);
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
@@ -55,7 +55,8 @@ render::Image render_clouds_image(const std::vector<std::string>& args) {
   }
   refuse_empty_values(*cmd);
   check_render_flags(*cmd, kRenderClouds);
-  if (a.clouds.files.empty() && a.clouds.presets.empty())
+  a.clouds.memory = std::move(memory);
+  if (a.clouds.files.empty() && a.clouds.presets.empty() && a.clouds.memory.empty())
     throw UsageError("nothing to render: give a volume, a VDB file or --preset");
   for (const CLI::Option* o : cmd->get_options())
     if (o->count() > 0) a.clouds.given.insert(o->get_name());

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "nimbus/render/core/image.hpp"
+#include "render_clouds.hpp"
 
 namespace nimbus::cli {
 
@@ -12,7 +13,9 @@ namespace nimbus::cli {
 // --preview, --exposure, --view-state and the frame flags other than --time. UsageError for a bad
 // or unknown flag (as the program words it), runtime errors as the program's; the image is the
 // one `nimbus render` would write to its EXR, in float (row 0 at the top, premultiplied).
-render::Image render_clouds_image(const std::vector<std::string>& args);
+// `memory`: clouds held in memory, rendered among the files as the files they would be written to
+// (in order of MemoryCloud::position).
+render::Image render_clouds_image(const std::vector<std::string>& args, std::vector<MemoryCloud> memory = {});
 
 // A flag it takes, as spelled on the command line ("--slices", "--eye", ...), whether it takes
 // a value (a switch does not), its default as `--help` shows it (empty where it has none or

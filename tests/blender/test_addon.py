@@ -153,8 +153,20 @@ def add(**kw):
     return bpy.ops.nimbus.add_cloud(**kw)
 
 
-def check_material(obj, label):
+def library_optics(program):
+    """The look nimbus render gives a cloud by default, as the library states it (--plan-json)."""
+    import json
+    out = subprocess.run([program, "generate", "--preset", "cumulus-humilis", "--plan-json"], capture_output=True,
+                         text=True, check=True).stdout
+    return json.loads(out)["optics"]
+
+
+def check_material(obj, label, program):
     from nimbus_clouds import material as M
+    optics = library_optics(program)
+    ext, alb, ph = optics["extinction_per_m"], optics["albedo"], optics["phase"]
+    check((ext, alb, ph["g_forward"], ph["g_back"], ph["forward_weight"]) == (0.04, 0.99, 0.7, -0.25, 0.8),
+          f"{label}: the library's default look is extinction 0.04, albedo 0.99, dual:0.7,-0.25,0.8 ({optics})")
     mat = obj.data.materials[0] if obj.data.materials else None
     if not check(mat is not None and mat.use_nodes, f"{label}: the volume has a node material"):
         return
@@ -162,12 +174,11 @@ def check_material(obj, label):
     value = lambda name: n[name].outputs[0].default_value if name in n else None  # noqa: E731
     check(name_is(n, M.N_DENSITY, "ShaderNodeAttribute") and n[M.N_DENSITY].attribute_name == "density",
           f"{label}: an Attribute node reads the grid 'density'")
-    check(value(M.N_EXTINCTION) is not None and abs(value(M.N_EXTINCTION) - 0.04) < 1e-7,
-          f"{label}: extinction per unit density is 0.04 /m (got {value(M.N_EXTINCTION)})")
-    check(value(M.N_ALBEDO) is not None and abs(value(M.N_ALBEDO) - 0.99) < 1e-7, f"{label}: albedo 0.99")
-    check(value(M.N_WEIGHT) is not None and abs(value(M.N_WEIGHT) - 0.8) < 1e-7, f"{label}: forward lobe weight 0.8")
-    check(value(M.N_G_FORWARD) is not None and abs(value(M.N_G_FORWARD) - 0.7) < 1e-7, f"{label}: forward g 0.7")
-    check(value(M.N_G_BACKWARD) is not None and abs(value(M.N_G_BACKWARD) + 0.25) < 1e-7, f"{label}: backward g -0.25")
+    for node, want, what in ((M.N_EXTINCTION, ext, "extinction per unit density"), (M.N_ALBEDO, alb, "albedo"),
+                             (M.N_WEIGHT, ph["forward_weight"], "forward lobe weight"),
+                             (M.N_G_FORWARD, ph["g_forward"], "forward g"), (M.N_G_BACKWARD, ph["g_back"], "backward g")):
+        check(value(node) is not None and abs(value(node) - want) < 1e-7,
+              f"{label}: the material's {what} is the library's {want} (got {value(node)})")
 
     def linked(to_node, socket, from_node):
         s = n[to_node].inputs[socket] if to_node in n else None
@@ -188,7 +199,7 @@ def check_material(obj, label):
     # The anisotropy the tree computes for a forward and a backward event.
     g_f, g_b = value(M.N_G_FORWARD), value(M.N_G_BACKWARD)
     check(n[M.N_G].operation == "MULTIPLY_ADD" and linked(M.N_G, 1, M.N_G_SPREAD) and linked(M.N_G, 2, M.N_G_BACKWARD)
-          and abs((1 * (g_f - g_b) + g_b) - 0.7) < 1e-7, f"{label}: g = forward x (g_f - g_b) + g_b")
+          and abs((1 * (g_f - g_b) + g_b) - ph["g_forward"]) < 1e-7, f"{label}: g = forward x (g_f - g_b) + g_b")
 
 
 def name_is(nodes, name, idname):
@@ -245,7 +256,7 @@ def check_still(program, label):
                    and np.all(blo >= outer_lo - 1e-3) and np.all(bhi <= outer_hi + 1e-3)),
               f"{label}: Blender's bounds {blo}..{bhi} hold the voxel centres {inner_lo}..{inner_hi} "
               f"within their leaves {outer_lo}..{outer_hi}")
-    check_material(obj, label)
+    check_material(obj, label, program)
     return obj
 
 

@@ -28,27 +28,31 @@ UpAxis parse_up_axis(const std::string& text) {
   throw std::invalid_argument("up axis '" + text + "' must be auto, y or z");
 }
 
-openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps,
-                                        const CloudFileOptions& options, glm::dvec3* period_m) {
-  volume::VdbReadOptions ro;
-  if (!grid.empty()) ro.grid = grid;
-  ro.level_set_to_fog = options.level_set_to_fog;
-  volume::VolumeFile f = volume::read_volume_vdb(path, ro);
-  const bool negative_background = f.grid->background() < 0.0f;
-  if (f.negative_values > 0 || negative_background) {
-    for (auto it = f.grid->beginValueAll(); it; ++it)
-      if (*it < 0.0f) it.setValue(0.0f);
-    if (negative_background) openvdb::tools::changeBackground(f.grid->tree(), 0.0f);
-    if (options.warn) {
-      char least[32];
-      std::snprintf(least, sizeof least, "%g", double(std::min(f.min_value, f.grid->background())));
-      options.warn(path + ": grid '" + f.grid->getName() + "' holds " + std::to_string(f.negative_values) +
-                   " negative value(s)" + (negative_background ? " and a negative background" : "") +
-                   " (least " + least + "); a density cannot be negative, so they are read as 0");
-    }
+namespace {
+
+// A density cannot be negative: negative values and a negative background become 0, told in one
+// line naming `name` (`negatives` of them, the least `least`).
+void zero_negatives(openvdb::FloatGrid& grid, uint64_t negatives, float least, const std::string& name,
+                    const CloudFileOptions& options) {
+  const bool negative_background = grid.background() < 0.0f;
+  if (negatives == 0 && !negative_background) return;
+  for (auto it = grid.beginValueAll(); it; ++it)
+    if (*it < 0.0f) it.setValue(0.0f);
+  if (negative_background) openvdb::tools::changeBackground(grid.tree(), 0.0f);
+  if (options.warn) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", double(std::min(least, grid.background())));
+    options.warn(name + ": grid '" + grid.getName() + "' holds " + std::to_string(negatives) + " negative value(s)" +
+                 (negative_background ? " and a negative background" : "") + " (least " + text +
+                 "); a density cannot be negative, so they are read as 0");
   }
+}
+
+// What the metadata says of the grid: whether it is z-up (where `up` is Auto), its period, its fps.
+bool read_cloud_metadata(const volume::Metadata& metadata, UpAxis up, const std::string& name, double* fps,
+                         glm::dvec3* period_m) {
   bool z_up = up == UpAxis::Z;
-  for (const auto& [key, value] : f.metadata) {
+  for (const auto& [key, value] : metadata) {
     const std::string* text = std::get_if<std::string>(&value);
     if (up == UpAxis::Auto && key == "up_axis" && text && *text == "z") z_up = true;
     if (period_m && key == volume::kPeriodMetadataKey) {
@@ -56,7 +60,7 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
       char rest = 0;
       if (!text || std::sscanf(text->c_str(), "%lf %lf %c", &px, &py, &rest) != 2 || !std::isfinite(px) ||
           !std::isfinite(py) || px < 0.0 || py < 0.0 || px > 1e7 || py > 1e7)
-        throw std::runtime_error(path + ": metadata '" + volume::kPeriodMetadataKey + "' must be two periods in [0, 1e7] metres, 'PX PY'");
+        throw std::runtime_error(name + ": metadata '" + volume::kPeriodMetadataKey + "' must be two periods in [0, 1e7] metres, 'PX PY'");
       *period_m = glm::dvec3(px, 0.0, py);  // the world's x and y are the renderer's x and z
     }
     if (fps && key == "fps") {
@@ -64,35 +68,69 @@ openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::stri
       if (const int64_t* n = std::get_if<int64_t>(&value)) *fps = static_cast<double>(*n);
     }
   }
+  return z_up;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up, double* fps,
+                                        const CloudFileOptions& options, glm::dvec3* period_m) {
+  volume::VdbReadOptions ro;
+  if (!grid.empty()) ro.grid = grid;
+  ro.level_set_to_fog = options.level_set_to_fog;
+  volume::VolumeFile f = volume::read_volume_vdb(path, ro);
+  zero_negatives(*f.grid, f.negative_values, f.min_value, path, options);
+  const bool z_up = read_cloud_metadata(f.metadata, up, path, fps, period_m);
   return z_up ? volume::rotate_z_up_to_y_up(*f.grid) : f.grid;
+}
+
+openvdb::FloatGrid::Ptr cloud_grid_in_memory(const openvdb::FloatGrid& grid, const volume::Metadata& metadata,
+                                             UpAxis up, const std::string& name, const CloudFileOptions& options,
+                                             glm::dvec3* period_m) {
+  openvdb::FloatGrid::Ptr g = grid.deepCopy();
+  uint64_t negatives = 0;
+  float least = 0.0f;
+  for (auto it = g->cbeginValueOn(); it; ++it) {
+    if (!std::isfinite(*it)) throw std::invalid_argument(name + ": holds a NaN or infinite value; a density is finite");
+    if (*it < 0.0f) ++negatives;
+    least = std::min(least, *it);
+  }
+  zero_negatives(*g, negatives, least, name, options);
+  const bool z_up = read_cloud_metadata(metadata, up, name, nullptr, period_m);
+  return z_up ? volume::rotate_z_up_to_y_up(*g) : g;
 }
 
 CloudVolume load_cloud_file(const std::string& path, const std::string& grid, UpAxis up, const CloudOptics& optics,
                             const CloudFileOptions& options) {
   glm::dvec3 period(0.0);
   const openvdb::FloatGrid::Ptr g = load_cloud_grid(path, grid, up, nullptr, options, &period);
-  // The grid's own errors (a box too large to copy densely, a frustum transform...) name the file.
+  return cloud_from_grid(*g, period, optics, path);
+}
+
+CloudVolume cloud_from_grid(const openvdb::FloatGrid& grid, glm::dvec3 period_m, const CloudOptics& optics,
+                            const std::string& name) {
+  // The grid's own errors (a box too large to copy densely, a frustum transform...) name it.
   CloudVolume c;
   try {
-    c = make_cloud_volume(*g, optics, path);
+    c = make_cloud_volume(grid, optics, name);
   } catch (const OutOfMemoryRequest& e) {
-    throw OutOfMemoryRequest(path + ": " + e.what());
+    throw OutOfMemoryRequest(name + ": " + e.what());
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    throw std::invalid_argument(what.find(path) == std::string::npos ? path + ": " + what : what);
+    throw std::invalid_argument(what.find(name) == std::string::npos ? name + ": " + what : what);
   } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path + ": " + e.what());
+    throw std::runtime_error(name + ": " + e.what());
   }
-  c.period_m = period;
+  c.period_m = period_m;
   // A period shorter than the cloud is the file's fault (its metadata), not the command line's.
   if (const std::string fault = period_fault(c); !fault.empty())
-    throw std::runtime_error(path + ": metadata '" + volume::kPeriodMetadataKey + "': the period " + fault);
+    throw std::runtime_error(name + ": metadata '" + volume::kPeriodMetadataKey + "': the period " + fault);
   // World extents a camera can frame: a voxel of 1e300 m once reached the camera as Inf.
   constexpr double kMaxWorld = 1e8;  // metres
   for (int a = 0; a < 3; ++a)
     if (!(std::abs(c.world_min[a]) < kMaxWorld && std::abs(c.world_max[a]) < kMaxWorld))
-      throw std::runtime_error(path + ": its grid reaches beyond 1e8 m from the origin (voxel size " +
-                               std::to_string(g->voxelSize()[0]) + " m); not a cloud nimbus can frame");
+      throw std::runtime_error(name + ": its grid reaches beyond 1e8 m from the origin (voxel size " +
+                               std::to_string(grid.voxelSize()[0]) + " m); not a cloud nimbus can frame");
   return c;
 }
 

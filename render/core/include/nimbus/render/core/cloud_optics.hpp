@@ -21,9 +21,15 @@ struct DualLobePhase {
   double forward_weight = 1.0;  // [0, 1]
 };
 
+// A cloud's look where nothing says otherwise, for nimbus render, the viewer, Python and the
+// Blender add-on's material alike: a forward lobe (g 0.7) with a fifth of backward scattering
+// (g -0.25), and albedo 0.99 (docs/clouds.md compares the phases).
+inline constexpr DualLobePhase kCloudPhase{0.7, -0.25, 0.8};
+inline constexpr double kCloudAlbedo = 0.99;
+
 struct CloudOptics {
   double extinction_per_m = setting(Setting::CloudExtinction).still_default;  // sigma_t per unit density, per metre (grey)
-  glm::dvec3 albedo{0.99};         // sigma_s / sigma_t per channel, [0, 1] (chromatic allowed)
+  glm::dvec3 albedo{kCloudAlbedo};  // sigma_s / sigma_t per channel, [0, 1] (chromatic allowed)
   DualLobePhase phase;
   // Isotropic sky radiance that lights every point of the cloud unshadowed (W sr^-1 m^-2 per
   // channel); its in-scattered radiance is sigma_s rho L_ambient. 0 switches it off.

@@ -8,6 +8,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/volume/cloud_model.hpp"
+#include "nimbus/volume/vdb_io.hpp"
 
 namespace nimbus::render {
 
@@ -40,6 +41,19 @@ CloudVolume load_cloud_file(const std::string& path, const std::string& grid, Up
 openvdb::FloatGrid::Ptr load_cloud_grid(const std::string& path, const std::string& grid, UpAxis up,
                                         double* fps = nullptr, const CloudFileOptions& options = {},
                                         glm::dvec3* period_m = nullptr);
+
+// A grid held in memory (the Python module's Volume), made ready as load_cloud_grid makes a file's:
+// a copy with negative values read as 0 (told through options.warn), turned y-up where `up` (Auto:
+// the "up_axis" metadata) says z, its period from the metadata. `name` names it in errors;
+// std::invalid_argument for a NaN or infinite value.
+openvdb::FloatGrid::Ptr cloud_grid_in_memory(const openvdb::FloatGrid& grid, const volume::Metadata& metadata,
+                                             UpAxis up, const std::string& name, const CloudFileOptions& options = {},
+                                             glm::dvec3* period_m = nullptr);
+
+// A y-up grid (load_cloud_grid, cloud_grid_in_memory) as the cloud named `name`, with its period;
+// the errors of load_cloud_file, each naming `name`.
+CloudVolume cloud_from_grid(const openvdb::FloatGrid& grid, glm::dvec3 period_m, const CloudOptics& optics,
+                            const std::string& name);
 
 // A preset's cloud parameters and its own voxel size (metres); std::invalid_argument naming an
 // unknown preset or a bad parameter.

@@ -46,7 +46,7 @@ struct ViewState {
   bool paused = false;
   // Cloud optics: extinction, albedo, phase. Their ambient_radiance is not the state's: the
   // sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither saved nor read.
-  CloudOptics optics{setting(Setting::CloudExtinction).view_default, glm::dvec3(0.99), DualLobePhase{0.7, -0.25, 0.8},
+  CloudOptics optics{setting(Setting::CloudExtinction).view_default, glm::dvec3(kCloudAlbedo), kCloudPhase,
                      glm::dvec3(0.0)};
   // The slicer at full quality (the viewer's adaptive quality lowers slices and scale in
   // motion), jitter (one fixed blue-noise pattern: no flicker), and multiple scattering: the

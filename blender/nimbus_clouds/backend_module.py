@@ -45,15 +45,31 @@ class ModuleBackend:
         return self.nimbus.plan(preset, seed=seed, voxel_size=voxel_size, res=res, time=time,
                                 overrides=overrides or None, size=size)
 
-    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0):
+    @staticmethod
+    def _watch(progress, cancel, done, count):
+        """nimbus.generate's progress callable: reports the whole job's fraction (`done` files of
+        `count` before this one) and raises Cancelled when cancel is set, which stops the call."""
+        from .generation import Cancelled
+
+        def report(fraction):
+            if cancel is not None and cancel.is_set():
+                raise Cancelled("generation cancelled")
+            if progress is not None:
+                progress((done + fraction) / count)
+        return report
+
+    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0, progress=None, cancel=None):
         volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size, time=time, overrides=overrides or None,
-                                      size=size)
+                                      size=size, progress=self._watch(progress, cancel, 0, 1))
         _write_atomic(volume, path)
 
     def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame,
-                          size=1.0):
+                          size=1.0, progress=None, cancel=None):
         """Writes folder/(pattern % frame) for frames first..last; frame n at time (n - start_frame) / fps."""
+        count = last - first + 1
         for frame in range(first, last + 1):
+            watch = self._watch(progress, cancel, frame - first, count)
             volume = self.nimbus.generate(preset, seed=seed, voxel_size=voxel_size,
-                                          time=(frame - start_frame) / fps, overrides=overrides or None, size=size)
+                                          time=(frame - start_frame) / fps, overrides=overrides or None, size=size,
+                                          progress=watch)
             _write_atomic(volume, os.path.join(folder, pattern % frame))

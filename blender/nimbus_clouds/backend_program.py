@@ -1,11 +1,30 @@
 # The nimbus program as the backend: subprocess with a list argv (never a shell).
 import json
+import re
 import os
 import shutil
 import subprocess
+import tempfile
 
 # Plans and checks take well under a second; a stuck program is cut off after this.
 PROBE_TIMEOUT_S = 120
+# How often a running generation reports its progress and looks for a cancel, seconds.
+POLL_S = 0.1
+
+
+_PROGRESS = re.compile(r"(?: frame (-?\d+))?: +(\d+) %$", re.MULTILINE)
+
+
+def _fraction_done(stderr_text, frames):
+    """The share of the work done, from the program's last progress line (progress.hpp) over the
+    frames (None: a still)."""
+    found = list(_PROGRESS.finditer(stderr_text))
+    if not found:
+        return 0.0
+    frame, percent = found[-1].group(1), float(found[-1].group(2)) / 100.0
+    if not frames or frame is None:
+        return percent
+    return (frames.index(int(frame)) + percent) / len(frames) if int(frame) in frames else 0.0
 
 
 def find_program(preference=""):
@@ -85,18 +104,53 @@ class ProgramBackend:
                 plan[key] = tuple(tuple(corner) for corner in plan[key])
         return plan
 
-    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0):
+    def _run_watched(self, argv, cwd, frames, progress, cancel):
+        """Runs a generation in cwd. Every POLL_S: progress(the fraction done), read from the
+        program's progress lines ("PRESET frame N:  45 %" on stderr, once a second) over `frames`
+        (the frame numbers; None for a still), and a look at cancel, which stops the program
+        (SIGTERM, then SIGKILL) and raises Cancelled."""
+        from .generation import Cancelled
+        done = 0.0
+        with tempfile.TemporaryFile(mode="w+") as err:
+            proc = subprocess.Popen([self.program] + argv, cwd=cwd, stdin=subprocess.DEVNULL,
+                                    stdout=subprocess.DEVNULL, stderr=err, text=True)
+            while True:
+                try:
+                    code = proc.wait(timeout=POLL_S)
+                    break
+                except subprocess.TimeoutExpired:
+                    pass
+                if cancel is not None and cancel.is_set():
+                    proc.terminate()
+                    try:
+                        proc.wait(timeout=5)
+                    except subprocess.TimeoutExpired:
+                        proc.kill()
+                        proc.wait()
+                    raise Cancelled("generation cancelled")
+                if progress is not None:
+                    err.seek(0)
+                    done = max(done, _fraction_done(err.read(), frames))
+                    progress(done)
+            if code != 0:
+                err.seek(0)
+                lines = err.read().strip().splitlines()
+                message = (lines[-1] if lines else f"exit status {code}").removeprefix("nimbus: error: ")
+                raise (ValueError if code == 2 else RuntimeError)(message.removeprefix("nimbus: "))
+
+    def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0, progress=None, cancel=None):
         """Writes path. The program runs in path's folder and is given the file's name alone (which
         holds no '%'): it reads every '%' of -o as a frame field, and the folder may hold one."""
         folder, name = os.path.split(os.path.abspath(path))
-        self._run(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides, size) +
-                  ["--time", repr(float(time)), "-o", os.path.join(".", name)], timeout=None, cwd=folder)
+        self._run_watched(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides, size) +
+                          ["--time", repr(float(time)), "-o", os.path.join(".", name)], folder, None, progress, cancel)
 
     def generate_sequence(self, folder, pattern, preset, *, seed, voxel_size, overrides, first, last, fps, start_frame,
-                          size=1.0):
+                          size=1.0, progress=None, cancel=None):
         """Writes folder/(pattern % frame) for frames first..last; frame n at time (n - start_frame) / fps.
         The program runs in the folder and is given the name pattern alone: the program reads every
         '%' of -o as a frame field, and the folder may hold one."""
-        self._run(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides, size) +
-                  ["--frames", f"{first}-{last}", "--fps", repr(float(fps)), "--start-frame", str(int(start_frame)),
-                   "-o", os.path.join(".", pattern)], timeout=None, cwd=folder)
+        frames = list(range(first, last + 1))
+        self._run_watched(["generate"] + self._cloud_args(preset, seed, voxel_size, overrides, size) +
+                          ["--frames", f"{first}-{last}", "--fps", repr(float(fps)), "--start-frame",
+                           str(int(start_frame)), "-o", os.path.join(".", pattern)], folder, frames, progress, cancel)

@@ -1,7 +1,9 @@
-# A cloud's generation: inputs checked, the plan checked against the memory limit, then the VDB(s) written.
+# A cloud's generation: inputs checked, the plan checked against the memory limit, then the VDB(s)
+# written, in the caller's thread (run) or on a thread of its own with progress and cancel (Running).
 import hashlib
 import json
 import os
+import threading
 from dataclasses import dataclass, field
 
 from . import checks, overrides
@@ -57,16 +59,58 @@ def prepare(params, backend, limit_gib, folder):
     return job
 
 
-def run(job):
-    """Writes the job's file(s) with its backend."""
+class Cancelled(Exception):
+    """The user stopped the generation (Esc)."""
+
+
+def run(job, progress=None, cancel=None):
+    """Writes the job's file(s) with its backend. progress(fraction) is called now and then from
+    this thread; when the threading.Event cancel is set the backend stops and Cancelled is raised
+    (files already complete stay: each is written whole or not at all)."""
     p = job.params
+    watch = {"progress": progress or (lambda fraction: None), "cancel": cancel}
     if p.animated:
         job.backend.generate_sequence(job.folder, job.pattern, p.preset, seed=p.seed, voxel_size=job.voxel_size,
                                       overrides=job.overrides, first=p.frame_first, last=p.frame_last,
-                                      fps=p.fps, start_frame=p.start_frame(), size=float(p.size))
+                                      fps=p.fps, start_frame=p.start_frame(), size=float(p.size), **watch)
     else:
         job.backend.generate_still(job.paths[0], p.preset, seed=p.seed, voxel_size=job.voxel_size,
-                                   time=p.time, overrides=job.overrides, size=float(p.size))
+                                   time=p.time, overrides=job.overrides, size=float(p.size), **watch)
+    if cancel is not None and cancel.is_set():
+        raise Cancelled("generation cancelled")
     missing = [path for path in job.paths if not os.path.isfile(path)]
     if missing:
         raise RuntimeError(f"nimbus did not write {missing[0]}")
+
+
+class Running:
+    """A job generating on a thread of its own, so that Blender's UI stays live: the operator polls
+    fraction and done from a timer, and cancel() (Esc) stops it."""
+
+    def __init__(self, job):
+        self.job = job
+        self.fraction = 0.0
+        self.error = None           # the exception the generation ended with (Cancelled on cancel)
+        self._cancel = threading.Event()
+        self._thread = threading.Thread(target=self._work, name="nimbus generation", daemon=True)
+        self._thread.start()
+
+    def _work(self):
+        try:
+            run(self.job, progress=self._progress, cancel=self._cancel)
+        except BaseException as e:  # noqa: handed to the operator, which reports it
+            self.error = Cancelled("generation cancelled") if self._cancel.is_set() else e
+
+    def _progress(self, fraction):
+        self.fraction = min(max(float(fraction), 0.0), 1.0)
+
+    @property
+    def done(self):
+        return not self._thread.is_alive()
+
+    def cancel(self):
+        self._cancel.set()
+
+    def wait(self, timeout=None):
+        self._thread.join(timeout)
+        return self.done

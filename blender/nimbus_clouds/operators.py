@@ -27,14 +27,60 @@ def params_of(props, scene, look_is_set=lambda name: True):
         fps=scene_fps(scene))
 
 
-def generate(context, params):
-    """Checks (inputs, plan, memory limit), then writes the VDB(s): the generation.Job."""
+def prepare(context, params):
+    """Checks (inputs, plan, memory limit): the generation.Job, its folder made."""
     prefs = preferences.get(context)
     be = preferences.get_backend(context)
     job = generation.prepare(params, be, prefs.memory_limit_gib, cache.cache_folder())
     cache.ensure_folder()
+    return job
+
+
+def generate(context, params):
+    """Checks, then writes the VDB(s) in this thread: the generation.Job."""
+    job = prepare(context, params)
     generation.run(job)
     return job
+
+
+def start_modal(op, context, params):
+    """Checks, then generates on a thread of its own while Blender stays live: a progress bar in the
+    cursor and the status bar, Esc to cancel. The operator's modal() calls step_modal."""
+    try:
+        job = prepare(context, params)
+    except Exception as e:  # noqa: every failure becomes a report, never a crash
+        return refuse(op, e)
+    op._running = generation.Running(job)
+    wm = context.window_manager
+    op._timer = wm.event_timer_add(TIMER_S, window=context.window)
+    wm.progress_begin(0.0, 1.0)
+    wm.modal_handler_add(op)
+    context.workspace.status_text_set(f"nimbus: generating {params.preset} (Esc cancels)")
+    return {"RUNNING_MODAL"}
+
+
+def step_modal(op, context, event, finish):
+    """One event of a modal generation: Esc cancels; the timer moves the progress bar; when the job
+    ends, finish(context, job) adds or updates the cloud (a failure or a cancel is reported)."""
+    running = op._running
+    if event.type == "ESC" and event.value == "PRESS":
+        running.cancel()
+    if not running.done:
+        context.window_manager.progress_update(running.fraction)
+        return {"RUNNING_MODAL"} if event.type == "ESC" else {"PASS_THROUGH"}
+    context.window_manager.event_timer_remove(op._timer)
+    context.window_manager.progress_end()
+    context.workspace.status_text_set(None)
+    if isinstance(running.error, generation.Cancelled):
+        op.report({"WARNING"}, "nimbus: generation cancelled; nothing added")
+        return {"CANCELLED"}
+    if running.error is not None:
+        return refuse(op, running.error)
+    return finish(context, running.job)
+
+
+# How often a modal generation's progress bar moves, seconds.
+TIMER_S = 0.1
 
 
 def refuse(op, error):
@@ -80,12 +126,25 @@ class NIMBUS_OT_add_cloud(bpy.types.Operator):
             self.frame_last = context.scene.frame_end
         if not self.properties.is_property_set("coverage") and not self.properties.is_property_set("density"):
             properties.look_from_preset(self, context)
-        return self.execute(context)
+        if bpy.app.background or context.window is None:  # no event loop: at once
+            return self.execute(context)
+        return start_modal(self, context, params_of(self, context.scene, self.properties.is_property_set))
+
+    def modal(self, context, event):
+        return step_modal(self, context, event, self.finish)
 
     def execute(self, context):
         params = params_of(self, context.scene, self.properties.is_property_set)
         try:
             job = generate(context, params)
+        except Exception as e:  # noqa: every failure becomes a report, never a crash
+            return refuse(self, e)
+        return self.finish(context, job)
+
+    def finish(self, context, job):
+        """The generated files as a new Volume object with the add-on's material."""
+        params = job.params
+        try:
             name = f"nimbus {params.preset}"
             first = params.frame_first if params.animated else None
             vol = volume_import.new_volume(name, job.paths, first)
@@ -118,11 +177,32 @@ class NIMBUS_OT_regenerate(bpy.types.Operator):
         obj = context.active_object
         return obj is not None and obj.type == "VOLUME" and obj.nimbus.is_cloud
 
+    def invoke(self, context, event):
+        if bpy.app.background or context.window is None:
+            return self.execute(context)
+        self._object = context.active_object.name
+        return start_modal(self, context, params_of(context.active_object.nimbus, context.scene))
+
+    def modal(self, context, event):
+        return step_modal(self, context, event, self.finish)
+
     def execute(self, context):
-        obj = context.active_object
-        params = params_of(obj.nimbus, context.scene)
+        self._object = context.active_object.name
+        params = params_of(context.active_object.nimbus, context.scene)
         try:
             job = generate(context, params)
+        except Exception as e:  # noqa: every failure becomes a report, never a crash
+            return refuse(self, e)
+        return self.finish(context, job)
+
+    def finish(self, context, job):
+        """The regenerated files in the cloud's Volume (the object may be gone: then nothing)."""
+        obj = bpy.data.objects.get(self._object)
+        if obj is None or obj.type != "VOLUME":
+            self.report({"WARNING"}, f"nimbus: the cloud '{self._object}' is gone; its new files stay in the cache")
+            return {"CANCELLED"}
+        params = job.params
+        try:
             volume_import.point_volume(obj.data, job.paths, params.frame_first if params.animated else None)
             if not obj.data.materials or obj.data.materials[0] is None:
                 material.assign(obj.data, material.new_material(obj.name, job.plan["optics"]))

@@ -11,7 +11,7 @@ class CloudParams:
     time: float = 0.0                 # seconds (still clouds; animated: the first frame's time)
     coverage: Optional[float] = None  # None: the preset's
     density: Optional[float] = None   # None: the preset's
-    size: float = 1.0                 # size factor (overrides.py)
+    size: float = 1.0                 # size factor (nimbus generate --size)
     animated: bool = False
     frame_first: int = 1
     frame_last: int = 1

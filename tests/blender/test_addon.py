@@ -284,6 +284,65 @@ def check_sequence(program, label):
     bpy.context.active_object.hide_render = True
 
 
+class FakeModal:
+    """Stands in for Blender's event loop around a modal generation: the window manager's progress
+    bar and timer, the status bar, and events of a type."""
+
+    def __init__(self):
+        self.progress, self.ended, self.status = [], False, []
+        wm = type("WM", (), {"progress_update": lambda _, v: self.progress.append(v),
+                             "progress_end": lambda _: setattr(self, "ended", True),
+                             "event_timer_remove": lambda _, timer: None})()
+        ws = type("WS", (), {"status_text_set": lambda _, text: self.status.append(text)})()
+        self.context = type("Ctx", (), {"window_manager": wm, "workspace": ws})()
+
+    @staticmethod
+    def event(kind):
+        return type("Event", (), {"type": kind, "value": "PRESS"})()
+
+
+def check_modal(label):
+    """Generation on a thread of its own (the Add and Regenerate operators' modal path): the timer
+    moves the progress bar until the job ends; Esc stops it within seconds and adds nothing."""
+    from nimbus_clouds import generation, operators
+    from nimbus_clouds.params import CloudParams
+
+    def drive(op, first_event, limit_s):
+        modal, t = FakeModal(), time.time()
+        result = operators.step_modal(op, modal.context, modal.event(first_event), lambda c, job: {"FINISHED"})
+        while result == {"PASS_THROUGH"} or result == {"RUNNING_MODAL"}:
+            if time.time() - t > limit_s:
+                op._running.cancel()
+                op._running.wait()
+                return None, modal, time.time() - t
+            time.sleep(0.05)
+            result = operators.step_modal(op, modal.context, modal.event("TIMER"), lambda c, job: {"FINISHED"})
+        return result, modal, time.time() - t
+
+    op = FakeOperator(preset="cumulus-humilis")
+    job = operators.prepare(bpy.context, CloudParams(preset="cumulus-humilis", voxel_size=2.5, animated=True,
+                                                     frame_first=1, frame_last=3))
+    op._running, op._timer = generation.Running(job), None
+    result, modal, took = drive(op, "TIMER", 300)
+    check(result == {"FINISHED"} and modal.ended and all(os.path.isfile(p) for p in job.paths),
+          f"{label}: a modal generation of 3 frames ends FINISHED with its files, the progress bar ended "
+          f"({result}, {took:.1f} s)")
+    check(modal.progress == sorted(modal.progress) and all(0.0 <= v <= 1.0 for v in modal.progress)
+          and len(set(modal.progress)) >= 3 and modal.progress[-1] >= 0.6,
+          f"{label}: its progress grows through at least 3 values within 0..1 "
+          f"({sorted(set(round(v, 2) for v in modal.progress))})")
+
+    op = FakeOperator(preset="cumulus-humilis")
+    job = operators.prepare(bpy.context, CloudParams(preset="cumulus-humilis", voxel_size=1.5, seed=99))
+    op._running, op._timer = generation.Running(job), None
+    time.sleep(0.3)
+    check(not op._running.done, f"{label}: a 1.5 m cumulus is still generating 0.3 s after its start")
+    result, modal, took = drive(op, "ESC", 30)
+    check(result == {"CANCELLED"} and any("WARNING" in k and "cancelled" in m for k, m in op.reports)
+          and not os.path.exists(job.paths[0]) and took < 10.0,
+          f"{label}: Esc cancels a 1.5 m cumulus in {took:.2f} s, no file, a warning ({result}, {op.reports})")
+
+
 def check_refusals(label):
     from nimbus_clouds import cache, operators, preferences
     folder = cache.cache_folder()
@@ -437,6 +496,7 @@ def main():
         first_still = first_still or obj
         check_sequence(a.nimbus_program, label)
         check_refusals(label)
+        check_modal(label)
         check_after_refusals(a.nimbus_program, label)
     if first_still is not None:
         check_render(first_still, tmp)

@@ -158,7 +158,7 @@ int print_plan_json(const GenerateArgs& a, const GeneratePlan& plan, const Frame
 }
 
 int run_generate(const GenerateArgs& a) {
-  if (a.output.empty() && !a.plan_json) throw UsageError("-o: an output file is required");
+  if (a.output.empty() && !a.plan_json) throw UsageError("-o/--output: an output file is required (or --plan-json)");
   if (!a.sky.empty()) {
     if (a.plan_json) throw UsageError("--plan-json: a plan is of one preset, not of --sky");
     if (a.size != 1.0) throw UsageError("--size: not with --sky (each cloud of the sky has its own size)");

@@ -74,6 +74,10 @@ TEST(VolumeCli, GenerateBadInputExitsTwoNamingTheInput) {
       {"generate --preset cumulus-humilis --params /nonexistent/p.json -o " + out, "p.json"},
       {"generate --preset cloud-of-unknowing -o " + out, "cloud-of-unknowing"},
       {"generate --preset cumulus-humilis", "--output"},
+      {"generate --preset cumulus-humilis --size 0 --plan-json", "--size: must be within [0.01, 100], got 0"},
+      {"generate --preset cumulus-humilis --size nan -o " + out, "--size"},
+      {"generate --preset cumulus-humilis --plan-json -o " + out, "--plan-json: writes no file"},
+      {"generate --preset cumulus-humilis --plan-json --brick 0/2", "--plan-json"},
       {"generate --preset cumulus-humilis --voxel-size 0.001 -o " + out, "GiB"},
   };
   for (const auto& c : cases) {

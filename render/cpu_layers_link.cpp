@@ -1,9 +1,9 @@
-// The CPU layers' link check (render/CMakeLists.txt): every object of core, image and reference
-// is linked into this program, which links no OpenGL or EGL library. If any of them called GL,
-// the link would fail. Running it renders one pixel of the reference, so it does something.
+// The CPU layers' link check (render/CMakeLists.txt): every object of core, media, scene, image,
+// reference and sky is linked into this program, which links no OpenGL or EGL library. If any of
+// them called GL, the link would fail. Running it renders one pixel of the reference, so it does something.
 #include <cstdio>
 
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 
 int main() {

@@ -340,8 +340,10 @@ def render(volumes_or_paths: Union[Volume, str, os.PathLike, Iterable[Union[Volu
     the same pixels as the program's EXR for the same flags, as a NumPy float32 array (height,
     width, 4): linear radiance (W sr^-1 m^-2), premultiplied RGBA, row 0 at the top.
 
-    volumes_or_paths: Volumes and VDB file paths (one, or a list). ``preset="name"`` (or a list)
-    in options generates presets as ``--preset`` does.
+    volumes_or_paths: Volumes and VDB file paths (one, or a list), in the order given. A Volume is
+    rendered from memory, as the cloud its file (written in float) would be: no file is written;
+    its negative values (a read noise grid's) are read as 0 with a warning, as a file's are.
+    ``preset="name"`` (or a list) in options generates presets as ``--preset`` does.
     scene: "sky" (ground, sun, haze, physical sky), "none" (clouds alone) or another scene
     (``nimbus render --help``). eye, look_at, up: metres, Z up (x east, y north), as the volumes;
     without eye and look_at the camera frames the clouds. sun: the direction towards the sun, Z up

@@ -38,7 +38,9 @@ cli::MemoryCloud memory_cloud(const Volume& v, const std::string& name, std::siz
 }
 
 // The image, and the warnings of its in-memory clouds (negative values read as 0).
-py::tuple render(const std::vector<std::string>& args, const std::vector<std::tuple<std::size_t, py::object, std::string>>& volumes) {
+using VolumeArg = std::tuple<std::size_t, py::object, std::string>;  // its place among the paths, it, its name
+
+py::tuple render(const std::vector<std::string>& args, const std::vector<VolumeArg>& volumes) {
   std::vector<std::pair<const Volume*, std::pair<std::size_t, std::string>>> held;
   for (const auto& [position, object, name] : volumes) held.push_back({&volume_of(object), {position, name}});
   auto image = std::make_unique<render::Image>();
@@ -51,7 +53,8 @@ py::tuple render(const std::vector<std::string>& args, const std::vector<std::tu
   // The image's own buffer, handed to NumPy: (height, width, RGBA), row 0 at the top.
   auto* pixels = new std::vector<float>(std::move(image->rgba));
   py::capsule owner(pixels, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-  py::array out = py::array_t<float>({py::ssize_t(image->height), py::ssize_t(image->width), py::ssize_t(4)}, pixels->data(), owner);
+  py::array out = py::array_t<float>({py::ssize_t(image->height), py::ssize_t(image->width), py::ssize_t(4)},
+                                     pixels->data(), owner);
   return py::make_tuple(out, warnings);
 }
 

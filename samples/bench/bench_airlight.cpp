@@ -15,7 +15,7 @@
 
 #include "cli/cli.hpp"
 #include "cli/render_args.hpp"
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
 

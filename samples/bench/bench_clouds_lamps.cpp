@@ -13,7 +13,7 @@
 #include "nimbus/app/bench_clouds_scene.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nimbus::cli::bench_clouds {
 namespace {

@@ -6,8 +6,8 @@
 #include <cstdio>
 
 #include "nimbus/render/core/image_resample.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
-#include "nimbus/render/core/temporal_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
+#include "nimbus/render/sky/temporal_frame.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 #include "viewer/camera_control.hpp"

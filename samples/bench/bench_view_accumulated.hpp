@@ -1,4 +1,4 @@
-// `nimbus bench view`'s tables of the accumulated frames (render/core/temporal_frame.hpp): what
+// `nimbus bench view`'s tables of the accumulated frames (render/sky/temporal_frame.hpp): what
 // each level gives up alone and accumulated on a still view, and what accumulating earns while
 // the camera turns, each against the full frame's grain-free mean.
 #pragma once

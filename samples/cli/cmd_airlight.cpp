@@ -11,7 +11,7 @@
 
 #include "cli.hpp"
 #include "nimbus/base/input_limits.hpp"
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
 
 namespace nimbus::cli {

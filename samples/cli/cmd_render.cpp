@@ -12,7 +12,7 @@
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
 #include "outputs.hpp"
 #include "progress.hpp"

@@ -10,7 +10,7 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/gl/resources.hpp"
 
 namespace nimbus::cli {

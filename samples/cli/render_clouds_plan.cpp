@@ -9,7 +9,7 @@
 #include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
-#include "nimbus/render/core/sun_setup.hpp"
+#include "nimbus/render/scene/sun_setup.hpp"
 #include "nimbus/volume/voxel_size.hpp"
 #include "outputs.hpp"
 #include "setting_flags.hpp"

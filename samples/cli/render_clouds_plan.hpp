@@ -8,7 +8,7 @@
 
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/frame/frame_description.hpp"
 #include "render_clouds.hpp"
 

@@ -10,7 +10,7 @@
 #include "outputs.hpp"
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/validate.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 #include "nimbus/render/sky/sky_keyframes.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"

@@ -8,7 +8,7 @@
 #include "nimbus/app/sun_path.hpp"
 #include "nimbus/base/validate.hpp"
 #include "nimbus/base/input_limits.hpp"
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/scene/daylight.hpp"
 #include "nimbus/render/core/light.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 #include "render_args.hpp"

@@ -12,8 +12,8 @@
 #include "camera_control.hpp"
 #include "display.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
-#include "nimbus/render/core/temporal_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
+#include "nimbus/render/sky/temporal_frame.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 

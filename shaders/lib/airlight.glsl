@@ -1,6 +1,6 @@
 // Numerically stable single-scattering airlight of a point light (Sun et al. 2005, eq. 5) and
 // of the sun, over any segment of a view ray (Biri et al. eqs. 10-12), in float32. Common
-// subset of GLSL 4.50 and C++ (glm): render/core/src/airlight_stable.cpp compiles this file too.
+// subset of GLSL 4.50 and C++ (glm): render/media/src/airlight_stable.cpp compiles this file too.
 // Written for SIMD rasterisers (llvmpipe runs 8 fragments in lock step and every branch costs
 // every lane): a fixed panel layout with branch-free limits (peaked phase functions add nodes in
 // one loop, skipped for the others), no trigonometric functions.

@@ -1,4 +1,4 @@
-// Where the physical sky's tables (render/core/atmosphere_tables.hpp, Hillaire 2020) keep each
+// Where the physical sky's tables (render/media/atmosphere_tables.hpp, Hillaire 2020) keep each
 // value: the map from a query (altitude, cosines, azimuth, distance) to texel coordinates, and
 // the bilinear weights. Common subset of GLSL 4.50 and C++ (glm): render/core/src/
 // atmosphere_tables.cpp compiles this file too, so the CPU lookups and the shaders share one map.

@@ -1,4 +1,4 @@
-// The ground's albedo texture (render/core/ground_albedo.hpp) on the GPU: the land use at the
+// The ground's albedo texture (render/scene/ground_albedo.hpp) on the GPU: the land use at the
 // long period times the detail's brightness at the short one, each read by GROUND_TAPS taps
 // along the pixel's footprint at the mip level of its share (lib/ground_albedo_map.glsl), as
 // render::ground_albedo reads it on the CPU.

@@ -1,6 +1,6 @@
-// Where the ground's albedo texture (render/core/ground_albedo.hpp) is read for one pixel: the
+// Where the ground's albedo texture (render/scene/ground_albedo.hpp) is read for one pixel: the
 // pixel's footprint on the ground, the taps that cover it and their mip level, and how the two
-// scales combine. Common subset of GLSL 4.50 and C++ (glm): render/core/src/ground_albedo.cpp
+// scales combine. Common subset of GLSL 4.50 and C++ (glm): render/scene/src/ground_albedo.cpp
 // compiles this file too, so the CPU reference and the surface pass read the same texels.
 #ifndef NIMBUS_GROUND_ALBEDO_MAP_GLSL
 #define NIMBUS_GROUND_ALBEDO_MAP_GLSL

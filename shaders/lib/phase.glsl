@@ -1,7 +1,7 @@
 // Phase functions (thesis eqs. 13-17), normalised over the sphere, theta = 0 forward: the one
 // float implementation of each, for the fog (any kind, by its PHASE_* code of lib/contract.glsl)
 // and for the clouds' dual-lobe Henyey-Greenstein (lib/cloud_phase.glsl). Written in the common
-// subset of GLSL 4.50 and C++ (glm); render/core/src/airlight_stable.cpp compiles it.
+// subset of GLSL 4.50 and C++ (glm); render/media/src/airlight_stable.cpp compiles it.
 #ifndef NIMBUS_PHASE_GLSL
 #define NIMBUS_PHASE_GLSL
 

@@ -11,8 +11,8 @@
 // R cos(phi) = m . axis, R sin(phi) = dir . axis, so the outer cone meets the ray where
 // |psi - phi| <= acos(cos(outer) / R): one arc when the cone is at most a hemisphere wide, and
 // the quadrature covers only its part of [psi0, psi1]. SPOT_AL_NODES midpoint nodes; measured
-// against the double integral (render/core/spot_airlight.hpp) in tests/cpu/test_spot_airlight.cpp.
-// Common subset of GLSL and C++: render/core/src/spot_airlight.cpp compiles this file too.
+// against the double integral (render/media/spot_airlight.hpp) in tests/cpu/test_spot_airlight.cpp.
+// Common subset of GLSL and C++: render/media/src/spot_airlight.cpp compiles this file too.
 #ifndef NIMBUS_SPOT_AIRLIGHT_GLSL
 #define NIMBUS_SPOT_AIRLIGHT_GLSL
 

@@ -1,10 +1,10 @@
 // Airlight reflected by a Lambertian surface (Sun et al. section 4) from the tabulated G0:
 //   L_p,a = (albedo / pi) (sigma_s I0 / Dsp) G0(Tsp, theta_s),  G0 = g e^{-Tsp} / (1 + Tsp),
 // g read bilinearly from a table over (ln Tsp, theta_s) (render::SurfaceAirlightTable; the
-// reduction and the table's error: render/core/include/nimbus/render/core/surface_airlight.hpp
+// reduction and the table's error: render/media/include/nimbus/render/media/surface_airlight.hpp
 // and docs/shafts.md). Common subset of GLSL 4.50 and C++ (glm): the table lookup itself is
 // the caller's (texelFetch in lib/surface_airlight_texture.glsl, an array in
-// render/core/src/surface_airlight_table.cpp), the rest is shared.
+// render/media/src/surface_airlight_table.cpp), the rest is shared.
 #ifndef NIMBUS_SURFACE_AIRLIGHT_GLSL
 #define NIMBUS_SURFACE_AIRLIGHT_GLSL
 

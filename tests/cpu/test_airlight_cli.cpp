@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "support/run_nimbus.hpp"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The physical sky (render/core/atmosphere_tables.hpp) against its brute-force double-precision
+// The physical sky (render/media/atmosphere_tables.hpp) against its brute-force double-precision
 // reference (render/reference/atmosphere_reference.hpp) and against closed forms.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <map>
 #include <memory>
 
-#include "nimbus/render/core/atmosphere_tables.hpp"
+#include "nimbus/render/media/atmosphere_tables.hpp"
 #include "nimbus/render/reference/atmosphere_reference.hpp"
 
 namespace nimbus::render {

@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/phase.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 
 namespace nimbus::render {
 namespace {

@@ -1,11 +1,11 @@
-// The daylight model (render/core/daylight.hpp) and the sky's light on surfaces (scene.hpp):
+// The daylight model (render/scene/daylight.hpp) and the sky's light on surfaces (scene.hpp):
 // directions, monotone dimming and reddening as the sun sets, and
 // the ambient terms' limits.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/scene/daylight.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 
 namespace nimbus::render {

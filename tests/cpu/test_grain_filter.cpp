@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "nimbus/render/core/blue_noise.hpp"
-#include "nimbus/render/core/grain_filter.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/grain_filter.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 
 namespace nimbus::render {
 namespace {

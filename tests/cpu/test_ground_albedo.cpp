@@ -1,4 +1,4 @@
-// The sky scene's ground albedo (render/core/ground_albedo.hpp): its albedos lie where Oke's
+// The sky scene's ground albedo (render/scene/ground_albedo.hpp): its albedos lie where Oke's
 // table puts fields, meadows and woods, it varies (a texture, not a colour), it tiles seamlessly,
 // its mip chain is the box filter, and the footprint filter takes the variation out where a
 // pixel covers kilometres (toward the horizon) while leaving it near the eye.
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
-#include "nimbus/render/core/ground_albedo.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/ground_albedo.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nimbus::render {
 namespace {

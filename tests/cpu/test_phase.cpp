@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/phase.hpp"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "nimbus/render/core/medium.hpp"
+#include "nimbus/render/media/medium.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 
 namespace nimbus::render {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/phase.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 

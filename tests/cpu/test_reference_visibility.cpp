@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "nimbus/render/core/intersect.hpp"
+#include "nimbus/render/scene/intersect.hpp"
 #include "nimbus/render/reference/reference_visibility.hpp"
 
 namespace nr = nimbus::render;

@@ -6,8 +6,8 @@
 #include <limits>
 #include <random>
 
-#include "nimbus/render/core/intersect.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/intersect.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nr = nimbus::render;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "nimbus/render/core/intersect.hpp"
-#include "nimbus/render/core/scene_mesh.hpp"
+#include "nimbus/render/scene/intersect.hpp"
+#include "nimbus/render/scene/scene_mesh.hpp"
 
 namespace nr = nimbus::render;
 

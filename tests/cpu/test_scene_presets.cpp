@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "nimbus/render/core/intersect.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/intersect.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nr = nimbus::render;
 

@@ -10,10 +10,10 @@
 #include <numbers>
 #include <random>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/quadrature.hpp"
-#include "nimbus/render/core/spot_airlight.hpp"
-#include "nimbus/render/core/surface_airlight.hpp"
+#include "nimbus/render/media/spot_airlight.hpp"
+#include "nimbus/render/media/surface_airlight.hpp"
 
 namespace nimbus::render {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "nimbus/app/sun_path.hpp"
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/scene/daylight.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "support/run_nimbus.hpp"

@@ -1,12 +1,12 @@
-// The one set-up of the sun, its colour and its ambient light (render/core/sun_setup.hpp), which
+// The one set-up of the sun, its colour and its ambient light (render/scene/sun_setup.hpp), which
 // `nimbus render --sun`, the viewer's clock and FrameRenderer::set_sun all call.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "nimbus/render/core/daylight.hpp"
-#include "nimbus/render/core/sun_setup.hpp"
+#include "nimbus/render/scene/daylight.hpp"
+#include "nimbus/render/scene/sun_setup.hpp"
 
 namespace nr = nimbus::render;
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "nimbus/render/core/quadrature.hpp"
-#include "nimbus/render/core/surface_airlight.hpp"
+#include "nimbus/render/media/surface_airlight.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "nimbus/render/core/surface_airlight.hpp"
+#include "nimbus/render/media/surface_airlight.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <functional>
 
-#include "nimbus/render/core/temporal_frame.hpp"
+#include "nimbus/render/sky/temporal_frame.hpp"
 #include "nimbus/render/core/image_resample.hpp"
 
 namespace nimbus::render {

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/scene/daylight.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/sky/view_state.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "support/run_nimbus.hpp"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "nimbus/render/core/atmosphere_tables.hpp"
+#include "nimbus/render/media/atmosphere_tables.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/atmosphere_textures.hpp"
 #include "nimbus/render/gl/readback.hpp"

@@ -11,7 +11,7 @@
 
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 #include "nimbus/render/core/cloud_source.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/reference/cloud_reference.hpp"
 #include "test_cloud_slices_support.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/clouds/cloud_renderer.hpp"
 #include "nimbus/render/core/phase.hpp"
 #include "test_cloud_slices_support.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 #include "nimbus/render/gl/uniform_blocks.hpp"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "nimbus/render/core/grain_filter.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/grain_filter.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"
 #include "test_cloud_slices_support.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"
 #include "nimbus/render/image/image_metrics.hpp"

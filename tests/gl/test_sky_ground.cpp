@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "nimbus/render/clouds/cloud_shadow.hpp"
-#include "nimbus/render/core/atmosphere.hpp"
+#include "nimbus/render/media/atmosphere.hpp"
 #include "nimbus/render/core/pixel_depths.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/gl/volume_texture.hpp"

@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "nimbus/render/core/cloud_optics.hpp"
-#include "nimbus/render/core/daylight.hpp"
+#include "nimbus/render/scene/daylight.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"

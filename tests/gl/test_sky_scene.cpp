@@ -6,7 +6,7 @@
 
 #include "nimbus/render/image/image_metrics.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"
 #include "test_gl_support.hpp"
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
 #include "nimbus/render/shafts/shaft_renderer.hpp"

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "nimbus/render/core/progressive_frame.hpp"
-#include "nimbus/render/core/temporal_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
+#include "nimbus/render/sky/temporal_frame.hpp"
 #include "nimbus/render/core/image_resample.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/sky_renderer.hpp"

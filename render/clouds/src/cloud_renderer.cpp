@@ -18,7 +18,7 @@
 #include "cloud_renderer_impl.hpp"
 #include "cloud_slice_geometry.hpp"
 #include "nimbus/render/core/blue_noise.hpp"
-#include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/scene/metadata.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/to_float.hpp"
 #include "nimbus/render/gl/readback.hpp"

@@ -9,7 +9,7 @@
 #include "nimbus/base/cancel.hpp"
 #include "nimbus/render/clouds/cloud_shadow.hpp"
 #include "nimbus/render/reference/light_volume_builder.hpp"
-#include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/scene/metadata.hpp"
 #include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {

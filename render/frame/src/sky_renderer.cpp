@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "nimbus/render/core/cloud_framing.hpp"
-#include "nimbus/render/core/daylight.hpp"
-#include "nimbus/render/core/sun_setup.hpp"
-#include "nimbus/render/core/scene.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/scene/daylight.hpp"
+#include "nimbus/render/scene/sun_setup.hpp"
+#include "nimbus/render/scene/scene.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 
 namespace nimbus::render {
 namespace {

@@ -1,7 +1,7 @@
 // The CPU reference of the cloud model (cloud_reference.hpp): single scattering of the sun plus
 // the ambient sky term, midpoint steps in double precision, Hillaire 2015 step integral.
 #include "nimbus/render/reference/cloud_reference.hpp"
-#include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/scene/metadata.hpp"
 #include "per_pixel.hpp"
 
 #include <tbb/blocked_range.h>

@@ -23,12 +23,12 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/intersect.hpp"
+#include "nimbus/render/scene/intersect.hpp"
 #include "nimbus/render/core/quadrature.hpp"
-#include "nimbus/render/core/spot_airlight.hpp"
-#include "nimbus/render/core/surface_airlight.hpp"
+#include "nimbus/render/media/spot_airlight.hpp"
+#include "nimbus/render/media/surface_airlight.hpp"
 #include "nimbus/render/reference/reference_visibility.hpp"
-#include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/scene/metadata.hpp"
 #include "per_pixel.hpp"
 
 namespace nimbus::render {

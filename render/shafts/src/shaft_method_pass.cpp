@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 
 namespace nimbus::render::shaft_detail {

@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/scene.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/scene/scene.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "shaft_renderer_impl.hpp"
 
 namespace nimbus::render::shaft_detail {

@@ -12,10 +12,10 @@
 #include <utility>
 
 #include "nimbus/render/core/blue_noise.hpp"
-#include "nimbus/render/core/intersect.hpp"
-#include "nimbus/render/core/metadata.hpp"
+#include "nimbus/render/scene/intersect.hpp"
+#include "nimbus/render/scene/metadata.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
-#include "nimbus/render/core/surface_airlight.hpp"
+#include "nimbus/render/media/surface_airlight.hpp"
 #include "nimbus/render/gl/readback.hpp"
 #include "nimbus/render/gl/to_float.hpp"
 #include "shaft_method_pass.hpp"

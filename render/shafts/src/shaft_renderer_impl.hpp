@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "nimbus/render/core/scene_mesh.hpp"
+#include "nimbus/render/scene/scene_mesh.hpp"
 #include "nimbus/render/gl/atmosphere_textures.hpp"
 #include "nimbus/render/gl/gpu_timer.hpp"
 #include "nimbus/render/gl/resources.hpp"

@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "nimbus/render/core/intersect.hpp"
+#include "nimbus/render/scene/intersect.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/to_float.hpp"
 #include "shaft_renderer_impl.hpp"

@@ -11,8 +11,8 @@
 #include "nimbus/volume/sky_ranges.hpp"
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/render_settings.hpp"
-#include "nimbus/render/core/scene.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/scene/scene.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 
 namespace nimbus::render {

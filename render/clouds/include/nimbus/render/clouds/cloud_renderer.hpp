@@ -16,7 +16,7 @@
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/pixel_depths.hpp"
 #include "nimbus/render/core/light_volume.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/gl/volume_texture.hpp"
 

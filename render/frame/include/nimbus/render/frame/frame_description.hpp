@@ -10,7 +10,7 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/light.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/frame/frame_settings.hpp"
 
 namespace nimbus::render {

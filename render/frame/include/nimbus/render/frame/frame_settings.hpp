@@ -5,7 +5,7 @@
 #include "nimbus/render/core/cloud_slice_settings.hpp"
 #include "nimbus/render/core/cloud_method.hpp"
 #include "nimbus/render/core/render_settings.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "nimbus/render/core/shaft_settings.hpp"
 #include "nimbus/render/core/volume_format.hpp"
 #include "nimbus/render/reference/cloud_path_tracer.hpp"

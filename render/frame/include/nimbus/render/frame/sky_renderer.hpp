@@ -16,7 +16,7 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/progressive_frame.hpp"
+#include "nimbus/render/sky/progressive_frame.hpp"
 #include "nimbus/render/sky/sky_keyframes.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 #include "nimbus/render/frame/frame_renderer.hpp"

@@ -1,11 +1,11 @@
-// The physical sky's tables (render/core/atmosphere_tables.hpp) as textures: the sky view for
+// The physical sky's tables (render/media/atmosphere_tables.hpp) as textures: the sky view for
 // the sky behind the scene (shaders/lib/sky.glsl), the aerial perspective for the haze in front
 // of the clouds (shaders/lib/aerial_perspective.glsl). RGB32F, read with texelFetch and the
 // tables' own bilinear weights, so the GPU reads what the CPU reads.
 #pragma once
 #include <memory>
 
-#include "nimbus/render/core/atmosphere_tables.hpp"
+#include "nimbus/render/media/atmosphere_tables.hpp"
 #include "nimbus/render/gl/resources.hpp"
 
 namespace nimbus::render {

@@ -7,7 +7,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "nimbus/render/core/atmosphere.hpp"
+#include "nimbus/render/media/atmosphere.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 

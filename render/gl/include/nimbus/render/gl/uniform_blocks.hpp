@@ -13,7 +13,7 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/resources.hpp"
 

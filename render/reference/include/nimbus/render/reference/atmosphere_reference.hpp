@@ -1,4 +1,4 @@
-// The physical sky's model (render/core/atmosphere.hpp, Hillaire 2020) integrated by brute force
+// The physical sky's model (render/media/atmosphere.hpp, Hillaire 2020) integrated by brute force
 // in double precision, with no table: the reference that every table in atmosphere_tables.hpp
 // and the sky's radiance are checked against. Slow (tens of milliseconds to seconds a query).
 //   - Transmittance: the optical depth by adaptive Gauss-Kronrod quadrature.
@@ -10,7 +10,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
-#include "nimbus/render/core/atmosphere.hpp"
+#include "nimbus/render/media/atmosphere.hpp"
 
 namespace nimbus::render {
 

@@ -18,7 +18,7 @@
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_volume.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nimbus::render {
 

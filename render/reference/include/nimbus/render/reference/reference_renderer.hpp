@@ -8,7 +8,7 @@
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/scene.hpp"
+#include "nimbus/render/scene/scene.hpp"
 
 namespace nimbus::render {
 

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "nimbus/render/core/intersect.hpp"
+#include "nimbus/render/scene/intersect.hpp"
 
 namespace nimbus::render {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "nimbus/render/core/airlight.hpp"
+#include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/gl/resources.hpp"
 #include "nimbus/render/gl/shader_program.hpp"
 

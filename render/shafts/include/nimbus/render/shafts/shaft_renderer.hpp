@@ -9,8 +9,8 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/gl/cloud_shadow_map.hpp"
 #include "nimbus/render/core/image.hpp"
-#include "nimbus/render/core/scene.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/scene/scene.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "nimbus/render/core/shaft_settings.hpp"
 
 namespace nimbus::render {

@@ -16,9 +16,9 @@
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/cloud_slice_settings.hpp"
-#include "nimbus/render/core/grain_filter.hpp"
+#include "nimbus/render/sky/grain_filter.hpp"
 #include "nimbus/render/core/render_settings.hpp"
-#include "nimbus/render/core/shaft_method.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {

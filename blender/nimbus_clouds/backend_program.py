@@ -27,6 +27,14 @@ def _fraction_done(stderr_text, frames):
     return (frames.index(int(frame)) + percent) / len(frames) if int(frame) in frames else 0.0
 
 
+def _failure(code, output, bad_input=True):
+    """The exception for a run that exited `code`, with the last line of its output: ValueError
+    for exit 2 (a usage error: the arguments are at fault), else RuntimeError."""
+    message = (output.splitlines()[-1] if output else f"exit status {code}")
+    message = message.removeprefix("nimbus: error: ").removeprefix("nimbus: ")
+    return (ValueError if code == 2 and bad_input else RuntimeError)(message)
+
+
 def find_program(preference=""):
     """NIMBUS_PROGRAM, else the add-on preference, else `nimbus` on PATH; None when none is found."""
     for candidate in (os.environ.get("NIMBUS_PROGRAM", ""), preference):
@@ -59,10 +67,7 @@ class ProgramBackend:
         except subprocess.TimeoutExpired:
             raise RuntimeError(f"nimbus {argv[0]}: no answer after {timeout} s") from None
         if r.returncode != 0:
-            message = (r.stderr.strip() or r.stdout.strip() or f"exit status {r.returncode}").splitlines()[-1]
-            message = message.removeprefix("nimbus: error: ").removeprefix("nimbus: ")
-            # Exit 2 is a usage error: the arguments are at fault.
-            raise (ValueError if r.returncode == 2 and bad_input else RuntimeError)(message)
+            raise _failure(r.returncode, r.stderr.strip() or r.stdout.strip(), bad_input)
         return r.stdout
 
     def presets(self):
@@ -134,9 +139,7 @@ class ProgramBackend:
                     progress(done)
             if code != 0:
                 err.seek(0)
-                lines = err.read().strip().splitlines()
-                message = (lines[-1] if lines else f"exit status {code}").removeprefix("nimbus: error: ")
-                raise (ValueError if code == 2 else RuntimeError)(message.removeprefix("nimbus: "))
+                raise _failure(code, err.read().strip())
 
     def generate_still(self, path, preset, *, seed, voxel_size, time, overrides, size=1.0, progress=None, cancel=None):
         """Writes path. The program runs in path's folder and is given the file's name alone (which

@@ -65,9 +65,11 @@ CloudParams scale_cloud(const CloudParams& p, double f) {
   q.temperature_base = altitude(q.temperature_base);
   q.period_m *= f;
   // The coverage map's extent (west, south, east, north) about the base centre; all 0 stays "auto".
-  q.coverage_map_extent = {base.x + f * (p.coverage_map_extent[0] - base.x), base.y + f * (p.coverage_map_extent[1] - base.y),
-                           base.x + f * (p.coverage_map_extent[2] - base.x), base.y + f * (p.coverage_map_extent[3] - base.y)};
-  if (p.coverage_map_extent == std::array<double, 4>{0.0, 0.0, 0.0, 0.0}) q.coverage_map_extent = p.coverage_map_extent;
+  if (p.coverage_map_extent != std::array<double, 4>{0.0, 0.0, 0.0, 0.0})
+    for (int i = 0; i < 4; ++i) {
+      const double centre = i % 2 == 0 ? base.x : base.y;  // west, south, east, north
+      q.coverage_map_extent[i] = centre + f * (p.coverage_map_extent[i] - centre);
+    }
   for (double* frequency : {&q.frequency, &q.erosion_frequency, &q.furrow_frequency, &q.displacement_frequency,
                             &q.cauliflower_frequency})
     *frequency /= f;

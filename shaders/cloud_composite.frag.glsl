@@ -39,11 +39,11 @@ void main() {
   float D = weighted.a > 1.0e-12 ? max(weighted.r / weighted.a, 0.0) : 0.0;
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
   vec3 air = vec3(0.0);
-  for (int i = 0; i < lights.point_count; ++i)
-    air += (A * lights.point_intensity[i].rgb) *
+  for (int i = 0; i < lights.lamp_count; ++i)
+    air += (A * lights.lamp[i].power.rgb) *
            lamp_segment_airlight(i, camera.eye, dir, 0.0, D, u_sigma_t, u_sigma_s, u_phase_kind, u_phase_g);
-  float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir));
-  air += lights.sun_irradiance * (sun * max(weighted.g, 0.0));
+  float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun.position.xyz, -dir));
+  air += lights.sun.power.rgb * (sun * max(weighted.g, 0.0));
   vec3 clouds = cloud.rgb;
   if (u_aerial_on != 0) {
     vec3 S, T;

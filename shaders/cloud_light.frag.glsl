@@ -23,7 +23,7 @@ void main() {
 #if LAMP
   vec3 l = lamp_propagation(v_world);
   float ls = dot(l, slice_light.slice_axis);
-  if (dot(v_world - slice_light.lamp_position, slice_light.slice_axis) <= 0.0) discard;
+  if (dot(v_world - lamp_position(), slice_light.slice_axis) <= 0.0) discard;
   o_tau = vec4(rho * cloud.sigma_t * slice_light.spacing_m / max(ls, 1.0e-3), 0.0, 0.0, 0.0);
 #else
   o_tau = vec4(rho * cloud.tau_per_density, 0.0, 0.0, 0.0);

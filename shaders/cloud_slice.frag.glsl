@@ -88,12 +88,12 @@ void main() {
   vec3 light_dir = lamp_propagation(x);
   vec3 irradiance = lamp_irradiance(x, light_dir);
   vec4 lc = slice_light.world_to_lamp_clip * vec4(x, 1.0);
-  bool beyond = dot(x - slice_light.lamp_position, slice_light.slice_axis) > 0.0 && lc.w > 0.0;
+  bool beyond = dot(x - lamp_position(), slice_light.slice_axis) > 0.0 && lc.w > 0.0;
   float before = beyond ? texture(u_light, 0.5 + 0.5 * lc.xy / lc.w).r : 0.0;
   float tau = before + own * cloud.sigma_t * rho * slice_light.spacing_m / max(dot(light_dir, slice_light.slice_axis), 1.0e-3);
 #else
-  vec3 light_dir = -slice_light.to_sun;  // l, the propagation direction
-  vec3 irradiance = slice_light.sun_irradiance;
+  vec3 light_dir = -slice_light.light.position.xyz;  // l, the propagation direction
+  vec3 irradiance = slice_light.light.power.rgb;
   float tau = texture(u_light, v_luv + k * (v_luv - slice_light.luv_eye)).r + own * cloud.sigma_t * rho * slice_light.light_slab_m;
 #endif
   float od = cloud.sigma_t * rho * slab;

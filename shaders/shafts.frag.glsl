@@ -74,7 +74,7 @@ float march_point(int i, vec3 dir, float a, float b, int n, float jitter) {
   for (int k = 0; k < n; ++k) {
     float x = a + (float(k) + jitter) * h;
     vec3 p = camera.eye + dir * x;
-    vec3 lv = p - lights.point_position[i].xyz;
+    vec3 lv = p - lights.lamp[i].position.xyz;
     float d = length(lv);
     float vis = point_visibility(i, p);
     if (vis > 0.0)
@@ -91,7 +91,7 @@ float march_sun(vec3 dir, float a, float b, int n, float jitter) {
     float x = a + (float(k) + jitter) * h;
     sum += sun_light_visibility(camera.eye + dir * x) * exp(-u_sigma_t * x);
   }
-  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.to_sun, -dir)) * sum * h;
+  return u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun.position.xyz, -dir)) * sum * h;
 }
 
 // Unshadowed airlight of lamp i over [x0, x1]: closed form, or a spot's quadrature.
@@ -106,7 +106,7 @@ float closed_point(int i, vec3 dir, float x0, float x1) {
 // on the ray's line): a spot, and those places, take closed_point, so no NaN reaches the image.
 float table_point(int i, vec3 dir, float t_end, float Dvp) {
   if (lamp_is_spot(i)) return closed_point(i, dir, 0.0, t_end);
-  vec3 to_light = lights.point_position[i].xyz - camera.eye;
+  vec3 to_light = lights.lamp[i].position.xyz - camera.eye;
   float Dsv = length(to_light);
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
   float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
@@ -117,7 +117,7 @@ float table_point(int i, vec3 dir, float t_end, float Dvp) {
 #endif
 
 float closed_sun(vec3 dir, float x0, float x1) {
-  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.to_sun, -dir), x0, x1, u_phase_kind, u_phase_g);
+  return sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.sun.position.xyz, -dir), x0, x1, u_phase_kind, u_phase_g);
 }
 
 // The part [lo, hi] of [a, b] below the shadow ceiling (lo > hi: none). Above it the sun (above
@@ -146,7 +146,7 @@ void main() {
   float jitter = pixel_jitter(px);
   float t_march = hit ? t_end : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
 
-  for (int i = 0; i < lights.point_count; ++i) {
+  for (int i = 0; i < lights.lamp_count; ++i) {
 #if METHOD == SHAFT_METHOD_RAYMARCH
     float a = march_point(i, dir, 0.0, t_march, STEPS, jitter);
 #elif METHOD == SHAFT_METHOD_ANALYTIC
@@ -173,7 +173,7 @@ void main() {
       if (point_visibility(i, camera.eye + dir * probe) > 0.0) a += closed_point(i, dir, tf, t_end);
     }
 #endif
-    L += lights.point_intensity[i].rgb * a;
+    L += lights.lamp[i].power.rgb * a;
   }
 
   if (lights.has_sun != 0) {
@@ -186,7 +186,7 @@ void main() {
 #elif METHOD == SHAFT_METHOD_ANALYTIC
     float a = closed_sun(dir, 0.0, t_end);
 #else
-    int layer = lights.point_count;
+    int layer = lights.lamp_count;
     float tn = texelFetch(u_sv_near, ivec3(px, layer), 0).r;
     float tf = texelFetch(u_sv_far, ivec3(px, layer), 0).r;
     float a = 0.0;
@@ -202,7 +202,7 @@ void main() {
       if (sun_visibility(camera.eye + dir * probe) > 0.0) a += closed_sun(dir, tf, t_end);
     }
 #endif
-    L += lights.sun_irradiance * a;
+    L += lights.sun.power.rgb * a;
   }
   float alpha = (hit || sky || u_sigma_t > 0.0) ? 1.0 : 0.0;
   o_color = vec4(L, alpha);

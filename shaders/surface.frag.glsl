@@ -50,13 +50,13 @@ void main() {
   if (u_emissive != 0) {
     L = u_emissive_radiance;
   } else {
-    for (int i = 0; i < lights.point_count; ++i) {
-      vec3 l = lights.point_position[i].xyz - world;
+    for (int i = 0; i < lights.lamp_count; ++i) {
+      vec3 l = lights.lamp[i].position.xyz - world;
       float d = length(l);
-      vec3 I = lights.point_intensity[i].rgb * lamp_spot_weight(i, -l / d);
+      vec3 I = lights.lamp[i].power.rgb * lamp_spot_weight(i, -l / d);
 #if SURFACE_AIRLIGHT
       if (!lamp_is_spot(i))
-        L += albedo * lights.point_intensity[i].rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
+        L += albedo * lights.lamp[i].power.rgb * surface_airlight(u_sigma_t, u_sigma_s, 1.0, d, dot(n, l / d));
 #endif
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
@@ -65,9 +65,9 @@ void main() {
       L += albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
-      float cos_s = max(dot(n, lights.to_sun), 0.0);
+      float cos_s = max(dot(n, lights.sun.position.xyz), 0.0);
       if (cos_s > 0.0)
-        L += albedo / 3.14159265358979 * lights.sun_irradiance * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * u_sun_texel_m));
+        L += albedo / 3.14159265358979 * lights.sun.power.rgb * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * u_sun_texel_m));
     }
     // The sky, uniform at its mean, seen by the share (1 + n.y) / 2 (render::sky_irradiance).
     L += albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));

@@ -10,6 +10,10 @@
 // --- Light limits -------------------------------------------------------------------------
 const int MAX_POINT_LIGHTS = 4;  // point lights one GPU frame lights (Lights block)
 
+// --- Light kinds (LightRecord.position.w of lib/light_record.glsl; render::light_record) ------
+const int LIGHT_SUN = 0;   // parallel light; position.xyz is the unit direction towards the sun
+const int LIGHT_LAMP = 1;  // a point light, a spot among them; position.xyz is where it is
+
 // --- Phase function codes (lib/phase.glsl; render::phase_code) -----------------------------
 const int PHASE_ISOTROPIC = 0;
 const int PHASE_HENYEY_GREENSTEIN = 1;

@@ -21,12 +21,12 @@ vec3 horizon_sky(vec3 dir) {
   vec3 h = level_direction(dir);
   float d = u_sky_distance;
   vec3 L = sky_radiance(h) * exp(-u_sigma_t * d);
-  for (int i = 0; i < lights.point_count; ++i)
-    L += lights.point_intensity[i].rgb *
+  for (int i = 0; i < lights.lamp_count; ++i)
+    L += lights.lamp[i].power.rgb *
          lamp_segment_airlight(i, camera.eye, h, 0.0, d, u_sigma_t, u_sigma_s, u_phase_kind, u_phase_g);
   if (lights.has_sun != 0)
-    L += lights.sun_irradiance *
-         sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.to_sun, -h), 0.0, d, u_phase_kind, u_phase_g);
+    L += lights.sun.power.rgb *
+         sun_segment_airlight(u_sigma_t, u_sigma_s, 1.0, dot(-lights.sun.position.xyz, -h), 0.0, d, u_phase_kind, u_phase_g);
   return L;
 }
 

@@ -13,11 +13,11 @@
 
 float lamp_segment_airlight(int i, vec3 eye, vec3 dir, float x0, float x1, float sigma_t, float sigma_s,
                             int phase_kind, float phase_g) {
-  vec3 to_light = lights.point_position[i].xyz - eye;
+  vec3 to_light = lights.lamp[i].position.xyz - eye;
 #if SPOTS
   if (lamp_is_spot(i))
-    return spot_segment_airlight(sigma_t, sigma_s, to_light, dir, lights.point_spot[i].xyz, lights.point_cone[i].x,
-                                 lights.point_cone[i].y, x0, x1, phase_kind, phase_g);
+    return spot_segment_airlight(sigma_t, sigma_s, to_light, dir, lights.lamp[i].spot.xyz, lights.lamp[i].spot_cos.x,
+                                 lights.lamp[i].spot_cos.y, x0, x1, phase_kind, phase_g);
 #endif
   float Dsv = max(length(to_light), 1.0e-20);
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);

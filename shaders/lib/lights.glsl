@@ -13,7 +13,7 @@ uniform float u_point_texel_angle;   // angular size of a cube-map texel at a fa
 uniform float u_sun_texel_m;         // size of a sun-map texel, metres
 
 float point_visibility(int i, vec3 p) {
-  vec3 v = p - lights.point_position[i].xyz;
+  vec3 v = p - lights.lamp[i].position.xyz;
   float d = length(v);
   float stored = textureLod(u_point_shadow, vec4(v, float(i)), 0.0).r;
   return d <= stored * (1.0 + u_point_shadow_bias) ? 1.0 : 0.0;
@@ -24,7 +24,7 @@ float sun_visibility(vec3 p) {
   vec2 st = vec2(dot(q, u_sun_axis_x) / dot(u_sun_axis_x, u_sun_axis_x),
                  dot(q, u_sun_axis_y) / dot(u_sun_axis_y, u_sun_axis_y));
   if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0)))) return 1.0;
-  float d = dot(q, -lights.to_sun);
+  float d = dot(q, -lights.sun.position.xyz);
   float stored = textureLod(u_sun_shadow, st, 0.0).r;
   return d <= stored + u_sun_shadow_bias ? 1.0 : 0.0;
 }

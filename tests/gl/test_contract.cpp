@@ -95,7 +95,7 @@ TEST(Contract, UniformBlocksMatchTheirCppStructs) {
                   static_cast<GLint>(layout.members.size()))
             << name << " in " << describe(spec) << ": GLSL and C++ list different members";
         for (const BlockMember& m : layout.members) {
-          const GLuint index = glGetProgramResourceIndex(id, GL_UNIFORM, m.name);
+          const GLuint index = glGetProgramResourceIndex(id, GL_UNIFORM, m.name.c_str());
           ASSERT_NE(index, GL_INVALID_INDEX) << m.name << " missing from " << describe(spec);
           EXPECT_EQ(resource_int(id, GL_UNIFORM, index, GL_OFFSET), static_cast<GLint>(m.offset))
               << m.name << " in " << describe(spec);

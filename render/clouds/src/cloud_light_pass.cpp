@@ -52,20 +52,13 @@ SliceLightBlock slice_light_block(const FrameContext& frame, const Light& light,
   SliceLightBlock b;
   b.slice_axis = to_float(plan.axis.axis);
   b.spacing_m = static_cast<float>(plan.planes.spacing_m);
+  b.light = light_record(light);
   if (plan.lamp) {
     b.world_to_lamp_clip = to_float(plan.lamp_frame.world_to_clip);
-    b.lamp_position = to_float(light.position_m);
-    b.lamp_intensity = to_float(light.intensity_w_sr);
-    const bool spot = is_spot(light);
-    b.lamp_spot = glm::vec4(spot ? to_float(glm::normalize(light.spot_axis)) : glm::vec3(0.0f), spot ? 1.0f : 0.0f);
-    b.lamp_cos = glm::vec2(static_cast<float>(std::cos(light.spot_outer_rad)), static_cast<float>(std::cos(light.spot_inner_rad)));
-    b.lamp_min_distance = static_cast<float>(light.min_distance_m);
   } else {
     const LightFrame& lf = plan.light_frame;
     b.world_to_light_uv = to_float(lf.world_to_uv);
     b.light_slab_m = static_cast<float>(plan.light_slab_m);
-    b.to_sun = to_float(-plan.l);
-    b.sun_irradiance = to_float(light.irradiance_w_m2);
     b.luv_eye = glm::vec2(lf.world_to_uv * glm::dvec4(frame.camera.eye, 1.0));
   }
   return b;

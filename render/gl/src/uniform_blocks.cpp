@@ -2,12 +2,49 @@
 #include "nimbus/render/gl/uniform_blocks.hpp"
 
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
 #include "nimbus/render/gl/to_float.hpp"
 
 namespace nimbus::render {
+namespace {
+
+// A LightRecord's four members as the GL names them under `prefix` (e.g. "LightsBlock.sun").
+void add_record_members(std::vector<BlockMember>& members, const std::string& prefix, std::size_t offset) {
+  const std::pair<const char*, std::size_t> fields[] = {{".position", offsetof(LightRecord, position)},
+                                                        {".power", offsetof(LightRecord, power)},
+                                                        {".spot", offsetof(LightRecord, spot)},
+                                                        {".spot_cos", offsetof(LightRecord, spot_cos)}};
+  for (const auto& [field, field_offset] : fields) members.push_back({prefix + field, offset + field_offset});
+}
+
+std::vector<BlockMember> lights_block_members() {
+  std::vector<BlockMember> m;
+  for (int i = 0; i < contract::MAX_POINT_LIGHTS; ++i)
+    add_record_members(m, "LightsBlock.lamp[" + std::to_string(i) + "]", offsetof(LightsBlock, lamp) + i * sizeof(LightRecord));
+  add_record_members(m, "LightsBlock.sun", offsetof(LightsBlock, sun));
+  m.push_back({"LightsBlock.lamp_count", offsetof(LightsBlock, lamp_count)});
+  m.push_back({"LightsBlock.has_sun", offsetof(LightsBlock, has_sun)});
+  return m;
+}
+
+BlockLayout slice_light_layout() {
+  BlockLayout l{"SliceLightBlock",
+                contract::BLOCK_SLICE_LIGHT,
+                sizeof(SliceLightBlock),
+                {{"SliceLightBlock.world_to_light_uv", offsetof(SliceLightBlock, world_to_light_uv)},
+                 {"SliceLightBlock.world_to_lamp_clip", offsetof(SliceLightBlock, world_to_lamp_clip)},
+                 {"SliceLightBlock.slice_axis", offsetof(SliceLightBlock, slice_axis)},
+                 {"SliceLightBlock.spacing_m", offsetof(SliceLightBlock, spacing_m)}}};
+  add_record_members(l.members, "SliceLightBlock.light", offsetof(SliceLightBlock, light));
+  l.members.push_back({"SliceLightBlock.luv_eye", offsetof(SliceLightBlock, luv_eye)});
+  l.members.push_back({"SliceLightBlock.light_slab_m", offsetof(SliceLightBlock, light_slab_m)});
+  return l;
+}
+
+}  // namespace
 
 std::vector<BlockLayout> uniform_block_layouts() {
   return {
@@ -25,14 +62,7 @@ std::vector<BlockLayout> uniform_block_layouts() {
       {"LightsBlock",
        contract::BLOCK_LIGHTS,
        sizeof(LightsBlock),
-       {{"LightsBlock.point_position[0]", offsetof(LightsBlock, point_position)},
-        {"LightsBlock.point_intensity[0]", offsetof(LightsBlock, point_intensity)},
-        {"LightsBlock.point_spot[0]", offsetof(LightsBlock, point_spot)},
-        {"LightsBlock.point_cone[0]", offsetof(LightsBlock, point_cone)},
-        {"LightsBlock.to_sun", offsetof(LightsBlock, to_sun)},
-        {"LightsBlock.point_count", offsetof(LightsBlock, point_count)},
-        {"LightsBlock.sun_irradiance", offsetof(LightsBlock, sun_irradiance)},
-        {"LightsBlock.has_sun", offsetof(LightsBlock, has_sun)}}},
+       lights_block_members()},
       {"CloudBlock",
        contract::BLOCK_CLOUD,
        sizeof(CloudBlock),
@@ -45,22 +75,7 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CloudBlock.blend", offsetof(CloudBlock, blend)},
         {"CloudBlock.tc_eye", offsetof(CloudBlock, tc_eye)},
         {"CloudBlock.copy_offset_m", offsetof(CloudBlock, copy_offset_m)}}},
-      {"SliceLightBlock",
-       contract::BLOCK_SLICE_LIGHT,
-       sizeof(SliceLightBlock),
-       {{"SliceLightBlock.world_to_light_uv", offsetof(SliceLightBlock, world_to_light_uv)},
-        {"SliceLightBlock.world_to_lamp_clip", offsetof(SliceLightBlock, world_to_lamp_clip)},
-        {"SliceLightBlock.slice_axis", offsetof(SliceLightBlock, slice_axis)},
-        {"SliceLightBlock.spacing_m", offsetof(SliceLightBlock, spacing_m)},
-        {"SliceLightBlock.to_sun", offsetof(SliceLightBlock, to_sun)},
-        {"SliceLightBlock.light_slab_m", offsetof(SliceLightBlock, light_slab_m)},
-        {"SliceLightBlock.sun_irradiance", offsetof(SliceLightBlock, sun_irradiance)},
-        {"SliceLightBlock.lamp_min_distance", offsetof(SliceLightBlock, lamp_min_distance)},
-        {"SliceLightBlock.lamp_position", offsetof(SliceLightBlock, lamp_position)},
-        {"SliceLightBlock.lamp_intensity", offsetof(SliceLightBlock, lamp_intensity)},
-        {"SliceLightBlock.lamp_spot", offsetof(SliceLightBlock, lamp_spot)},
-        {"SliceLightBlock.luv_eye", offsetof(SliceLightBlock, luv_eye)},
-        {"SliceLightBlock.lamp_cos", offsetof(SliceLightBlock, lamp_cos)}}},
+      slice_light_layout(),
   };
 }
 
@@ -87,21 +102,11 @@ LightsBlock lights_block(const Scene& scene) {
                                 std::to_string(contract::MAX_POINT_LIGHTS) + " point lights, got " +
                                 std::to_string(scene.lamps.size()));
   LightsBlock b;
-  b.point_count = static_cast<int>(scene.lamps.size());
-  for (std::size_t i = 0; i < scene.lamps.size(); ++i) {
-    b.point_position[i] = glm::vec4(to_float(scene.lamps[i].position_m), 1.0f);
-    const Light& l = scene.lamps[i];
-    b.point_intensity[i] = glm::vec4(to_float(l.intensity_w_sr), 0.0f);
-    if (is_spot(l)) {
-      b.point_spot[i] = glm::vec4(to_float(glm::normalize(l.spot_axis)), 1.0f);
-      b.point_cone[i] = glm::vec4(static_cast<float>(std::cos(l.spot_outer_rad)),
-                                  static_cast<float>(std::cos(l.spot_inner_rad)), 0.0f, 0.0f);
-    }
-  }
+  b.lamp_count = static_cast<int>(scene.lamps.size());
+  for (std::size_t i = 0; i < scene.lamps.size(); ++i) b.lamp[i] = light_record(scene.lamps[i]);
   if (scene.sun) {
     b.has_sun = 1;
-    b.to_sun = to_float(glm::normalize(scene.sun->direction_to_sun));
-    b.sun_irradiance = to_float(scene.sun->irradiance_w_m2);
+    b.sun = light_record(*scene.sun);
   }
   return b;
 }

@@ -1,5 +1,6 @@
 // The shaders' uniform blocks as checked C++ structs (std140, shaders/lib/contract.glsl's
-// BLOCK_* bindings): the camera, the scene's lights, one cloud and the slicer pass's light. Each struct's offsets are
+// BLOCK_* bindings): the camera, the scene's lights, one cloud and the slicer pass's light (both light
+// blocks hold LightRecords, lib/light_record.glsl). Each struct's offsets are
 // static_asserted against the std140 rules here, and tests/gl/test_contract.cpp checks them
 // against the offsets the GL reports for every program that uses the block. Builders fill them
 // from the scene's double-precision values exactly as the shaders expect them.
@@ -7,12 +8,14 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/camera.hpp"
 #include "nimbus/render/core/cloud_optics.hpp"
+#include "nimbus/render/core/light_record.hpp"
 #include "nimbus/render/scene/scene.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/resources.hpp"
@@ -40,26 +43,18 @@ static_assert(offsetof(CameraBlock, view_proj) == 0 && offsetof(CameraBlock, eye
               offsetof(CameraBlock, pixel_offset) == 136 && sizeof(CameraBlock) == 144,
               "CameraBlock must follow std140 as lib/camera_ray.glsl declares it");
 
-// lib/light_list.glsl: LightsBlock.
+// lib/light_list.glsl: LightsBlock, the scene's lights, each a LightRecord (light_record.hpp).
 struct LightsBlock {
-  glm::vec4 point_position[contract::MAX_POINT_LIGHTS] = {};   // xyz metres
-  glm::vec4 point_intensity[contract::MAX_POINT_LIGHTS] = {};  // rgb W/sr
-  glm::vec4 point_spot[contract::MAX_POINT_LIGHTS] = {};       // xyz unit axis (propagation), w = 1 for a spot
-  glm::vec4 point_cone[contract::MAX_POINT_LIGHTS] = {};       // a spot: x = cos(outer), y = cos(inner)
-  glm::vec3 to_sun{0.0f, 1.0f, 0.0f};                          // unit, towards the sun
-  int point_count = 0;
-  glm::vec3 sun_irradiance{0.0f};                              // W/m^2 per channel
+  LightRecord lamp[contract::MAX_POINT_LIGHTS] = {};  // the lamps, lamp_count of them in use
+  LightRecord sun = no_light_record();                 // the sun (no_light_record() when has_sun is 0)
+  int lamp_count = 0;
   int has_sun = 0;
+  int pad0 = 0, pad1 = 0;  // the block's size rounds up to a vec4 (as the GL reports it)
 };
-static_assert(offsetof(LightsBlock, point_position) == 0 &&
-              offsetof(LightsBlock, point_intensity) == 16 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, point_spot) == 32 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, point_cone) == 48 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, to_sun) == 64 * contract::MAX_POINT_LIGHTS &&
-              offsetof(LightsBlock, point_count) == 64 * contract::MAX_POINT_LIGHTS + 12 &&
-              offsetof(LightsBlock, sun_irradiance) == 64 * contract::MAX_POINT_LIGHTS + 16 &&
-              offsetof(LightsBlock, has_sun) == 64 * contract::MAX_POINT_LIGHTS + 28 &&
-              sizeof(LightsBlock) == 64 * contract::MAX_POINT_LIGHTS + 32,
+static_assert(offsetof(LightsBlock, lamp) == 0 && offsetof(LightsBlock, sun) == 64 * contract::MAX_POINT_LIGHTS &&
+                  offsetof(LightsBlock, lamp_count) == 64 * contract::MAX_POINT_LIGHTS + 64 &&
+                  offsetof(LightsBlock, has_sun) == 64 * contract::MAX_POINT_LIGHTS + 68 &&
+                  sizeof(LightsBlock) == 64 * contract::MAX_POINT_LIGHTS + 80,
               "LightsBlock must follow std140 as lib/light_list.glsl declares it");
 
 // lib/cloud_block.glsl: CloudBlock, one per cloud.
@@ -83,38 +78,27 @@ static_assert(offsetof(CloudBlock, world_to_texture) == 0 && offsetof(CloudBlock
               "CloudBlock must follow std140 as lib/cloud_block.glsl declares it");
 
 // lib/cloud_light_block.glsl: SliceLightBlock, the light of the slicer's current pass (the sun,
-// a lamp or a spot) with the pass's slicing geometry. The sun's direction points towards it, as
-// LightsBlock's to_sun does.
+// a lamp or a spot: one LightRecord, as in LightsBlock) with the pass's slicing geometry.
 struct SliceLightBlock {
-  glm::mat4 world_to_light_uv{1.0f};   // the sun: world -> its light buffer's (u, w)
-  glm::mat4 world_to_lamp_clip{1.0f};  // a lamp: world -> its light buffer's clip coordinates
+  glm::mat4 world_to_light_uv{1.0f};       // the sun: world -> its light buffer's (u, w)
+  glm::mat4 world_to_lamp_clip{1.0f};      // a lamp: world -> its light buffer's clip coordinates
   glm::vec3 slice_axis{0.0f, 0.0f, 1.0f};  // s, unit
   float spacing_m = 0.0f;                  // d
-  glm::vec3 to_sun{0.0f, 1.0f, 0.0f};      // the sun: unit, towards it
-  float light_slab_m = 0.0f;               // the sun: d / |dot(l, s)|
-  glm::vec3 sun_irradiance{0.0f};          // the sun: W m^-2 per channel
-  float lamp_min_distance = 0.0f;          // a lamp: metres
-  glm::vec3 lamp_position{0.0f};           // a lamp: metres
-  float pad0 = 0.0f;
-  glm::vec3 lamp_intensity{0.0f};          // a lamp: W/sr per channel
-  float pad1 = 0.0f;
-  glm::vec4 lamp_spot{0.0f};               // a lamp: unit axis, w = 1 for a spot
+  LightRecord light = no_light_record();   // the pass's light
   glm::vec2 luv_eye{0.0f};                 // the sun: the eye's light-buffer coordinates
-  glm::vec2 lamp_cos{0.0f};                // a spot: cos(outer), cos(inner)
+  float light_slab_m = 0.0f;               // the sun: d / |dot(l, s)|
+  float pad0 = 0.0f;                       // the block's size rounds up to a vec4 (as the GL reports it)
 };
 static_assert(offsetof(SliceLightBlock, world_to_light_uv) == 0 && offsetof(SliceLightBlock, world_to_lamp_clip) == 64 &&
-              offsetof(SliceLightBlock, slice_axis) == 128 && offsetof(SliceLightBlock, spacing_m) == 140 &&
-              offsetof(SliceLightBlock, to_sun) == 144 && offsetof(SliceLightBlock, light_slab_m) == 156 &&
-              offsetof(SliceLightBlock, sun_irradiance) == 160 && offsetof(SliceLightBlock, lamp_min_distance) == 172 &&
-              offsetof(SliceLightBlock, lamp_position) == 176 && offsetof(SliceLightBlock, lamp_intensity) == 192 &&
-              offsetof(SliceLightBlock, lamp_spot) == 208 && offsetof(SliceLightBlock, luv_eye) == 224 &&
-              offsetof(SliceLightBlock, lamp_cos) == 232 && sizeof(SliceLightBlock) == 240,
+                  offsetof(SliceLightBlock, slice_axis) == 128 && offsetof(SliceLightBlock, spacing_m) == 140 &&
+                  offsetof(SliceLightBlock, light) == 144 && offsetof(SliceLightBlock, luv_eye) == 208 &&
+                  offsetof(SliceLightBlock, light_slab_m) == 216 && sizeof(SliceLightBlock) == 224,
               "SliceLightBlock must follow std140 as lib/cloud_light_block.glsl declares it");
 
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {
-  const char* name;
+  std::string name;
   std::size_t offset;
 };
 struct BlockLayout {

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <regex>
 
+#include "cloud_flags.hpp"
 #include "frame_range.hpp"
 #include "nimbus/app/sequence_path.hpp"
 #include "nimbus/base/validate.hpp"
@@ -28,6 +29,7 @@
 #include "render_clouds.hpp"
 #include "render_clouds_plan.hpp"
 #include "setting_flags.hpp"
+#include "typed_option.hpp"
 
 namespace nimbus::cli {
 
@@ -121,29 +123,37 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
   cmd->add_option("--voxel-size", a.voxel_size, "Voxel size of generated presets, metres (default: the preset's)");
   add_frame_options(cmd, a.frame, "name.%04d.exr (presets generated at each frame's time)");
   add_sun_options(cmd, a.sun);
-  cmd->add_option("--lamp", a.lamps,
-                  "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which light "
-                  "the clouds too)");
-  cmd->add_option("--lamp-intensity", a.lamp_intensity, "Radiant intensity of every --lamp, W/sr, V or R,G,B")
-      ->capture_default_str();
-  cmd->add_option("--spot", a.spot, "Every --lamp is a spot shining along DX,DY,DZ");
-  cmd->add_option("--spot-cone", a.spot_cone, "The spot's inner,outer cone half-angles, degrees")->capture_default_str();
+  add_typed_list_option(cmd, "--lamp", a.lamps, [](const std::string& t) { return parse_world_vec3("--lamp", t); },
+                        "A lamp on the clouds at X,Y,Z (repeatable; in a scene it joins the scene's point lights, which "
+                        "light the clouds too)");
+  add_typed_option(cmd, "--lamp-intensity", a.lamp_intensity_w_sr,
+                   [](const std::string& t) { return parse_colour("--lamp-intensity", t); },
+                   "Radiant intensity of every --lamp, W/sr, V or R,G,B", "100");
+  add_typed_option(cmd, "--spot", a.spot_axis, [](const std::string& t) { return std::optional(parse_spot_axis(t)); },
+                   "Every --lamp is a spot shining along DX,DY,DZ");
+  add_typed_option(cmd, "--spot-cone", a.spot_cone_deg, parse_spot_cone,
+                   "The spot's inner,outer cone half-angles, degrees", "20,30");
   add_setting_option(cmd, render::Setting::MaxLights, a.max_lights);
   add_setting_option(cmd, render::Setting::Slices, a.slices);
   add_setting_option(cmd, render::Setting::LightRes, a.light_res);
-  add_setting_option(cmd, render::Setting::RepeatTo, a.repeat_to);
+  add_typed_option(cmd, render::flag_name(render::setting(render::Setting::RepeatTo)), a.repeat_to_m, parse_repeat_to,
+                   setting_help(render::Setting::RepeatTo));
   add_setting_option(cmd, render::Setting::CloudShadowRes, a.shadow_map_res);
-  cmd->add_option("--shafts", a.shafts, "The scene's light-shaft method under the clouds (see --method)")
-      ->capture_default_str();
+  add_typed_option(cmd, "--shafts", a.shafts, render::parse_shaft_method,
+                   "The scene's light-shaft method under the clouds (see --method)", kCloudShaftsDefault);
   add_setting_option(cmd, render::Setting::CloudExtinction, a.cloud_extinction);
-  cmd->add_option("--cloud-albedo", a.cloud_albedo, "Cloud single-scattering albedo, V or R,G,B (default " + number_text(render::kCloudAlbedo) + ")");
-  cmd->add_option("--cloud-phase", a.cloud_phase, "Cloud phase: isotropic, hg:G or dual:GF,GB,W")->capture_default_str();
-  cmd->add_option("--ambient", a.ambient, "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)")
-      ->capture_default_str();
+  add_typed_option(cmd, "--cloud-albedo", a.cloud_albedo,
+                   [](const std::string& t) { return std::optional(parse_colour("--cloud-albedo", t)); },
+                   "Cloud single-scattering albedo, V or R,G,B (default " + number_text(render::kCloudAlbedo) + ")");
+  add_typed_option(cmd, "--cloud-phase", a.cloud_phase, render::parse_cloud_phase,
+                   "Cloud phase: isotropic, hg:G or dual:GF,GB,W", render::to_string(render::kCloudPhase));
+  add_typed_option(cmd, "--ambient", a.ambient, parse_ambient,
+                   "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)", "auto");
   add_setting_option(cmd, render::Setting::Multiple, a.multiple);
-  cmd->add_option("--ms-method", a.ms_method,
-                  "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
-                  "the default) or octaves (the default when --multiple N > 0 is given alone)");
+  add_typed_option(cmd, "--ms-method", a.ms_method,
+                   [](const std::string& t) { return std::optional(render::parse_multiple_scattering_method(t)); },
+                   "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
+                   "the default) or octaves (the default when --multiple N > 0 is given alone)");
   add_setting_option(cmd, render::Setting::MsGrid, a.ms_grid);
   add_setting_option(cmd, render::Setting::MsPhotons, a.ms_photons);
   add_setting_option(cmd, render::Setting::MsLobes, a.ms_lobes);

@@ -14,10 +14,14 @@
 #include "nimbus/render/core/cloud_source.hpp"
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/render_settings.hpp"
+#include "nimbus/render/media/shaft_method.hpp"
 #include "render_args.hpp"
 #include "sun_flags.hpp"
 
 namespace nimbus::cli {
+
+// The scene's light-shaft method under the clouds when --shafts is left out.
+inline constexpr const char* kCloudShaftsDefault = "raymarch:48";
 
 // A setting's default for a still (render_settings.hpp).
 inline double still_default(render::Setting id) { return render::setting(id).still_default; }
@@ -41,25 +45,26 @@ struct CloudRenderArgs {
   std::optional<double> voxel_size;  // metres, presets
   FrameArgs frame;                   // --time or --frames (presets at each frame's time)
   SunArgs sun;                       // --sun, --sun-elevation/--sun-azimuth or --time-of-day
-  std::vector<std::string> lamps;    // X,Y,Z of each lamp on the clouds (joins a scene's point lights)
-  std::string lamp_intensity = "100";  // W/sr, V or R,G,B, every --lamp
-  std::string spot;                  // DX,DY,DZ: every --lamp is a spot shining that way (no scene only)
-  std::string spot_cone = "20,30";   // inner,outer half-angles of the spot's cone, degrees
+  // The flags below are typed: their text is parsed as the command line is read (typed_option.hpp).
+  std::vector<glm::dvec3> lamps;     // each lamp on the clouds, renderer frame, metres (joins a scene's point lights)
+  glm::dvec3 lamp_intensity_w_sr{100.0};  // every --lamp, per channel
+  std::optional<glm::dvec3> spot_axis;    // every --lamp is a spot shining that way (renderer frame, non-zero)
+  glm::dvec2 spot_cone_deg{20.0, 30.0};   // inner, outer half-angles of the spot's cone, 0 < inner <= outer <= 180
   // The table's settings (render_settings.hpp) start at its defaults.
   int max_lights = int(still_default(render::Setting::MaxLights));  // lights drawn by the slicer, one pass each
   bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
   int slices = int(still_default(render::Setting::Slices));
   int light_res = int(still_default(render::Setting::LightRes));
-  // Periodic clouds' copies out to this distance, metres: "auto" is 32000 under --scene sky, else 0.
-  std::string repeat_to = "auto";
+  // Periodic clouds' copies out to this distance, metres; unset (auto): 32000 under --scene sky, else 0.
+  std::optional<double> repeat_to_m;
   int shadow_map_res = int(still_default(render::Setting::CloudShadowRes));  // the clouds' shadow on the scene
-  std::string shafts = "raymarch:48";  // the scene's method under the clouds
+  render::ShaftMethod shafts = render::parse_shaft_method(kCloudShaftsDefault);  // the scene's method under the clouds
   std::optional<double> cloud_extinction;
-  std::string cloud_albedo;          // R,G,B
-  std::string cloud_phase = render::to_string(render::kCloudPhase);  // "dual:0.7,-0.25,0.8"
-  std::string ambient = "auto";      // R,G,B or auto (the sky's mean radiance, else 0)
+  std::optional<glm::dvec3> cloud_albedo;           // unset: render::kCloudAlbedo
+  render::DualLobePhase cloud_phase = render::kCloudPhase;
+  std::optional<glm::dvec3> ambient;                // W m^-2 sr^-1; unset (auto): the sky's mean radiance, else 0
   std::optional<int> multiple;       // octaves; light-volume: 0 (off) or 1; unset: see --ms-method
-  std::string ms_method;             // octaves | light-volume; empty: light-volume unless --multiple N > 0 asks for octaves
+  std::optional<render::MultipleScatteringMethod> ms_method;  // unset: light-volume unless --multiple N > 0 asks for octaves
   int ms_grid = int(still_default(render::Setting::MsGrid));  // light volume: cells along the clouds' longest axis
   int64_t ms_photons = int64_t(still_default(render::Setting::MsPhotons));  // light volume: photons from the sun
   int ms_lobes = int(still_default(render::Setting::MsLobes));  // light volume: scattering orders kept as lobes

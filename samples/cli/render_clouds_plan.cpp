@@ -35,15 +35,11 @@ void refuse_if_given_without(const CloudRenderArgs& a, const std::string& flag, 
 // is not the default.
 render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
   render::MultipleScattering ms;
-  if (a.ms_method.empty()) {
+  if (!a.ms_method) {
     ms.method = (a.multiple && *a.multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
                                                         : render::MultipleScatteringMethod::LightVolume;
   } else {
-    try {
-      ms.method = render::parse_multiple_scattering_method(a.ms_method);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--ms-method: ") + e.what());
-    }
+    ms.method = *a.ms_method;
   }
   if (a.multiple) check_flag(render::Setting::Multiple, *a.multiple);
   if (ms.method == render::MultipleScatteringMethod::LightVolume) {
@@ -148,14 +144,10 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
   } else if (scene && scene->cloud_extinction_per_m) {
     optics.extinction_per_m = *scene->cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
   }
-  if (!a.cloud_albedo.empty()) optics.albedo = parse_colour("--cloud-albedo", a.cloud_albedo);
-  try {
-    optics.phase = render::parse_cloud_phase(a.cloud_phase);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--cloud-phase: ") + e.what());
-  }
+  if (a.cloud_albedo) optics.albedo = *a.cloud_albedo;
+  optics.phase = a.cloud_phase;
   // auto: the sky's mean radiance, set with the sun (plan_sun); 0 without a sky.
-  if (a.ambient != "auto") optics.ambient_radiance = parse_colour("--ambient", a.ambient);
+  if (a.ambient) optics.ambient_radiance = *a.ambient;
   try {
     render::validate(optics);
   } catch (const std::invalid_argument& e) {
@@ -165,37 +157,27 @@ void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
 
 // Stage 4a: the lamps (--lamp, shaped by --spot), each validated.
 void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
-  const glm::dvec3 intensity = a.lamps.empty() ? glm::dvec3(0.0) : parse_colour("--lamp-intensity", a.lamp_intensity);
+  const glm::dvec3 intensity = a.lamps.empty() ? glm::dvec3(0.0) : a.lamp_intensity_w_sr;
   // In a scene its bulb shows (a 5 cm sphere, of radiance I / (pi r^2)); clouds never see bulbs. A
   // bulb brighter than the EXR's half floats hold would be clipped in every picture of it.
   const double bulb_radiance = std::max({intensity.x, intensity.y, intensity.z}) / (kPi * kLampBulbRadiusM * kLampBulbRadiusM);
   if (p.frame.scene && bulb_radiance > kExrHalfMax)
-    throw UsageError("--lamp-intensity: '" + echo(a.lamp_intensity) + "' W/sr makes each --lamp's bulb, seen in the scene, " +
+    throw UsageError("--lamp-intensity: " + number_text(std::max({intensity.x, intensity.y, intensity.z})) + " W/sr makes each --lamp's bulb, seen in the scene, " +
                      number_text(bulb_radiance) + " W/(m^2 sr), beyond the " + number_text(kExrHalfMax) +
                      " the EXR's half floats hold; at most " +
                      number_text(kExrHalfMax * kPi * kLampBulbRadiusM * kLampBulbRadiusM) +
                      " W/sr with a scene (with --scene none no bulb is drawn)");
-  for (const std::string& text : a.lamps) {
-    const glm::dvec3 at = parse_world_vec3("--lamp", text);
-    p.frame.lights.push_back(render::bulb_light(at, intensity, kLampBulbRadiusM));
-  }
+  for (const glm::dvec3& at : a.lamps) p.frame.lights.push_back(render::bulb_light(at, intensity, kLampBulbRadiusM));
   refuse_if_given_without(a, "--lamp-intensity", !a.lamps.empty(), "it sets the --lamp lights' intensity, and none was given");
-  refuse_if_given_without(a, "--spot-cone", !a.spot.empty(), "it shapes the --spot cone, and no --spot was given");
+  refuse_if_given_without(a, "--spot-cone", a.spot_axis.has_value(), "it shapes the --spot cone, and no --spot was given");
   for (const char* flag : {"--spp", "--bounces", "--seed"})
     refuse_if_given_without(a, flag, p.cloud_method == render::CloudMethod::PathTrace, "applies to --method pathtrace only");
-  if (!a.spot.empty()) {
+  if (a.spot_axis) {
     if (a.lamps.empty()) throw UsageError("--spot: it shapes the --lamp lights, and none was given");
-    const glm::dvec3 axis = parse_world_vec3("--spot", a.spot);
-    if (!(glm::length(axis) > 0.0)) throw UsageError("--spot: '" + a.spot + "' must be a non-zero direction");
-    const std::size_t comma = a.spot_cone.find(',');
-    const std::optional<double> inner = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(0, comma));
-    const std::optional<double> outer = comma == std::string::npos ? std::nullopt : parse_double(a.spot_cone.substr(comma + 1));
-    if (!inner || !outer || !(*inner > 0.0) || !(*inner <= *outer) || !(*outer <= 180.0))
-      throw UsageError("--spot-cone: '" + a.spot_cone + "' must be INNER,OUTER degrees with 0 < INNER <= OUTER <= 180");
     for (render::Light& l : p.frame.lights) {
-      l.spot_axis = axis;
-      l.spot_inner_rad = *inner * kPi / 180.0;
-      l.spot_outer_rad = *outer * kPi / 180.0;
+      l.spot_axis = *a.spot_axis;
+      l.spot_inner_rad = a.spot_cone_deg.x * kPi / 180.0;
+      l.spot_outer_rad = a.spot_cone_deg.y * kPi / 180.0;
     }
   }
   for (const render::Light& l : p.frame.lights) {
@@ -233,7 +215,7 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
     sun = render::Light{};  // clouds alone: the default sun
   }
   if (sun) lights.insert(lights.begin(), *sun);
-  if (a.ambient == "auto" && ambient) p.frame.optics.ambient_radiance = *ambient;
+  if (!a.ambient && ambient) p.frame.optics.ambient_radiance = *ambient;
   return sun.has_value();
 }
 
@@ -259,15 +241,8 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
                           "--method " + p.method + " draws each cloud once (the " +
                               (p.cloud_method == render::CloudMethod::PathTrace ? "path tracer" : "reference renderer") +
                               " does not repeat a periodic field); only --method slices draws its copies");
-  const render::RenderSetting& repeat_to = render::setting(render::Setting::RepeatTo);
-  if (a.repeat_to == "auto") {
-    slices.repeat_to_m = p.frame.scene && p.frame.scene->name == "sky" ? repeat_to.still_default : 0.0;
-  } else {
-    const std::optional<double> r = parse_double(a.repeat_to);
-    if (!r || !render::in_range(repeat_to, *r))
-      throw UsageError("--repeat-to: '" + echo(a.repeat_to, 40) + "' is not auto or a distance in " + render::range_text(repeat_to));
-    slices.repeat_to_m = *r;
-  }
+  const bool sky = p.frame.scene && p.frame.scene->name == "sky";
+  slices.repeat_to_m = a.repeat_to_m.value_or(sky ? render::setting(render::Setting::RepeatTo).still_default : 0.0);
   try {
     render::validate(slices);
   } catch (const std::invalid_argument& e) {
@@ -275,11 +250,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
   }
   render::ShaftMethod shafts;
   if (p.frame.scene) {
-    try {
-      shafts = render::parse_shaft_method(a.shafts);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--shafts: ") + e.what());
-    }
+    shafts = a.shafts;
     if (shafts.kind == render::ShaftMethod::Kind::Reference)
       throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
   }

@@ -254,7 +254,7 @@ TEST_F(HostileCli, ExtremeValuesAreRefusedBeforeTheyBecomeNaN) {
       // A lamp's bulb in a scene at 1e12 W/sr: 1.3e14 W/(m^2 sr), clipped to the EXR's 65504.
       {{"render", "--preset", "steam", "--voxel-size", "0.05", "--res", "8x8", "--lamp", "0,-0.3,0.15", "--lamp-intensity",
         "1e12", "--ms-method", "octaves", "-o", "{d}/c.exr"},
-       2, "--lamp-intensity: '1e12' W/sr makes each --lamp's bulb, seen in the scene, 1.27324e+14 W/(m^2 sr), beyond the 65504"},
+       2, "--lamp-intensity: 1e+12 W/sr makes each --lamp's bulb, seen in the scene, 1.27324e+14 W/(m^2 sr), beyond the 65504"},
       // A direction too short to survive normalising in floats named the internal field
       // ("light direction_to_sun must be finite and non-zero"), not the flag.
       {with(kTinyClouds, {"--sun", "1e-30,0,1e-30", "-o", "{d}/c.exr"}), 2,

@@ -1,0 +1,129 @@
+// `nimbus render`'s request at the level of the command library, in this process (no program
+// spawned): the typed flags (typed_option.hpp) fill typed fields as CLI11 reads them, bad text is
+// a parse error naming the flag, and a render with every typed flag spelled out at its default
+// gives the very pixels of one with none.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "render_clouds.hpp"
+#include "render_to_image.hpp"
+#include "test_gl_support.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+// The args after CLI11 has read `flags` through `nimbus render`'s cloud options.
+CloudRenderArgs parsed(std::vector<std::string> flags) {
+  CloudRenderArgs a;
+  CLI::App cmd("render");
+  add_cloud_render_options(&cmd, a);
+  std::reverse(flags.begin(), flags.end());  // CLI11 takes them last first
+  cmd.parse(flags);
+  return a;
+}
+
+// The parse error's message for `flags` (empty when they parse).
+std::string parse_error(const std::vector<std::string>& flags) {
+  try {
+    parsed(flags);
+  } catch (const CLI::ParseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RenderRequest, LeftOutFlagsKeepTheLibraryDefaults) {
+  const CloudRenderArgs a = parsed({"--preset", "cumulus-humilis"});
+  EXPECT_TRUE(a.lamps.empty());
+  EXPECT_EQ(a.lamp_intensity_w_sr, glm::dvec3(100.0));
+  EXPECT_FALSE(a.spot_axis.has_value());
+  EXPECT_EQ(a.spot_cone_deg, glm::dvec2(20.0, 30.0));
+  EXPECT_FALSE(a.repeat_to_m.has_value());  // auto
+  EXPECT_EQ(render::to_string(a.shafts), render::to_string(render::parse_shaft_method(kCloudShaftsDefault)));
+  EXPECT_FALSE(a.cloud_albedo.has_value());
+  EXPECT_EQ(a.cloud_phase.g_forward, render::kCloudPhase.g_forward);
+  EXPECT_EQ(a.cloud_phase.g_back, render::kCloudPhase.g_back);
+  EXPECT_EQ(a.cloud_phase.forward_weight, render::kCloudPhase.forward_weight);
+  EXPECT_FALSE(a.ambient.has_value());  // auto
+  EXPECT_FALSE(a.ms_method.has_value());
+}
+
+TEST(RenderRequest, TypedFlagsFillTypedFields) {
+  const CloudRenderArgs a =
+      parsed({"--lamp", "1,2,3", "--lamp", "-4,5,6", "--lamp-intensity", "7,8,9", "--spot", "0,0,-2", "--spot-cone", "10,25",
+              "--repeat-to", "500", "--shafts", "analytic", "--cloud-albedo", "0.9", "--cloud-phase", "hg:0.5",
+              "--ambient", "0.1,0.2,0.3", "--ms-method", "octaves"});
+  // Positions and directions are given Z up and held in the renderer's y-up frame (x, z, -y).
+  ASSERT_EQ(a.lamps.size(), 2u);
+  EXPECT_EQ(a.lamps[0], glm::dvec3(1.0, 3.0, -2.0));
+  EXPECT_EQ(a.lamps[1], glm::dvec3(-4.0, 6.0, -5.0));
+  EXPECT_EQ(a.lamp_intensity_w_sr, glm::dvec3(7.0, 8.0, 9.0));
+  ASSERT_TRUE(a.spot_axis.has_value());
+  EXPECT_EQ(*a.spot_axis, glm::dvec3(0.0, -2.0, 0.0));
+  EXPECT_EQ(a.spot_cone_deg, glm::dvec2(10.0, 25.0));
+  ASSERT_TRUE(a.repeat_to_m.has_value());
+  EXPECT_EQ(*a.repeat_to_m, 500.0);
+  EXPECT_EQ(a.shafts.kind, render::ShaftMethod::Kind::Analytic);
+  ASSERT_TRUE(a.cloud_albedo.has_value());
+  EXPECT_EQ(*a.cloud_albedo, glm::dvec3(0.9));
+  EXPECT_EQ(a.cloud_phase.g_forward, 0.5);
+  EXPECT_EQ(a.cloud_phase.forward_weight, 1.0);  // hg:G is one lobe
+  ASSERT_TRUE(a.ambient.has_value());
+  EXPECT_EQ(*a.ambient, glm::dvec3(0.1, 0.2, 0.3));
+  ASSERT_TRUE(a.ms_method.has_value());
+  EXPECT_EQ(*a.ms_method, render::MultipleScatteringMethod::Octaves);
+  // "auto" is a value of its own.
+  EXPECT_FALSE(parsed({"--repeat-to", "auto", "--ambient", "auto"}).repeat_to_m.has_value());
+}
+
+TEST(RenderRequest, BadTextIsAParseErrorNamingTheFlag) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--lamp", "1,2"}, "--lamp: '1,2'"},
+      {{"--lamp-intensity", "hot"}, "--lamp-intensity: 'hot'"},
+      {{"--spot", "0,0,0"}, "--spot: '0,0,0' must be a non-zero direction"},
+      {{"--spot-cone", "30,20"}, "--spot-cone: '30,20' must be INNER,OUTER degrees"},
+      {{"--spot-cone", "0,20"}, "--spot-cone: '0,20'"},
+      {{"--spot-cone", "10,181"}, "--spot-cone: '10,181'"},
+      {{"--repeat-to", "-1"}, "--repeat-to: '-1' is not auto or a distance in [0, 1e+06] metres"},
+      {{"--repeat-to", "2e6"}, "--repeat-to: '2e6'"},
+      {{"--shafts", "raymarch:0"}, "--shafts: "},
+      {{"--cloud-albedo", "1,2"}, "--cloud-albedo: '1,2'"},
+      {{"--cloud-phase", "dual:2"}, "--cloud-phase: "},
+      {{"--ambient", "nan"}, "--ambient: 'nan'"},
+      {{"--ms-method", "photons"}, "--ms-method: "},
+      {{"--ambient", ""}, "--ambient: the value is empty"},
+  };
+  for (const auto& [flags, expected] : cases) {
+    const std::string error = parse_error(flags);
+    EXPECT_NE(error.find(expected), std::string::npos) << flags[0] << " " << flags[1] << " gave: '" << error << "'";
+  }
+}
+
+TEST(RenderRequest, TypedDefaultsSpelledOutGiveTheVeryPixels) {
+  NIMBUS_REQUIRE_GL();
+  const std::vector<std::string> base = {"--preset", "cumulus-humilis", "--scene", "none", "--res", "64x36", "--slices", "32",
+                                         "--multiple", "0"};
+  std::vector<std::string> spelled = base;
+  for (const char* flag : {"--repeat-to", "auto", "--cloud-phase", "dual:0.7,-0.25,0.8", "--ambient", "auto",
+                           "--cloud-albedo", "0.99", "--ms-method", "octaves"})
+    spelled.push_back(flag);
+  const render::Image a = render_clouds_image(base);
+  const render::Image b = render_clouds_image(spelled);
+  ASSERT_EQ(a.rgba.size(), b.rgba.size());
+  EXPECT_EQ(a.rgba, b.rgba);
+  double lit = 0.0;
+  for (std::size_t i = 3; i < a.rgba.size(); i += 4) lit += a.rgba[i];
+  EXPECT_GT(lit, 10.0) << "the cloud covers some of the frame (else the comparison proves nothing)";
+  // And a value that is not the default changes them.
+  std::vector<std::string> other = base;
+  for (const char* flag : {"--cloud-phase", "hg:0.2"}) other.push_back(flag);
+  EXPECT_NE(render_clouds_image(other).rgba, a.rgba);
+}
+
+}  // namespace
+}  // namespace nimbus::cli

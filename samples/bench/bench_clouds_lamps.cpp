@@ -115,7 +115,7 @@ void steam_rows(const LampRows& r) {
   const render::Scene scene = render::make_scene("steam-lamp");
   render::CloudOptics optics;
   optics.extinction_per_m = *scene.cloud_extinction_per_m;
-  optics.phase = render::parse_cloud_phase("dual:0.7,-0.25,0.8");
+  optics.phase = render::kCloudPhase;  // nimbus render's default look
   const std::vector<render::CloudVolume> steam = {
       render::generate_preset_cloud(render::load_preset_cloud("steam"), a.steam_voxel, 0.0, optics)};
   render::Camera cam = scene.camera;

@@ -160,9 +160,10 @@ void plan_lamps(CloudRenderPlan& p, const CloudRenderArgs& a) {
   const glm::dvec3 intensity = a.lamps.empty() ? glm::dvec3(0.0) : a.lamp_intensity_w_sr;
   // In a scene its bulb shows (a 5 cm sphere, of radiance I / (pi r^2)); clouds never see bulbs. A
   // bulb brighter than the EXR's half floats hold would be clipped in every picture of it.
-  const double bulb_radiance = std::max({intensity.x, intensity.y, intensity.z}) / (kPi * kLampBulbRadiusM * kLampBulbRadiusM);
+  const double brightest = std::max({intensity.x, intensity.y, intensity.z});  // W/sr
+  const double bulb_radiance = brightest / (kPi * kLampBulbRadiusM * kLampBulbRadiusM);
   if (p.frame.scene && bulb_radiance > kExrHalfMax)
-    throw UsageError("--lamp-intensity: " + number_text(std::max({intensity.x, intensity.y, intensity.z})) + " W/sr makes each --lamp's bulb, seen in the scene, " +
+    throw UsageError("--lamp-intensity: " + number_text(brightest) + " W/sr makes each --lamp's bulb, seen in the scene, " +
                      number_text(bulb_radiance) + " W/(m^2 sr), beyond the " + number_text(kExrHalfMax) +
                      " the EXR's half floats hold; at most " +
                      number_text(kExrHalfMax * kPi * kLampBulbRadiusM * kLampBulbRadiusM) +

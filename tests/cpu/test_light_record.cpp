@@ -4,10 +4,12 @@
 // lamp, inside its minimum distance, on a cone's edges, kilometres away).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
-#include <vector>
+#include <string>
+#include <utility>
 
 #include "nimbus/render/core/light.hpp"
 #include "nimbus/render/core/light_record.hpp"

@@ -2,7 +2,6 @@
 #include "nimbus/render/core/light_record.hpp"
 
 #include <cmath>
-#include <cstddef>
 
 namespace nimbus::render {
 namespace glsl {

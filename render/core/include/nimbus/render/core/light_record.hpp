@@ -3,6 +3,8 @@
 // light_record(); and the shaders' one light evaluation, lib/light_eval.glsl compiled as C++,
 // so that the CPU can check what the GPU computes against light_at in double.
 #pragma once
+#include <cstddef>
+
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/light.hpp"

@@ -1,7 +1,7 @@
-// Everything that decides one frame of the animated sky: the sky (clouds, wind, sun), the
-// scene, the camera, the two clocks, the cloud optics and the renderer's settings. The viewer
-// holds it as its state, saves and loads it (Ctrl+S, Ctrl+O), writes it into every screenshot's
-// metadata, and `nimbus render --view-state FILE` renders it offline through the same pipeline.
+// Everything that decides one frame of the animated sky: a render request (render_request.hpp:
+// the scene, the camera, the cloud optics and the renderer's settings) plus the sky (clouds,
+// wind, sun) and its two clocks. The viewer holds it as its state, saves and loads it (Ctrl+S,
+// Ctrl+O), writes it into every screenshot's metadata, and `nimbus render --view-state FILE` renders it offline through the same pipeline.
 // The camera, the optics and the slicer's settings are the frame description's own types
 // (FrameDescription, render/frame): frame_description(state, quality) copies them in and adds what
 // the sky decides (the scene's sun and sky, the ambient light). JSON, its names parsed once as
@@ -13,73 +13,22 @@
 
 #include <glm/glm.hpp>
 
-#include "nimbus/render/core/camera.hpp"
-#include "nimbus/render/core/cloud_optics.hpp"
-#include "nimbus/render/core/cloud_slice_settings.hpp"
-#include "nimbus/render/sky/grain_filter.hpp"
 #include "nimbus/render/core/render_settings.hpp"
-#include "nimbus/render/media/shaft_method.hpp"
+#include "nimbus/render/sky/render_request.hpp"
 #include "nimbus/volume/sky.hpp"
 
 namespace nimbus::render {
 
-struct ViewState {
+// The request (render_request.hpp: the scene, the camera, the optics and the renderer's settings)
+// plus the sky and its two clocks.
+struct ViewState : RenderRequest {
   volume::Sky sky;
-  // What lies under and behind the clouds: "sky" (ground, haze and sky lit by the sky's sun),
-  // another scene preset (its own lights; its sun, if it has one, follows the sky's), or "none".
-  std::string scene = "sky";
-  // The view, in the renderer's frame (world_axes.hpp; the file holds it Z-up): eye, look_at and
-  // fov_deg are the state's; the window sets the size and the clouds the near and far planes
-  // (state_camera, sky_renderer.hpp).
-  Camera camera = [] {
-    Camera c;
-    c.eye = {-600.0, 250.0, 5200.0};
-    c.look_at = {400.0, 1500.0, -1500.0};
-    c.fov_deg = setting(Setting::Fov).view_default;
-    return c;
-  }();
   // Clocks: sky time drives the wind's drift; evolution time the keyframes. They run together,
   // except that evolution waits while its keyframes are still being made.
   double sky_time_s = 0.0;
   double evolution_time_s = 0.0;
   double speed = setting(Setting::Speed).view_default;  // sky seconds per real second
   bool paused = false;
-  // Cloud optics: extinction, albedo, phase. Their ambient_radiance is not the state's: the
-  // sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither saved nor read.
-  CloudOptics optics{setting(Setting::CloudExtinction).view_default, glm::dvec3(kCloudAlbedo), kCloudPhase,
-                     glm::dvec3(0.0)};
-  // The slicer at full quality (the viewer's adaptive quality lowers slices and scale in
-  // motion), jitter (one fixed blue-noise pattern: no flicker), and multiple scattering: the
-  // photon-traced light volume (built per keyframe in the background: keyframe_light_volumes.hpp),
-  // or octaves (also drawn while the first light volume is being built). A periodic field's tiles
-  // are repeated out to repeat_to, within the aerial perspective's 40 km reach. Every number the
-  // JSON holds takes its range and its default from the one table (render_settings.hpp), whose
-  // view_default is the viewer's where it trades error for speed (2^19 photons, a quarter of
-  // `nimbus render`'s: a keyframe's volume in about half a second on 2 cores, 0.4-0.5 points more
-  // error, docs/viewer.md). The others keep CloudSliceSettings' defaults.
-  CloudSliceSettings slices = [] {
-    CloudSliceSettings s;
-    s.slices = int(setting(Setting::Slices).view_default);
-    s.light_res = int(setting(Setting::LightRes).view_default);
-    s.multiple.method = MultipleScatteringMethod::LightVolume;
-    s.multiple.octaves = int(setting(Setting::Multiple).view_default);
-    s.multiple.light_volume.resolution = int(setting(Setting::MsGrid).view_default);
-    s.multiple.light_volume.photons = std::int64_t(setting(Setting::MsPhotons).view_default);
-    s.repeat_to_m = setting(Setting::RepeatTo).view_default;
-    return s;
-  }();
-  ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)
-    ShaftMethod m;
-    m.kind = ShaftMethod::Kind::RayMarch;
-    m.steps = 24;
-    return m;
-  }();
-  // A still's grain filter (grain_filter.hpp): on while a still is the mean of few jittered
-  // frames ("grain_filter" in the JSON, true or false; the rest of it keeps its defaults).
-  GrainFilter grain_filter;
-  int cloud_shadow_res = int(setting(Setting::CloudShadowRes).view_default);
-  double render_scale = setting(Setting::RenderScale).view_default;  // the frame's share of the window's size
-  double exposure_stops = setting(Setting::Exposure).view_default;   // display and PNG screenshots: radiance times 2^stops
 };
 
 // Throws std::invalid_argument naming the field.

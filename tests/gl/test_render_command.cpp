@@ -37,7 +37,7 @@ std::string parse_error(const std::vector<std::string>& flags) {
   return "";
 }
 
-TEST(RenderRequest, LeftOutFlagsKeepTheLibraryDefaults) {
+TEST(RenderCommand, LeftOutFlagsKeepTheLibraryDefaults) {
   const CloudRenderArgs a = parsed({"--preset", "cumulus-humilis"});
   EXPECT_TRUE(a.lamps.empty());
   EXPECT_EQ(a.lamp_intensity_w_sr, glm::dvec3(100.0));
@@ -53,7 +53,7 @@ TEST(RenderRequest, LeftOutFlagsKeepTheLibraryDefaults) {
   EXPECT_FALSE(a.ms_method.has_value());
 }
 
-TEST(RenderRequest, TypedFlagsFillTypedFields) {
+TEST(RenderCommand, TypedFlagsFillTypedFields) {
   const CloudRenderArgs a =
       parsed({"--lamp", "1,2,3", "--lamp", "-4,5,6", "--lamp-intensity", "7,8,9", "--spot", "0,0,-2", "--spot-cone", "10,25",
               "--repeat-to", "500", "--shafts", "analytic", "--cloud-albedo", "0.9", "--cloud-phase", "hg:0.5",
@@ -81,7 +81,7 @@ TEST(RenderRequest, TypedFlagsFillTypedFields) {
   EXPECT_FALSE(parsed({"--repeat-to", "auto", "--ambient", "auto"}).repeat_to_m.has_value());
 }
 
-TEST(RenderRequest, BadTextIsAParseErrorNamingTheFlag) {
+TEST(RenderCommand, BadTextIsAParseErrorNamingTheFlag) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"--lamp", "1,2"}, "--lamp: '1,2'"},
       {{"--lamp-intensity", "hot"}, "--lamp-intensity: 'hot'"},
@@ -104,7 +104,7 @@ TEST(RenderRequest, BadTextIsAParseErrorNamingTheFlag) {
   }
 }
 
-TEST(RenderRequest, TypedDefaultsSpelledOutGiveTheVeryPixels) {
+TEST(RenderCommand, TypedDefaultsSpelledOutGiveTheVeryPixels) {
   NIMBUS_REQUIRE_GL();
   const std::vector<std::string> base = {"--preset", "cumulus-humilis", "--scene", "none", "--res", "64x36", "--slices", "32",
                                          "--multiple", "0"};

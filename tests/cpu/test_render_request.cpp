@@ -1,0 +1,121 @@
+// The render request (render/sky render_request.hpp): its JSON round-trips every field, a view
+// state is exactly the request plus the sky and the clocks (the same keys, read by the same code),
+// and a bad value or key is refused naming it.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+
+#include "nimbus/render/sky/render_request.hpp"
+#include "nimbus/render/sky/view_state.hpp"
+
+namespace nimbus::render {
+namespace {
+
+using json = nlohmann::json;
+
+// A request with every field away from its default.
+RenderRequest unusual_request() {
+  RenderRequest r;
+  r.scene = "colonnade-sun";
+  r.camera.eye = {10.0, 20.0, -30.0};
+  r.camera.look_at = {-5.0, 1.0, 7.5};
+  r.camera.fov_deg = 33.0;
+  r.optics.extinction_per_m = 0.07;
+  r.optics.albedo = {0.9, 0.95, 0.97};
+  r.optics.phase = DualLobePhase{0.6, -0.3, 0.7};
+  r.slices.multiple.octaves = 2;
+  r.slices.multiple.method = MultipleScatteringMethod::Octaves;
+  r.slices.multiple.light_volume.resolution = 40;
+  r.slices.multiple.light_volume.photons = 99999;
+  r.slices.slices = 77;
+  r.slices.light_res = 300;
+  r.cloud_shadow_res = 1024;
+  r.render_scale = 0.75;
+  r.exposure_stops = 1.25;
+  r.slices.jitter = false;
+  r.grain_filter.on = false;
+  r.slices.repeat_to_m = 5000.0;
+  r.shafts = parse_shaft_method("shadowvolume:20");
+  return r;
+}
+
+TEST(RenderRequest, JsonRoundTripsEveryField) {
+  const RenderRequest r = unusual_request();
+  const json j = render_request_to_json(r);
+  const RenderRequest t = render_request_from_json(j, "request");
+  EXPECT_EQ(render_request_to_json(t), j);
+  EXPECT_EQ(t.scene, "colonnade-sun");
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(t.camera.eye[k], r.camera.eye[k], 1e-12);  // through the file's Z-up world and back
+    EXPECT_NEAR(t.camera.look_at[k], r.camera.look_at[k], 1e-12);
+  }
+  EXPECT_EQ(t.camera.fov_deg, 33.0);
+  EXPECT_EQ(t.optics.extinction_per_m, 0.07);
+  EXPECT_EQ(t.optics.albedo, r.optics.albedo);
+  EXPECT_EQ(t.optics.phase.g_forward, 0.6);
+  EXPECT_EQ(t.optics.phase.g_back, -0.3);
+  EXPECT_EQ(t.optics.phase.forward_weight, 0.7);
+  EXPECT_EQ(t.slices.multiple.octaves, 2);
+  EXPECT_EQ(t.slices.multiple.method, MultipleScatteringMethod::Octaves);
+  EXPECT_EQ(t.slices.multiple.light_volume.resolution, 40);
+  EXPECT_EQ(t.slices.multiple.light_volume.photons, 99999);
+  EXPECT_EQ(t.slices.slices, 77);
+  EXPECT_EQ(t.slices.light_res, 300);
+  EXPECT_EQ(t.cloud_shadow_res, 1024);
+  EXPECT_EQ(t.render_scale, 0.75);
+  EXPECT_EQ(t.exposure_stops, 1.25);
+  EXPECT_FALSE(t.slices.jitter);
+  EXPECT_FALSE(t.grain_filter.on);
+  EXPECT_EQ(t.slices.repeat_to_m, 5000.0);
+  EXPECT_EQ(to_string(t.shafts), "shadowvolume:20");
+  // Left out, every key takes the request's default.
+  EXPECT_EQ(render_request_to_json(render_request_from_json(json::object(), "empty")), render_request_to_json(RenderRequest{}));
+}
+
+TEST(RenderRequest, AViewStateIsTheRequestPlusTheSkyAndTheClocks) {
+  ViewState s = default_view_state();
+  static_cast<RenderRequest&>(s) = unusual_request();
+  s.sky_time_s = 40.0;
+  const json state = view_state_to_json(s);
+  const json request = render_request_to_json(s);
+  // Every key of the request's JSON is the view state's, with the same value...
+  for (const auto& [key, value] : request.items()) EXPECT_EQ(state.at(key), value) << key;
+  // ...and the view state adds only the sky, the clocks and its header.
+  for (const auto& [key, value] : state.items())
+    if (!request.contains(key)) EXPECT_TRUE(key == "sky" || key == "time" || key == "nimbus" || key == "version") << key;
+  // A view state's request part read as a request gives the same request.
+  json part = json::object();
+  for (const auto& [key, value] : request.items()) part[key] = state.at(key);
+  EXPECT_EQ(render_request_to_json(render_request_from_json(part, "part")), request);
+  // The defaults agree too: a view state's request is RenderRequest's defaults.
+  EXPECT_EQ(render_request_to_json(ViewState{}), render_request_to_json(RenderRequest{}));
+}
+
+TEST(RenderRequest, BadValuesAndKeysAreNamed) {
+  const auto error_of = [](const json& doc) {
+    try {
+      render_request_from_json(doc, "request");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::pair<json, std::string> cases[] = {
+      {{{"sky", json::object()}}, "request.sky: unknown key (known: scene, camera, optics, renderer)"},
+      {{{"scene", "mars"}}, "request scene: unknown name 'mars'"},
+      {{{"camera", {{"fov", 0.5}}}}, "request camera.fov"},
+      {{{"optics", {{"phase", "dual:2"}}}}, "request.optics.phase: "},
+      {{{"optics", {{"albedo", {1.5, 0.5, 0.5}}}}}, "request optics: "},
+      {{{"renderer", {{"slices", 1}}}}, "request renderer.slices"},
+      {{{"renderer", {{"shafts", "reference"}}}}, "request renderer.shafts: the scene under GPU clouds needs a GPU method"},
+      {{{"renderer", {{"speed", 2}}}}, "request.renderer.speed: unknown key"},
+  };
+  for (const auto& [doc, expected] : cases) {
+    const std::string error = error_of(doc);
+    EXPECT_NE(error.find(expected), std::string::npos) << doc.dump() << " gave: " << error;
+  }
+}
+
+}  // namespace
+}  // namespace nimbus::render

@@ -15,6 +15,7 @@
 
 #include "cli/cli.hpp"
 #include "cli/render_args.hpp"
+#include "nimbus/render/media/medium.hpp"
 #include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
@@ -119,7 +120,7 @@ int run_bench_airlight(const BenchAirlightArgs& a) {
   const int repeat = a.quick ? 1 : a.repeat;
   render::Phase phase;
   try {
-    phase = render::parse_phase(a.phase);
+    phase = render::parse_medium_phase(a.phase);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--phase: ") + e.what());
   }

@@ -109,10 +109,12 @@ struct Lighting {
 };
 struct PhaseCase {
   const char* name;
-  render::DualLobePhase phase;
+  render::Phase phase;
 };
 const Lighting kLightings[] = {{"front-lit", {0.8, 0.55, -0.25}}, {"back-lit", {-0.5, 0.55, -0.7}}};
-const PhaseCase kPhases[] = {{"isotropic", {0.0, 0.0, 1.0}}, {"hg:0.7", {0.7, 0.0, 1.0}}, {"dual:0.7,-0.25,0.8", {0.7, -0.25, 0.8}}};
+const PhaseCase kPhases[] = {{"isotropic", render::Phase{}},
+                             {"hg:0.7", render::Phase{render::PhaseKind::HenyeyGreenstein, 0.7}},
+                             {"dual:0.7,-0.25,0.8", render::dual_lobe_phase(0.7, -0.25, 0.8)}};
 
 // The slicer's rows: single scattering, the octaves, and a light volume for every combination of
 // the --ms-* lists.

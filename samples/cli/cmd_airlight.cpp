@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "nimbus/base/input_limits.hpp"
+#include "nimbus/render/media/medium.hpp"
 #include "nimbus/render/media/airlight.hpp"
 #include "nimbus/render/shafts/airlight_gl.hpp"
 
@@ -73,7 +74,7 @@ int run_airlight(const AirlightOptions& o) {
     throw UsageError("--method quadrature is CPU only (double precision); use --device cpu");
   render::Phase phase;
   try {
-    phase = render::parse_phase(o.phase);
+    phase = render::parse_medium_phase(o.phase);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--phase: ") + e.what());
   }

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "cli.hpp"
+#include "nimbus/render/media/medium.hpp"
 #include "nimbus/render/gl/context.hpp"
 #include "nimbus/render/image/image_io.hpp"
 #include "nimbus/render/reference/reference_renderer.hpp"
@@ -89,7 +90,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
   if (a.albedo) scene.medium.albedo = *a.albedo;
   if (!a.phase.empty()) {
     try {
-      scene.medium.phase = render::parse_phase(a.phase);
+      scene.medium.phase = render::parse_medium_phase(a.phase);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--phase: ") + e.what());
     }

@@ -109,11 +109,10 @@ nlohmann::json plan_json(const GeneratePlan& plan, double time_s) {
     j["index_box"] = {{lo.x(), lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()}};
   }
   const render::CloudOptics optics;  // the look's defaults: render/core cloud_optics.hpp
+  const render::Phase lobes = render::as_dual_lobes(render::kCloudPhase);
   j["optics"] = {{"extinction_per_m", optics.extinction_per_m},
                  {"albedo", render::kCloudAlbedo},
-                 {"phase", {{"g_forward", render::kCloudPhase.g_forward},
-                            {"g_back", render::kCloudPhase.g_back},
-                            {"forward_weight", render::kCloudPhase.forward_weight}}}};
+                 {"phase", {{"g_forward", lobes.g}, {"g_back", lobes.g_back}, {"forward_weight", lobes.forward_weight}}}};
   return j;
 }
 

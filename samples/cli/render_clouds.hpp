@@ -61,7 +61,7 @@ struct CloudRenderArgs {
   render::ShaftMethod shafts = render::parse_shaft_method(kCloudShaftsDefault);  // the scene's method under the clouds
   std::optional<double> cloud_extinction;
   std::optional<glm::dvec3> cloud_albedo;           // unset: render::kCloudAlbedo
-  render::DualLobePhase cloud_phase = render::kCloudPhase;
+  render::Phase cloud_phase = render::kCloudPhase;
   std::optional<glm::dvec3> ambient;                // W m^-2 sr^-1; unset (auto): the sky's mean radiance, else 0
   std::optional<int> multiple;       // octaves; light-volume: 0 (off) or 1; unset: see --ms-method
   std::optional<render::MultipleScatteringMethod> ms_method;  // unset: light-volume unless --multiple N > 0 asks for octaves

@@ -198,9 +198,11 @@ void optics_section(render::ViewState& s) {
   tip("extinction per metre per unit of density");
   double albedo = s.optics.albedo.x;
   if (slider("albedo", albedo, 0.5, 1.0, "%.3f")) s.optics.albedo = glm::dvec3(albedo);
-  slider("g forward", s.optics.phase.g_forward, 0.0, 0.95);
-  slider("g back", s.optics.phase.g_back, -0.95, 0.0);
-  slider("forward weight", s.optics.phase.forward_weight, 0.0, 1.0);
+  render::Phase lobes = render::as_dual_lobes(s.optics.phase);
+  bool phase_moved = slider("g forward", lobes.g, 0.0, 0.95);
+  phase_moved |= slider("g back", lobes.g_back, -0.95, 0.0);
+  phase_moved |= slider("forward weight", lobes.forward_weight, 0.0, 1.0);
+  if (phase_moved) s.optics.phase = lobes;
   tip("the dual-lobe phase function: forward and back Henyey-Greenstein lobes and the forward one's weight");
   bool volume = s.slices.multiple.method == render::MultipleScatteringMethod::LightVolume;
   const bool clicked = ImGui::Checkbox("light volume", &volume);

@@ -1,5 +1,5 @@
-// The clouds' dual-lobe Henyey-Greenstein phase (cloud_optics.hpp: DualLobePhase, as
-// cloud_phase_value) and the octave sum of the Unreal-style multiple-scattering approximation
+// The clouds' dual-lobe Henyey-Greenstein phase (phase.hpp: a Phase in its dual-lobe form,
+// as_dual_lobes, as phase_value) and the octave sum of the Unreal-style multiple-scattering approximation
 // (after Wrenninge et al. 2013; cloud_optics.hpp: MultipleScattering). Branch-free but for
 // selects.
 #ifndef NIMBUS_CLOUD_PHASE_GLSL

@@ -47,18 +47,18 @@ inline void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w
 inline double hg(double g, double c) { return (1.0 - g * g) / (4.0 * M_PI * std::pow(1.0 + g * g - 2.0 * g * c, 1.5)); }
 
 // Azimuthal average (1 / 2 pi) int p(cos Theta) dphi between directions of cosines a and b.
-inline double phase_m0(const DualLobePhase& p, double a, double b) {
+inline double phase_m0(const Phase& p, double a, double b) {
   const int m = 720;
   double s = 0.0;
   for (int k = 0; k < m; ++k) {
     const double phi = M_PI * (k + 0.5) / m;
     const double c = a * b + std::sqrt(std::max(0.0, (1 - a * a) * (1 - b * b))) * std::cos(phi);
-    s += p.forward_weight * hg(p.g_forward, c) + (1.0 - p.forward_weight) * hg(p.g_back, c);
+    s += p.forward_weight * hg(p.g, c) + (1.0 - p.forward_weight) * hg(p.g_back, c);
   }
   return s / m;
 }
 
-inline SlabSolution solve_slab(double tau, double albedo, const DualLobePhase& phase, double mu0, int layers = 400) {
+inline SlabSolution solve_slab(double tau, double albedo, const Phase& phase, double mu0, int layers = 400) {
   const int n = 24;
   std::vector<double> x, w;
   gauss_legendre(n, x, w);

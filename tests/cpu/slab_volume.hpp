@@ -8,7 +8,7 @@
 
 namespace nimbus::render::test {
 
-inline CloudVolume slab(double tau, int layers, int n, const DualLobePhase& phase, double albedo) {
+inline CloudVolume slab(double tau, int layers, int n, const Phase& phase, double albedo) {
   openvdb::initialize();
   auto grid = openvdb::FloatGrid::create(0.0f);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));

@@ -21,7 +21,7 @@ namespace nimbus::render {
 namespace {
 
 // A smooth lumpy ball: n^3 voxels of edge voxel_m centred on the origin.
-CloudVolume ball(int n, double voxel_m, double extinction_per_m, const DualLobePhase& phase, double albedo) {
+CloudVolume ball(int n, double voxel_m, double extinction_per_m, const Phase& phase, double albedo) {
   openvdb::initialize();
   auto grid = openvdb::FloatGrid::create(0.0f);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_m));
@@ -58,7 +58,7 @@ Camera camera_at(const glm::dvec3& eye, const glm::dvec3& at, int size, double f
 }
 
 TEST(CloudPathTracer, OneBounceIsTheSingleScatteringReferenceWithinItsNoise) {
-  for (const DualLobePhase phase : {DualLobePhase{0.0, 0.0, 1.0}, DualLobePhase{0.7, -0.25, 0.8}}) {
+  for (const Phase phase : {dual_lobe_phase(0.0, 0.0, 1.0), dual_lobe_phase(0.7, -0.25, 0.8)}) {
     const std::vector<CloudVolume> clouds = {ball(24, 1.0 / 24, 8.0, phase, 0.9)};
     const Camera cam = camera_at({0.4, 0.3, 2.5}, {0, 0, 0}, 32, 30.0);
     Light light;
@@ -87,7 +87,7 @@ TEST(CloudPathTracer, OneBounceIsTheSingleScatteringReferenceWithinItsNoise) {
     double total = 0.0;
     for (std::size_t p = 0; p < ref.rgba.size(); p += 4) total += ref.rgba[p + 1];
     std::printf("[ one bounce vs reference ] total %.4f g %.2f: %d pixels, mean z %+.3f, mean z^2 %.3f, noise %.4f, max |alpha diff| %.4f\n",
-                total, phase.g_forward, n, mean_z, mean_z2, pt.mean_relative_error, alpha_err);
+                total, phase.g, n, mean_z, mean_z2, pt.mean_relative_error, alpha_err);
     // Unbiased: the mean z-score is N(0, 1/n); its spread is the stated noise.
     EXPECT_LT(std::abs(mean_z), 4.0 / std::sqrt(n));
     EXPECT_GT(mean_z2, 0.7);
@@ -97,7 +97,7 @@ TEST(CloudPathTracer, OneBounceIsTheSingleScatteringReferenceWithinItsNoise) {
 }
 
 TEST(CloudPathTracer, SameSeedSameImageOtherSeedOtherNoise) {
-  const std::vector<CloudVolume> clouds = {ball(16, 1.0 / 16, 8.0, DualLobePhase{}, 0.95)};
+  const std::vector<CloudVolume> clouds = {ball(16, 1.0 / 16, 8.0, Phase{}, 0.95)};
   const Camera cam = camera_at({0.4, 0.3, 2.5}, {0, 0, 0}, 12, 30.0);
   PathTracerSettings ps;
   ps.samples_per_pixel = 8;
@@ -117,7 +117,7 @@ TEST(CloudPathTracer, SameSeedSameImageOtherSeedOtherNoise) {
 struct SlabRT {
   double R, T;
 };
-SlabRT discrete_ordinates(double tau, double albedo, const DualLobePhase& phase, double mu0) {
+SlabRT discrete_ordinates(double tau, double albedo, const Phase& phase, double mu0) {
   const SlabSolution s = solve_slab(tau, albedo, phase, mu0);
   return {s.R, s.T};
 }
@@ -128,7 +128,7 @@ struct SlabMC {
   double R, T, se_R, se_T;
   double max_weight = 0.0;  // the heaviest photon that left
 };
-SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, double mu0, int photons,
+SlabMC slab_monte_carlo(double tau, double albedo, const Phase& phase, double mu0, int photons,
                         int roulette_after) {
   const int layers = 2, n = 240;
   const std::vector<CloudVolume> clouds = {slab(tau, layers, n, phase, albedo)};
@@ -157,20 +157,20 @@ SlabMC slab_monte_carlo(double tau, double albedo, const DualLobePhase& phase, d
 TEST(CloudPathTracer, DiscreteOrdinatesConserveEnergyAndMatchThinSlabs) {
   // The solution written here, checked on its own: R + T = 1 when nothing is absorbed, and a
   // thin slab's single-scattering limits.
-  const SlabRT iso = discrete_ordinates(2.0, 1.0, DualLobePhase{}, 0.8);
+  const SlabRT iso = discrete_ordinates(2.0, 1.0, Phase{}, 0.8);
   EXPECT_NEAR(iso.R + iso.T, 1.0, 1e-4);  // source iteration stops at a change of 1e-11 per sweep
-  const SlabRT thin = discrete_ordinates(0.01, 1.0, DualLobePhase{}, 0.8);
+  const SlabRT thin = discrete_ordinates(0.01, 1.0, Phase{}, 0.8);
   // Single scattering dominates: a share tau / mu0 of the beam scatters, half of it upward.
   EXPECT_NEAR(thin.R, 0.01 / (2.0 * 0.8), 3e-4);
 }
 
 TEST(CloudPathTracer, ConservativeSlabReflectsAndTransmitsAllTheFlux) {
   for (const double tau : {0.5, 2.0, 8.0})
-    for (const DualLobePhase phase : {DualLobePhase{}, DualLobePhase{0.7, 0.0, 1.0}, DualLobePhase{0.7, -0.25, 0.8}}) {
+    for (const Phase phase : {Phase{}, dual_lobe_phase(0.7, 0.0, 1.0), dual_lobe_phase(0.7, -0.25, 0.8)}) {
       // Russian roulette from the first bounce: the weights must still add up.
       const SlabMC mc = slab_monte_carlo(tau, 1.0, phase, 0.8, 6000, 1);
       const double se = std::hypot(mc.se_R, mc.se_T);
-      EXPECT_NEAR(mc.R + mc.T, 1.0, 4.0 * se + 1e-3) << "tau " << tau << " g " << phase.g_forward;
+      EXPECT_NEAR(mc.R + mc.T, 1.0, 4.0 * se + 1e-3) << "tau " << tau << " g " << phase.g;
     }
 }
 
@@ -183,7 +183,7 @@ TEST(CloudPathTracer, ConservativeSlabReflectsAndTransmitsAllTheFlux) {
 // the DOM's 0.7737; with the cap the heaviest weighed 22.0 and no transmitted photon came out
 // (T 0 against 0.0023: the typical path too light, the rare one too heavy).
 TEST(CloudPathTracer, RouletteNeverMakesAPhotonHeavierThanOne) {
-  const DualLobePhase iso{};
+  const Phase iso{};
   const SlabRT dom = discrete_ordinates(30.0, 0.99, iso, 0.8);
   const SlabMC mc = slab_monte_carlo(30.0, 0.99, iso, 0.8, 4000, 1);
   std::printf("[ thick slab ] R %.4f +- %.4f (DOM %.4f), T %.4f +- %.4f (DOM %.4f), heaviest photon out %.3f\n", mc.R,
@@ -196,14 +196,14 @@ TEST(CloudPathTracer, RouletteNeverMakesAPhotonHeavierThanOne) {
 TEST(CloudPathTracer, SlabReflectanceAndTransmittanceMatchDiscreteOrdinates) {
   struct Case {
     double tau, albedo;
-    DualLobePhase phase;
+    Phase phase;
   };
-  for (const Case& c : {Case{0.5, 0.9, DualLobePhase{}}, Case{2.0, 1.0, DualLobePhase{}}, Case{2.0, 0.9, DualLobePhase{0.7, 0.0, 1.0}},
-                        Case{2.0, 0.99, DualLobePhase{0.7, -0.25, 0.8}}}) {
+  for (const Case& c : {Case{0.5, 0.9, Phase{}}, Case{2.0, 1.0, Phase{}}, Case{2.0, 0.9, dual_lobe_phase(0.7, 0.0, 1.0)},
+                        Case{2.0, 0.99, dual_lobe_phase(0.7, -0.25, 0.8)}}) {
     const SlabRT dom = discrete_ordinates(c.tau, c.albedo, c.phase, 0.8);
     const SlabMC mc = slab_monte_carlo(c.tau, c.albedo, c.phase, 0.8, 20000, 1 << 30);
     std::printf("[ slab ] tau %.1f albedo %.2f g %.2f: R %.4f +- %.4f (DOM %.4f), T %.4f +- %.4f (DOM %.4f)\n", c.tau,
-                c.albedo, c.phase.g_forward, mc.R, mc.se_R, dom.R, mc.T, mc.se_T, dom.T);
+                c.albedo, c.phase.g, mc.R, mc.se_R, dom.R, mc.T, mc.se_T, dom.T);
     // Noise (4 standard errors) plus the slab's finite width and the discretisation: 0.5 %.
     EXPECT_NEAR(mc.R, dom.R, 4.0 * mc.se_R + 0.005);
     EXPECT_NEAR(mc.T, dom.T, 4.0 * mc.se_T + 0.005);
@@ -214,7 +214,7 @@ TEST(CloudPathTracer, SlabReflectanceAndTransmittanceMatchDiscreteOrdinates) {
 // equals the same with l and v swapped (Helmholtz reciprocity of the slab's BRDF).
 TEST(CloudPathTracer, SlabReflectionIsReciprocal) {
   const int n = 240;
-  const std::vector<CloudVolume> clouds = {slab(2.0, 2, n, DualLobePhase{0.6, -0.2, 0.85}, 0.95)};
+  const std::vector<CloudVolume> clouds = {slab(2.0, 2, n, dual_lobe_phase(0.6, -0.2, 0.85), 0.95)};
   const glm::dvec3 centre(0.5 * n, 0.5, 0.5 * n);
   const glm::dvec3 l = glm::normalize(glm::dvec3(0.7, 0.5, 0.1)), v = glm::normalize(glm::dvec3(-0.2, 0.9, 0.4));
   auto reflected = [&](const glm::dvec3& to_eye, const glm::dvec3& to_sun) {

@@ -178,7 +178,7 @@ TEST(CloudReference, SlabSingleScatteringMatchesClosedForm) {
   const int nx = 40, ny = 5, nz = 40;
   for (const double g : {0.0, 0.6, -0.3}) {
     nr::CloudOptics o = grey(sigma, albedo);
-    o.phase.g_forward = g;
+    o.phase = nr::Phase{nr::PhaseKind::HenyeyGreenstein, g};
     const std::vector<nr::CloudVolume> clouds = {box_cloud(nx, ny, nz, rho, voxel, {0, 0, 0}, o)};
     const double tau = sigma * rho * ny * voxel;
     const glm::dvec3 eye = voxel * glm::dvec3(20.0, 30.0, 20.0);
@@ -365,7 +365,7 @@ TEST(CloudReference, LampOnTheAxisOfABoxMatchesClosedForms) {
   const glm::dvec3 I(40.0, 50.0, 60.0);
   for (const double g : {0.0, 0.5}) {
     nr::CloudOptics o = grey(b.sigma, b.albedo);
-    o.phase.g_forward = g;
+    o.phase = nr::Phase{nr::PhaseKind::HenyeyGreenstein, g};
     const std::vector<nr::CloudVolume> clouds = {box_cloud(6, 6, b.n, b.rho0, b.voxel, {0, 0, 0}, o)};
     const double tau = b.sigma * b.rho0 * b.n * b.voxel;
     SCOPED_TRACE("g " + std::to_string(g));

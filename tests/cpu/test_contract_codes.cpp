@@ -17,7 +17,8 @@
 namespace nimbus::render {
 namespace {
 
-// Every phase kind there is: the enum's values 0, 1, ... up to the first that phase_code refuses.
+// Every fog phase kind (one lobe, with a shader code): the enum's values 0, 1, ... up to the first
+// that phase_code refuses (the clouds' dual lobe, which the fog's shaders do not take).
 // A kind added to the enum and mapped (the build insists) joins this list without anyone editing
 // it, so the tests below cover it, and fail if lib/phase.glsl has no formula for it.
 std::vector<PhaseKind> all_phase_kinds() {

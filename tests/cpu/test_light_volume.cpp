@@ -73,7 +73,7 @@ Light overhead_sun() {
 
 struct SlabCase {
   double tau, albedo;
-  DualLobePhase phase;
+  Phase phase;
 };
 
 // Measured (2^18 photons, 64 cells across): fluence within 2.1 %, flux and Q_yy within 1 % of the
@@ -83,7 +83,7 @@ struct SlabCase {
 // first-order mean cosine 0.67-0.82 under HG 0.7, the second's 0.36-0.67.
 TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
   const int layers = 40, n = 320;
-  const SlabCase cases[] = {{2.0, 0.9, DualLobePhase{}}, {4.0, 0.99, DualLobePhase{0.7, 0.0, 1.0}}};
+  const SlabCase cases[] = {{2.0, 0.9, Phase{}}, {4.0, 0.99, dual_lobe_phase(0.7, 0.0, 1.0)}};
   for (const SlabCase& c : cases) {
     const std::vector<CloudVolume> clouds = {slab(c.tau, layers, n, c.phase, c.albedo)};
     LightVolumeSettings s;
@@ -114,7 +114,7 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
       q_yy /= cells;
       std::printf("tau %g albedo %g g %g: cell y [%.1f, %.1f]: fluence %.4f (DOM %.4f), downward flux %.4f (DOM %.4f), "
                   "Q_yy %.4f (DOM %.4f)\n",
-                  c.tau, c.albedo, c.phase.g_forward, y0, y1, phi, phi_dom, -flux_y, flux_dom, q_yy, q_dom);
+                  c.tau, c.albedo, c.phase.g, y0, y1, phi, phi_dom, -flux_y, flux_dom, q_yy, q_dom);
       EXPECT_NEAR(phi, phi_dom, 0.04 * phi_dom) << "cell y " << y0;
       EXPECT_NEAR(-flux_y, flux_dom, 0.04 * phi_dom) << "cell y " << y0;
       EXPECT_NEAR(q_yy, q_dom, 0.04 * phi_dom) << "cell y " << y0;
@@ -152,7 +152,7 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
           mu2 += v.lobes[4 * q + 3] / cells;
         }
       std::printf("  lobes: order 1 %.3f of the fluence, mean cosine %.3f; order 2 %.3f, %.3f\n", f1, mu1, f2, mu2);
-      if (c.phase.g_forward > 0.5) {
+      if (c.phase.g > 0.5) {
         EXPECT_GT(mu1, mu2);
         EXPECT_GT(mu2, 0.0);
       }
@@ -168,7 +168,7 @@ TEST(LightVolume, WideSlabMatchesDiscreteOrdinates) {
       const double phi_dom = dom_mean(dom.fluence, c.tau, layers, y0, y0 + v.cell_m.y, -0.5, layers - 0.5);
       const double phi = central_layer(v, j).mean;
       std::printf("tau %g albedo %g g %g: face cell y [%.1f, %.1f]: fluence %.4f (DOM %.4f)\n", c.tau, c.albedo,
-                  c.phase.g_forward, y0, y0 + v.cell_m.y, phi, phi_dom);
+                  c.phase.g, y0, y0 + v.cell_m.y, phi, phi_dom);
       EXPECT_NEAR(phi, phi_dom, 0.06 * phi_dom) << "cell y " << y0;
     }
   }
@@ -199,7 +199,7 @@ TEST(LightVolume, ThickSlabHasNoHeavyPhotons) {
 void thick_slab_against_dom(double diffusion_depth) {
   const double tau = 30.0, albedo = 0.99;
   const int layers = 30, n = 160;
-  const DualLobePhase iso{0.0, 0.0, 1.0};
+  const Phase iso = dual_lobe_phase(0.0, 0.0, 1.0);
   const std::vector<CloudVolume> clouds = {slab(tau, layers, n, iso, albedo)};
   LightVolumeSettings s;
   s.resolution = 32;  // 5 m cells across, 8 layers of 3.75 m through the slab
@@ -237,7 +237,7 @@ void thick_slab_against_dom(double diffusion_depth) {
 TEST(LightVolume, SimilarMediumKeepsAThickForwardSlab) {
   const double tau = 30.0, albedo = 0.99;
   const int layers = 30, n = 160;
-  const DualLobePhase hg{0.7, 0.0, 1.0};
+  const Phase hg = dual_lobe_phase(0.7, 0.0, 1.0);
   const std::vector<CloudVolume> clouds = {slab(tau, layers, n, hg, albedo)};
   LightVolumeSettings s;
   s.resolution = 32;
@@ -315,7 +315,7 @@ TEST(LightVolume, ThinCloudHoldsTheLightAroundIt) {
   EXPECT_LT(worst_haze, 2.0);
 }
 
-std::vector<CloudVolume> small_slab(double albedo) { return {slab(1.5, 16, 48, DualLobePhase{0.5, 0.0, 1.0}, albedo)}; }
+std::vector<CloudVolume> small_slab(double albedo) { return {slab(1.5, 16, 48, dual_lobe_phase(0.5, 0.0, 1.0), albedo)}; }
 
 LightVolumeSettings small_settings() {
   LightVolumeSettings s;
@@ -370,12 +370,12 @@ TEST(LightVolume, SimilarMediumOfIsotropicScatteringIsItself) {
   LightVolumeSettings a = small_settings(), b = small_settings();
   a.similarity_depth = 0.0;
   b.similarity_depth = 0.5;
-  const std::vector<CloudVolume> iso = {slab(12.0, 16, 48, DualLobePhase{0.0, 0.0, 1.0}, 0.95)};
+  const std::vector<CloudVolume> iso = {slab(12.0, 16, 48, dual_lobe_phase(0.0, 0.0, 1.0), 0.95)};
   const LightVolume va = build_light_volume(iso, overhead_sun(), a), vb = build_light_volume(iso, overhead_sun(), b);
   EXPECT_EQ(va.fluence_rgb, vb.fluence_rgb);
   EXPECT_EQ(va.flux_xyz, vb.flux_xyz);
   // A forward phase flies in another medium there: not the same draws.
-  const std::vector<CloudVolume> forward = {slab(12.0, 16, 48, DualLobePhase{0.7, 0.0, 1.0}, 0.95)};
+  const std::vector<CloudVolume> forward = {slab(12.0, 16, 48, dual_lobe_phase(0.7, 0.0, 1.0), 0.95)};
   const LightVolume fa = build_light_volume(forward, overhead_sun(), a), fb = build_light_volume(forward, overhead_sun(), b);
   EXPECT_NE(fa.fluence_rgb, fb.fluence_rgb);
 }
@@ -395,7 +395,7 @@ TEST(LightVolume, SameSeedSameVolumeWhateverTheThreads) {
   // With the deep light diffused (a slab 24 transport mean free paths thick): the solve's sums
   // are taken in fixed blocks, so the threads do not change them either.
   one.diffusion_depth = two.diffusion_depth = 2.0;
-  const std::vector<CloudVolume> thick = {slab(24.0, 24, 48, DualLobePhase{0.0, 0.0, 1.0}, 0.99)};
+  const std::vector<CloudVolume> thick = {slab(24.0, 24, 48, dual_lobe_phase(0.0, 0.0, 1.0), 0.99)};
   const LightVolume d1 = build_light_volume(thick, sun, one), d2 = build_light_volume(thick, sun, two);
   EXPECT_GT(d1.diffusion_iterations, 0);
   EXPECT_EQ(d1.fluence_rgb, d2.fluence_rgb);
@@ -451,7 +451,7 @@ TEST(LightVolume, DiffusedDeepLightAgreesWithPhotonsThatCarryAll) {
   CloudOptics o;
   o.extinction_per_m = 1.0;
   o.albedo = glm::dvec3(0.99);
-  o.phase = DualLobePhase{0.7, 0.0, 1.0};
+  o.phase = dual_lobe_phase(0.7, 0.0, 1.0);
   const std::vector<CloudVolume> ball = {make_cloud_volume(*grid, o, "ball")};
   Light sun;
   sun.direction_to_sun = glm::normalize(glm::dvec3(1.0, 0.4, 0.2));
@@ -567,7 +567,7 @@ TEST(LightVolume, FinerCellsWhereThePhotonsAllow) {
   s.photons_per_cell = 1000.0;
   EXPECT_NEAR(light_volume_grid(clouds, s).cell_m.x, longest / 64, 1e-9);
   // A 321 m slab of 1 m voxels under 2^28 photons: 128 cells along it, not 321.
-  const std::vector<CloudVolume> wide = {slab(2.0, 4, 320, DualLobePhase{}, 0.9)};
+  const std::vector<CloudVolume> wide = {slab(2.0, 4, 320, Phase{}, 0.9)};
   s.resolution = 48;
   s.photons = std::int64_t{1} << 28;
   EXPECT_EQ(light_volume_grid(wide, s).size[0], 128);
@@ -598,7 +598,7 @@ LightVolume two_cells() {
 
 TEST(LightVolume, InscatterIsEqMS1ByHand) {
   const LightVolume v = two_cells();
-  const DualLobePhase iso{};
+  const Phase iso{};
   // At the first cell's centre (1, 1, 1) and before it: phi / 4 pi = 1 per channel.
   for (double x : {1.0, 0.2}) {
     const glm::dvec3 m = light_volume_inscatter(v, iso, glm::dvec3(x, 1, 1), glm::dvec3(0, 0, 1));
@@ -612,16 +612,16 @@ TEST(LightVolume, InscatterIsEqMS1ByHand) {
   EXPECT_NEAR(m.z, 0.5, 1e-6);
   // g = 0.5 (one lobe, or two lobes of the same mean cosine), toward +z: mean phi = 14 pi / 3,
   // 3 g F.w / mean = 1.5 pi / (14 pi / 3) = 9 / 28; R = 1.5 (1 + 9/28).
-  for (const DualLobePhase& p : {DualLobePhase{0.5, 0.0, 1.0}, DualLobePhase{0.75, 0.0, 2.0 / 3.0}}) {
+  for (const Phase& p : {dual_lobe_phase(0.5, 0.0, 1.0), dual_lobe_phase(0.75, 0.0, 2.0 / 3.0)}) {
     m = light_volume_inscatter(v, p, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
     EXPECT_NEAR(m.x, 1.5 * (1.0 + 9.0 / 28.0), 1e-6);
     EXPECT_NEAR(m.z, 0.5 * (1.0 + 9.0 / 28.0), 1e-6);
   }
   // Against the flux with g = 0.9, halfway: 1 - 3 (0.9) pi / (14 pi / 3) = 1 - 8.1 / 14.
-  m = light_volume_inscatter(v, DualLobePhase{0.9, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, -1));
+  m = light_volume_inscatter(v, dual_lobe_phase(0.9, 0.0, 1.0), glm::dvec3(2, 1, 1), glm::dvec3(0, 0, -1));
   EXPECT_NEAR(m.x, 1.5 * (1.0 - 8.1 / 14.0), 1e-6);
   // At the second cell (x = 3): mean phi = 16 pi / 3, 1 - 3 (0.9) 2 pi / (16 pi / 3) = 1 - 16.2 / 16 < 0: clamped to 0.
-  m = light_volume_inscatter(v, DualLobePhase{0.9, 0.0, 1.0}, glm::dvec3(3, 1, 1), glm::dvec3(0, 0, -1));
+  m = light_volume_inscatter(v, dual_lobe_phase(0.9, 0.0, 1.0), glm::dvec3(3, 1, 1), glm::dvec3(0, 0, -1));
   EXPECT_EQ(m.x, 0.0);
   EXPECT_EQ(m.y, 0.0);
   // The second moment: Q = diag(-1, -1, 2) pi / 3 in both cells (traceless), at x = 2 with g = 0.5
@@ -632,10 +632,10 @@ TEST(LightVolume, InscatterIsEqMS1ByHand) {
     q.quadrupole[5 * cell + 0] = -float(M_PI) / 3.0f;
     q.quadrupole[5 * cell + 1] = -float(M_PI) / 3.0f;
   }
-  m = light_volume_inscatter(q, DualLobePhase{0.5, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
+  m = light_volume_inscatter(q, dual_lobe_phase(0.5, 0.0, 1.0), glm::dvec3(2, 1, 1), glm::dvec3(0, 0, 1));
   EXPECT_NEAR(m.x, 1.5 * (1.0 + 9.0 / 28.0 + 3.75 / 14.0), 1e-6);
   // Seen along x: w^T Q w = -pi / 3, no flux term: 1 - 7.5 (0.25) (pi / 3) / (14 pi / 3) = 1 - 1.875 / 14.
-  m = light_volume_inscatter(q, DualLobePhase{0.5, 0.0, 1.0}, glm::dvec3(2, 1, 1), glm::dvec3(1, 0, 0));
+  m = light_volume_inscatter(q, dual_lobe_phase(0.5, 0.0, 1.0), glm::dvec3(2, 1, 1), glm::dvec3(1, 0, 0));
   EXPECT_NEAR(m.x, 1.5 * (1.0 - 1.875 / 14.0), 1e-6);
 }
 
@@ -659,7 +659,7 @@ TEST(LightVolume, ALobeInscattersThePhaseConvolvedWithIt) {
                   static_cast<float>(Q[0][2]), static_cast<float>(Q[1][2])};
   v.lobes = {1.0f, static_cast<float>(mu), 0.0f, 0.0f};
   const glm::dvec3 e1 = glm::normalize(glm::cross(sun, glm::dvec3(1, 0, 0))), e2 = glm::cross(sun, e1);
-  for (const DualLobePhase& p : {DualLobePhase{0.7, 0.0, 1.0}, DualLobePhase{0.7, -0.25, 0.8}, DualLobePhase{}}) {
+  for (const Phase& p : {dual_lobe_phase(0.7, 0.0, 1.0), dual_lobe_phase(0.7, -0.25, 0.8), Phase{}}) {
     for (double angle_deg : {0.0, 10.0, 47.0, 90.0, 150.0, 180.0}) {
       const double a = angle_deg * M_PI / 180.0;
       const glm::dvec3 w = std::cos(a) * sun + std::sin(a) * e1;
@@ -672,12 +672,12 @@ TEST(LightVolume, ALobeInscattersThePhaseConvolvedWithIt) {
         for (int k = 0; k < na; ++k) {
           const double az = (k + 0.5) * 2.0 * M_PI / na;
           const glm::dvec3 wi = c * sun + s * (std::cos(az) * e1 + std::sin(az) * e2);
-          sum += cloud_phase_value(p, glm::dot(wi, w)) * lobe;
+          sum += phase_value(p, glm::dot(wi, w)) * lobe;
         }
       }
       const double expected = phi * sum * (2.0 / nc) * (2.0 * M_PI / na);
       const glm::dvec3 got = light_volume_inscatter(v, p, glm::dvec3(0.5), w);
-      EXPECT_NEAR(got.x, expected, 1e-3 * expected) << "g " << p.g_forward << " angle " << angle_deg;
+      EXPECT_NEAR(got.x, expected, 1e-3 * expected) << "g " << p.g << " angle " << angle_deg;
       EXPECT_NEAR(got.z, got.x, 1e-12);
     }
   }
@@ -715,7 +715,7 @@ TEST(LightVolume, FitsReadALinearFluenceExactly) {
     EXPECT_NEAR(s.fluence.x + s.fit_offset, field(u), 2e-5 * field(u)) << u.x << " " << u.y << " " << u.z;
     worst_plain = std::max(worst_plain, std::abs(s.fluence.x - field(u)));
     // The in-scattering (isotropic: phi / 4 pi) follows the fit.
-    const glm::dvec3 m = light_volume_inscatter(v, DualLobePhase{}, v.world_min + u * v.cell_m, glm::dvec3(0, 0, 1));
+    const glm::dvec3 m = light_volume_inscatter(v, Phase{}, v.world_min + u * v.cell_m, glm::dvec3(0, 0, 1));
     EXPECT_NEAR(m.y, field(u) / (4.0 * M_PI), 2e-5 * field(u));
   }
   EXPECT_GT(worst_plain, 0.5);  // without the fits the faces and off-centre centroids are missed

@@ -123,7 +123,7 @@ TEST(LightVolumeDiffusion, ConservesEnergyOnARoughMediumWithHoles) {
 
 // A homogeneous cloud's cells inside it read its own optics; cells outside its support read vacuum.
 TEST(LightVolumeDiffusion, CellMediumOfAHomogeneousCloudIsItsOptics) {
-  const DualLobePhase phase{0.7, -0.2, 0.75};
+  const Phase phase = dual_lobe_phase(0.7, -0.2, 0.75);
   const CloudVolume cloud = test::slab(8.0, 16, 16, phase, 0.97);  // 16 x 16 x 16 voxels of 1 m
   LightVolume grid;
   grid.world_min = glm::dvec3(-4.0);

@@ -29,7 +29,7 @@ Light overhead_sun() {
 }
 
 // A slab 1.5 mean free paths thick under HG 0.5, albedo 0.9, 16 cells across.
-std::vector<CloudVolume> small_slab() { return {slab(1.5, 16, 48, DualLobePhase{0.5, 0.0, 1.0}, 0.9)}; }
+std::vector<CloudVolume> small_slab() { return {slab(1.5, 16, 48, dual_lobe_phase(0.5, 0.0, 1.0), 0.9)}; }
 
 LightVolumeSettings small_settings(std::int64_t photons) {
   LightVolumeSettings s;
@@ -89,7 +89,7 @@ TEST(LightVolumeProgressive, AllItsSharesMakeTheOneShotVolumeBitForBit) {
 // diffused too. Settings that need another grid or depth are refused.
 TEST(LightVolumeProgressive, ASetupServesEverySunBitForBit) {
   const auto thick = std::make_shared<const std::vector<CloudVolume>>(
-      std::vector<CloudVolume>{slab(6.0, 16, 48, DualLobePhase{0.6, 0.0, 1.0}, 0.99)});
+      std::vector<CloudVolume>{slab(6.0, 16, 48, dual_lobe_phase(0.6, 0.0, 1.0), 0.99)});
   LightVolumeSettings s = small_settings(1 << 14);
   s.diffusion_depth = 2.0;
   const auto setup = std::make_shared<const LightVolumeSetup>(thick, s);
@@ -119,7 +119,7 @@ TEST(LightVolumeProgressive, ASetupServesEverySunBitForBit) {
 // With the light deeper than 2 transport mean free paths diffused: the diffusion's source tallies
 // are summed over the shares as the track's are.
 TEST(LightVolumeProgressive, WithDiffusedDeepLightToo) {
-  const std::vector<CloudVolume> thick = {slab(24.0, 24, 48, DualLobePhase{0.0, 0.0, 1.0}, 0.99)};
+  const std::vector<CloudVolume> thick = {slab(24.0, 24, 48, dual_lobe_phase(0.0, 0.0, 1.0), 0.99)};
   LightVolumeSettings s = small_settings(1 << 14);
   s.diffusion_depth = 2.0;
   const LightVolume whole = build_light_volume(thick, overhead_sun(), s);

@@ -1,13 +1,16 @@
-// Phase functions (thesis eqs. 13-17): normalisation, limits, symmetry, the Schlick
-// approximation's closeness to Henyey-Greenstein, the float shader version, and their text form.
+// Phase functions (thesis eqs. 13-17) and the clouds' dual lobe: normalisation, limits, symmetry,
+// the Schlick approximation's closeness to Henyey-Greenstein, the float shader version, their text
+// form, and which kinds the fog and the clouds take.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "nimbus/render/media/airlight.hpp"
+#include "nimbus/render/core/cloud_optics.hpp"
 #include "nimbus/render/core/phase.hpp"
+#include "nimbus/render/media/airlight.hpp"
+#include "nimbus/render/media/medium.hpp"
 
 namespace {
 
@@ -39,7 +42,8 @@ TEST(Phase, EveryKindIsNormalisedOverTheSphere) {
   const Phase phases[] = {{PhaseKind::Isotropic, 0.0},        {PhaseKind::HenyeyGreenstein, 0.9},
                           {PhaseKind::HenyeyGreenstein, -0.5}, {PhaseKind::HenyeyGreenstein, 0.3},
                           {PhaseKind::Schlick, 0.9},           {PhaseKind::Schlick, -0.5},
-                          {PhaseKind::Rayleigh, 0.0}};
+                          {PhaseKind::Rayleigh, 0.0},          nimbus::render::dual_lobe_phase(0.9, -0.5, 0.3),
+                          nimbus::render::kCloudPhase};
   for (const Phase& p : phases) {
     const double total = sphere_integral([&](double mu) { return phase_value(p, mu); });
     EXPECT_NEAR(total, 1.0, 1e-6) << nimbus::render::to_string(p);
@@ -48,6 +52,65 @@ TEST(Phase, EveryKindIsNormalisedOverTheSphere) {
 
 TEST(Phase, HenyeyGreensteinMeanCosineIsG) {
   for (double g : {-0.5, 0.3, 0.9}) EXPECT_NEAR(mean_cosine({PhaseKind::HenyeyGreenstein, g}), g, 1e-6) << g;
+}
+
+TEST(Phase, DualLobeIsItsLobesWeightedAndItsMeanCosineTheirs) {
+  for (const Phase& d : {nimbus::render::dual_lobe_phase(0.7, -0.25, 0.8), nimbus::render::dual_lobe_phase(-0.6, 0.95, 0.1)}) {
+    const Phase f{PhaseKind::HenyeyGreenstein, d.g}, b{PhaseKind::HenyeyGreenstein, d.g_back};
+    for (double mu = -1.0; mu <= 1.0; mu += 0.0625)
+      EXPECT_NEAR(phase_value(d, mu), d.forward_weight * phase_value(f, mu) + (1.0 - d.forward_weight) * phase_value(b, mu),
+                  1e-12 * phase_value(d, mu));
+    EXPECT_NEAR(mean_cosine(d), d.forward_weight * d.g + (1.0 - d.forward_weight) * d.g_back, 1e-6);
+  }
+}
+
+// Clouds take sums of Henyey-Greenstein lobes in one form: isotropic and hg:G as dual lobes are
+// the same function; Schlick and Rayleigh are refused, naming the phase.
+TEST(Phase, CloudsTakeHenyeyGreensteinLobesAsOneDualForm) {
+  using nimbus::render::as_dual_lobes;
+  for (const Phase& p : {Phase{}, Phase{PhaseKind::HenyeyGreenstein, 0.9}, Phase{PhaseKind::HenyeyGreenstein, -0.4},
+                         nimbus::render::kCloudPhase}) {
+    const Phase d = as_dual_lobes(p);
+    EXPECT_EQ(d.kind, PhaseKind::DualHenyeyGreenstein);
+    for (double mu = -1.0; mu <= 1.0; mu += 0.0625)
+      EXPECT_NEAR(phase_value(d, mu), phase_value(p, mu), 1e-12 * phase_value(p, mu)) << nimbus::render::to_string(p);
+  }
+  for (const char* text : {"schlick:0.3", "rayleigh"}) {
+    const Phase p = nimbus::render::parse_phase(text);
+    EXPECT_THROW(as_dual_lobes(p), std::invalid_argument) << text;
+    nimbus::render::CloudOptics o;
+    o.phase = p;
+    try {
+      nimbus::render::validate(o);
+      ADD_FAILURE() << "cloud optics took " << text;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+    try {
+      nimbus::render::parse_cloud_phase(text);
+      ADD_FAILURE() << "parse_cloud_phase took " << text;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("cloud phase '" + std::string(text) + "'"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(nimbus::render::parse_cloud_phase("dual:0.7,-0.25,0.8"), nimbus::render::kCloudPhase);
+}
+
+// The fog's shaders and tables take one lobe: a dual lobe in the medium is refused, naming it.
+TEST(Phase, TheFogTakesOneLobe) {
+  nimbus::render::Medium m;
+  m.phase = nimbus::render::kCloudPhase;
+  try {
+    nimbus::render::validate(m);
+    ADD_FAILURE() << "the fog took a dual lobe";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("dual:0.7,-0.25,0.8"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(nimbus::render::phase_code(PhaseKind::DualHenyeyGreenstein), std::invalid_argument);
+  for (const char* text : {"isotropic", "hg:0.5", "schlick:-0.3", "rayleigh"}) {
+    m.phase = nimbus::render::parse_phase(text);
+    EXPECT_NO_THROW(nimbus::render::validate(m)) << text;
+  }
 }
 
 TEST(Phase, HenyeyGreensteinWithGZeroIsIsotropic) {
@@ -104,12 +167,14 @@ TEST(Phase, ShaderVersionAgreesWithTheDoubleReference) {
 }
 
 TEST(Phase, TextFormRoundTripsAndRejectsMalformedText) {
-  for (const char* text : {"isotropic", "hg:0.9", "hg:-0.5", "schlick:0.25", "rayleigh"})
+  for (const char* text : {"isotropic", "hg:0.9", "hg:-0.5", "schlick:0.25", "rayleigh", "dual:0.7,-0.25,0.8", "dual:-0.1,0.5,1"})
     EXPECT_EQ(nimbus::render::to_string(nimbus::render::parse_phase(text)), text);
   const Phase p = nimbus::render::parse_phase("hg:0.9");
   EXPECT_EQ(p.kind, PhaseKind::HenyeyGreenstein);
   EXPECT_DOUBLE_EQ(p.g, 0.9);
-  for (const char* bad : {"", "iso", "hg", "hg:", "hg:1", "hg:-1", "hg:0.5x", "schlick:nan", "mie:0.5", "rayleigh:0.1"}) {
+  for (const char* bad : {"", "iso", "hg", "hg:", "hg:1", "hg:-1", "hg:0.5x", "schlick:nan", "mie:0.5", "rayleigh:0.1",
+                          "dual:", "dual:0.7", "dual:0.7,-0.25", "dual:0.7,-0.25,0.8,1", "dual:1,0,0.5", "dual:0.5,-1,0.5",
+                          "dual:0.5,0,1.5", "dual:0.5,0,-0.1", "dual:nan,0,1", "dual:0.5,x,1"}) {
     try {
       nimbus::render::parse_phase(bad);
       ADD_FAILURE() << "accepted '" << bad << "'";

@@ -23,7 +23,7 @@ RenderRequest unusual_request() {
   r.camera.fov_deg = 33.0;
   r.optics.extinction_per_m = 0.07;
   r.optics.albedo = {0.9, 0.95, 0.97};
-  r.optics.phase = DualLobePhase{0.6, -0.3, 0.7};
+  r.optics.phase = dual_lobe_phase(0.6, -0.3, 0.7);
   r.slices.multiple.octaves = 2;
   r.slices.multiple.method = MultipleScatteringMethod::Octaves;
   r.slices.multiple.light_volume.resolution = 40;
@@ -53,7 +53,7 @@ TEST(RenderRequest, JsonRoundTripsEveryField) {
   EXPECT_EQ(t.camera.fov_deg, 33.0);
   EXPECT_EQ(t.optics.extinction_per_m, 0.07);
   EXPECT_EQ(t.optics.albedo, r.optics.albedo);
-  EXPECT_EQ(t.optics.phase.g_forward, 0.6);
+  EXPECT_EQ(t.optics.phase.g, 0.6);
   EXPECT_EQ(t.optics.phase.g_back, -0.3);
   EXPECT_EQ(t.optics.phase.forward_weight, 0.7);
   EXPECT_EQ(t.slices.multiple.octaves, 2);

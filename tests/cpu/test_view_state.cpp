@@ -29,7 +29,7 @@ TEST(ViewState, DefaultIsValidAndRoundTrips) {
   s.sky_time_s = 12.5;
   s.evolution_time_s = 11.0;
   s.paused = true;
-  s.optics.phase = DualLobePhase{0.6, -0.3, 0.7};
+  s.optics.phase = dual_lobe_phase(0.6, -0.3, 0.7);
   s.slices.multiple.octaves = 3;
   s.slices.multiple.method = MultipleScatteringMethod::Octaves;
   s.slices.multiple.light_volume.resolution = 64;

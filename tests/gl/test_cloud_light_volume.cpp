@@ -22,7 +22,7 @@ using namespace slice_test;
 constexpr int kN = 24;
 constexpr double kVoxel = 1.0 / kN;
 
-CloudVolume ball(const DualLobePhase& phase) {
+CloudVolume ball(const Phase& phase) {
   CloudOptics o = grey_optics(6.0, 0.9);
   o.phase = phase;
   return cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o);
@@ -74,7 +74,7 @@ Light side_sun() {
 
 TEST(CloudLightVolume, ZeroVolumeIsSingleScatteringToTheBit) {
   NIMBUS_REQUIRE_GL();
-  CloudRenderer r({ball(DualLobePhase{0.7, -0.25, 0.8})}, GL_R32F);
+  CloudRenderer r({ball(dual_lobe_phase(0.7, -0.25, 0.8))}, GL_R32F);
   const Camera cam = look_at_origin({0.4, 0.3, 3.0}, 48, 30.0);
   const Image single = r.render(cam, side_sun(), settings(false));
   EXPECT_THROW(r.render(cam, side_sun(), settings(true)), std::logic_error);  // no volume yet
@@ -116,12 +116,12 @@ LightVolume fitted_volume() {
 // With `per_sample`, a second cloud of another phase (the same ball, with an extinction that adds
 // nothing measurable) makes the eye pass read the volume at every sample (MS_VOLUME 1) instead of
 // the frame's radiance toward the eye, which is made for one phase (MS_VOLUME 2).
-std::pair<double, double> eq_ms1_error(const LightVolume& v, const DualLobePhase& phase, const glm::dvec3& eye,
+std::pair<double, double> eq_ms1_error(const LightVolume& v, const Phase& phase, const glm::dvec3& eye,
                                        bool per_sample = false) {
   const CloudVolume cloud = ball(phase);
   std::vector<CloudVolume> clouds{cloud};
   if (per_sample) {
-    CloudVolume ghost = ball(DualLobePhase{-0.3, 0.0, 1.0});
+    CloudVolume ghost = ball(dual_lobe_phase(-0.3, 0.0, 1.0));
     ghost.optics.extinction_per_m = 1e-9;
     clouds.push_back(ghost);
   }
@@ -173,7 +173,7 @@ std::pair<double, double> eq_ms1_error(const LightVolume& v, const DualLobePhase
 TEST(CloudLightVolume, AddsEqMS1AlongEachRayAsTheCpuMarch) {
   NIMBUS_REQUIRE_GL();
   for (const bool per_sample : {false, true}) {
-    const auto [rms, worst] = eq_ms1_error(made_volume(false), DualLobePhase{0.5, 0.0, 1.0}, {0.0, 0.0, 3.0}, per_sample);
+    const auto [rms, worst] = eq_ms1_error(made_volume(false), dual_lobe_phase(0.5, 0.0, 1.0), {0.0, 0.0, 3.0}, per_sample);
     EXPECT_LT(rms, 0.005) << (per_sample ? "per sample" : "the frame's radiance");
     EXPECT_LT(worst, 0.01) << (per_sample ? "per sample" : "the frame's radiance");
   }
@@ -186,7 +186,7 @@ TEST(CloudLightVolume, AddsEqMS1AlongEachRayAsTheCpuMarch) {
 TEST(CloudLightVolume, AddsTheFitAndTheLobesAsTheCpuMarch) {
   NIMBUS_REQUIRE_GL();
   for (const bool per_sample : {false, true}) {
-    const auto [rms, worst] = eq_ms1_error(fitted_volume(), DualLobePhase{0.7, -0.25, 0.8}, {0.9, 0.6, 1.6}, per_sample);
+    const auto [rms, worst] = eq_ms1_error(fitted_volume(), dual_lobe_phase(0.7, -0.25, 0.8), {0.9, 0.6, 1.6}, per_sample);
     EXPECT_LT(rms, 0.01) << (per_sample ? "per sample" : "the frame's radiance");
     EXPECT_LT(worst, 0.02) << (per_sample ? "per sample" : "the frame's radiance");
   }
@@ -199,7 +199,7 @@ TEST(CloudLightVolume, FrameRendererBuildsOnceAndAgainOnlyForANewSunDirection) {
   fs.slices.multiple.light_volume.resolution = 12;
   fs.slices.multiple.light_volume.photons = 4096;
   FrameRenderer frame(std::nullopt, side_sun(), fs);
-  frame.set_clouds({ball(DualLobePhase{0.7, -0.25, 0.8})});
+  frame.set_clouds({ball(dual_lobe_phase(0.7, -0.25, 0.8))});
   const Camera cam = look_at_origin({0.4, 0.3, 3.0}, 32, 30.0);
   FrameStats st;
   const Image first = frame.render(cam, &st);
@@ -222,7 +222,7 @@ TEST(CloudLightVolume, FrameRendererBuildsOnceAndAgainOnlyForANewSunDirection) {
   FrameSettings off = fs;
   off.slices.multiple.method = MultipleScatteringMethod::Octaves;
   FrameRenderer single(std::nullopt, side_sun(), off);
-  single.set_clouds({ball(DualLobePhase{0.7, -0.25, 0.8})});
+  single.set_clouds({ball(dual_lobe_phase(0.7, -0.25, 0.8))});
   const Image ss = single.render(cam);
   double more = 0.0;
   for (std::size_t i = 0; i < ss.rgba.size(); i += 4) {

@@ -138,7 +138,7 @@ TEST(CloudSlices, AmbientAloneGivesAlbedoTimesRadianceTimesAlpha) {
 TEST(CloudSlices, IdenticalOctaveDoublesTheRadiance) {
   NIMBUS_REQUIRE_GL();
   CloudOptics o = grey_optics(8.0);
-  o.phase.g_forward = 0.5;
+  o.phase = Phase{PhaseKind::HenyeyGreenstein, 0.5};
   CloudRenderer r({cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)}, GL_R32F);
   const Camera cam = look_at_origin({0.3, 0.6, 2.5}, 48);
   CloudSliceSettings s;
@@ -238,7 +238,7 @@ TEST_P(HardCases, NoNanOrInf) {
   NIMBUS_REQUIRE_GL();
   const HardCase& p = GetParam();
   CloudOptics o = grey_optics(p.sigma_per_m);
-  o.phase = {0.8, -0.3, 0.7};
+  o.phase = dual_lobe_phase(0.8, -0.3, 0.7);
   o.ambient_radiance = glm::dvec3(0.3);
   const auto density = [&](int i, int j, int k) { return p.empty ? 0.0f : lumpy_ball(i, j, k); };
   CloudRenderer r({cube_cloud(kN, kVoxel, density, o)});

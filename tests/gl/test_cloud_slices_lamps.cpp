@@ -37,7 +37,7 @@ void PrintTo(const LampCase& c, std::ostream* os) { *os << c.name; }
 
 std::vector<CloudVolume> ball(double g) {
   CloudOptics o = grey_optics(8.0, 0.9);
-  o.phase.g_forward = g;
+  o.phase = Phase{PhaseKind::HenyeyGreenstein, g};
   return {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
 }
 

@@ -40,7 +40,7 @@ TEST_P(AgainstReference, RelativeRmseWithinTolerance) {
   NIMBUS_REQUIRE_GL();
   const RefCase& p = GetParam();
   CloudOptics o = grey_optics(8.0, 0.9);
-  o.phase.g_forward = p.g;
+  o.phase = Phase{PhaseKind::HenyeyGreenstein, p.g};
   const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
   const Camera cam = look_at_origin({0.4, 0.3, 2.5}, 64, 30.0);
   Light light;
@@ -169,7 +169,7 @@ TEST(CloudSlices, UniformSphereDarkSideMatchesReference) {
 TEST(CloudSlices, BranchesAgreeAtTheSwitch) {
   NIMBUS_REQUIRE_GL();
   CloudOptics o = grey_optics(8.0, 0.9);
-  o.phase.g_forward = 0.5;
+  o.phase = Phase{PhaseKind::HenyeyGreenstein, 0.5};
   const std::vector<CloudVolume> clouds = {cube_cloud(kN, kVoxel, [](int i, int j, int k) { return lumpy_ball(i, j, k); }, o)};
   const Camera cam = look_at_origin({0.0, 0.4, 2.5}, 64, 30.0);
   const glm::dvec3 v = camera_frame(cam).forward;

@@ -174,11 +174,11 @@ std::pair<double, double> copies_light_volume_error(bool per_sample) {
   const double reach = 4.0;
   // A forward phase: the light a copy scatters toward the eye depends on where the eye is from it.
   CloudOptics o = grey_optics(4.0, 0.9);
-  o.phase = DualLobePhase{0.7, -0.25, 0.8};
+  o.phase = dual_lobe_phase(0.7, -0.25, 0.8);
   CloudVolume tile = cube_cloud(kN, kVoxel, lumpy_periodic, o);
   tile.period_m = glm::dvec3(1.0, 0.0, 1.0);
   CloudOptics go = grey_optics(1e-9, 0.9);
-  go.phase = per_sample ? DualLobePhase{-0.3, 0.0, 1.0} : o.phase;
+  go.phase = per_sample ? dual_lobe_phase(-0.3, 0.0, 1.0) : o.phase;
   const CloudVolume ghost = cube_cloud(8, 0.05, [](int, int, int) { return 1.0f; }, go, {0.3, 0.0, -1.0}, "ghost");
   CloudRenderer r({tile, ghost}, GL_R32F);
   const Camera cam = under_the_layer();

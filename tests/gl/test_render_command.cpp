@@ -46,7 +46,7 @@ TEST(RenderCommand, LeftOutFlagsKeepTheLibraryDefaults) {
   EXPECT_FALSE(a.repeat_to_m.has_value());  // auto
   EXPECT_EQ(render::to_string(a.shafts), render::to_string(render::parse_shaft_method(kCloudShaftsDefault)));
   EXPECT_FALSE(a.cloud_albedo.has_value());
-  EXPECT_EQ(a.cloud_phase.g_forward, render::kCloudPhase.g_forward);
+  EXPECT_EQ(a.cloud_phase.g, render::kCloudPhase.g);
   EXPECT_EQ(a.cloud_phase.g_back, render::kCloudPhase.g_back);
   EXPECT_EQ(a.cloud_phase.forward_weight, render::kCloudPhase.forward_weight);
   EXPECT_FALSE(a.ambient.has_value());  // auto
@@ -71,7 +71,7 @@ TEST(RenderCommand, TypedFlagsFillTypedFields) {
   EXPECT_EQ(a.shafts.kind, render::ShaftMethod::Kind::Analytic);
   ASSERT_TRUE(a.cloud_albedo.has_value());
   EXPECT_EQ(*a.cloud_albedo, glm::dvec3(0.9));
-  EXPECT_EQ(a.cloud_phase.g_forward, 0.5);
+  EXPECT_EQ(a.cloud_phase.g, 0.5);
   EXPECT_EQ(a.cloud_phase.forward_weight, 1.0);  // hg:G is one lobe
   ASSERT_TRUE(a.ambient.has_value());
   EXPECT_EQ(*a.ambient, glm::dvec3(0.1, 0.2, 0.3));

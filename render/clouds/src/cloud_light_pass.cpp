@@ -125,8 +125,7 @@ std::vector<CloudBlock> cloud_blocks(const CloudRenderer::Impl& s, const PassClo
     b.sigma_t = static_cast<float>(c.optics.extinction_per_m);
     b.albedo = to_float(c.optics.albedo);
     b.ambient = frame.settings.ambient && ambient ? to_float(c.optics.ambient_radiance) : glm::vec3(0.0f);
-    b.phase = glm::vec3(static_cast<float>(c.optics.phase.g_forward), static_cast<float>(c.optics.phase.g_back),
-                        static_cast<float>(c.optics.phase.forward_weight));
+    b.phase = cloud_phase_lobes(c.optics.phase);
     b.tau_per_density = static_cast<float>(c.optics.extinction_per_m * plan.light_slab_m);
     b.blend = s.next_textures[j] ? static_cast<float>(c.blend) : 0.0f;
   }

@@ -437,13 +437,9 @@ Image CloudRenderer::render(const Camera& camera, const std::vector<Light>& all_
   // pass's copies get theirs too (a few); the far ones read the volume per sample.
   bool light_radiance = false;
   if (light_volume && !s.clouds.empty()) {
-    const DualLobePhase& g = s.clouds.front().optics.phase;
-    const auto same = [&](const CloudVolume& c) {
-      return c.optics.phase.g_forward == g.g_forward && c.optics.phase.g_back == g.g_back &&
-             c.optics.phase.forward_weight == g.forward_weight;
-    };
+    const glm::vec3 phase = cloud_phase_lobes(s.clouds.front().optics.phase);
+    const auto same = [&](const CloudVolume& c) { return cloud_phase_lobes(c.optics.phase) == phase; };
     if (std::all_of(s.clouds.begin(), s.clouds.end(), same)) {
-      const glm::vec3 phase(static_cast<float>(g.g_forward), static_cast<float>(g.g_back), static_cast<float>(g.forward_weight));
       timer.time(kLight, [&] {
         s.make_light_radiance(camera.eye, phase, s.light_radiance_tex);
         make_copy_radiance(s, near, camera, settings.slices, phase);

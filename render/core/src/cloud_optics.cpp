@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "nimbus/base/validate.hpp"
@@ -13,14 +11,6 @@
 #include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
-namespace {
-
-void validate_g(double g, const char* field) {
-  require(std::isfinite(g) && g > -1.0 && g < 1.0, std::string(field) + " must be in (-1, 1)");
-}
-
-}  // namespace
-
 void validate(const CloudOptics& o) {
   // Beyond 1e12 per metre (as the CLI's flags) the slicer's optical depths overflow its floats.
   require(in_range(setting(Setting::CloudExtinction), o.extinction_per_m),
@@ -28,10 +18,8 @@ void validate(const CloudOptics& o) {
   for (int c = 0; c < 3; ++c)
     require(std::isfinite(o.albedo[c]) && o.albedo[c] >= 0.0 && o.albedo[c] <= 1.0,
             "cloud albedo must be in [0, 1] per channel");
-  validate_g(o.phase.g_forward, "cloud phase g_forward");
-  validate_g(o.phase.g_back, "cloud phase g_back");
-  require(std::isfinite(o.phase.forward_weight) && o.phase.forward_weight >= 0.0 && o.phase.forward_weight <= 1.0,
-          "cloud phase forward_weight must be in [0, 1]");
+  validate(o.phase, "cloud phase");
+  as_dual_lobes(o.phase);  // Henyey-Greenstein lobes: what the slicer, the light volume and the path tracer take
   for (int c = 0; c < 3; ++c)
     require(std::isfinite(o.ambient_radiance[c]) && o.ambient_radiance[c] >= 0.0 && o.ambient_radiance[c] <= 1e12,
             "cloud ambient_radiance must be in [0, 1e12] per channel");
@@ -73,54 +61,20 @@ std::string to_string(MultipleScatteringMethod m) {
   return "unknown";
 }
 
-double cloud_phase_value(const DualLobePhase& p, double cos_theta) {
-  const Phase f{PhaseKind::HenyeyGreenstein, p.g_forward};
-  const Phase b{PhaseKind::HenyeyGreenstein, p.g_back};
-  return p.forward_weight * phase_value(f, cos_theta) + (1.0 - p.forward_weight) * phase_value(b, cos_theta);
+glm::vec3 cloud_phase_lobes(const Phase& phase) {
+  const Phase p = as_dual_lobes(phase);
+  return glm::vec3(static_cast<float>(p.g), static_cast<float>(p.g_back), static_cast<float>(p.forward_weight));
 }
 
-DualLobePhase parse_cloud_phase(const std::string& text) {
-  DualLobePhase p;
-  if (text.rfind("dual:", 0) != 0) {
-    // "isotropic" and "hg:G" are the medium's own phase names (phase.hpp): one parser for both,
-    // whose errors name the text.
-    if (text != "isotropic" && text.rfind("hg:", 0) != 0)
-      throw std::invalid_argument("cloud phase '" + echo(text) + "': expected isotropic, hg:G or dual:GF,GB,W");
-    p.g_forward = parse_phase(text).g;
-    return p;
-  }
-  std::stringstream ss(text.substr(5));
-  double part[3] = {0.0, 0.0, 0.0};
-  int n = 0;
-  for (std::string item; std::getline(ss, item, ',');) {
-    if (n == 3) throw std::invalid_argument("cloud phase '" + echo(text) + "': expected dual:GF,GB,W");
-    const std::optional<double> v = parse_double(item);
-    if (!v) throw std::invalid_argument("cloud phase '" + echo(text) + "': '" + echo(item) + "' is not a number");
-    part[n++] = *v;
-  }
-  if (n != 3) throw std::invalid_argument("cloud phase '" + echo(text) + "': expected dual:GF,GB,W");
-  p.g_forward = part[0];
-  p.g_back = part[1];
-  p.forward_weight = part[2];
+Phase parse_cloud_phase(const std::string& text) {
+  const Phase p = parse_phase(text);
   try {
-    CloudOptics o;
-    o.phase = p;
-    validate(o);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("cloud phase '" + echo(text) + "': " + e.what());
+    as_dual_lobes(p);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("cloud phase '" + echo(text) +
+                                "': clouds take Henyey-Greenstein lobes: isotropic, hg:G or dual:GF,GB,W");
   }
   return p;
-}
-
-std::string to_string(const DualLobePhase& p) {
-  std::ostringstream s;
-  if (p.forward_weight == 1.0 && p.g_forward == 0.0) return "isotropic";
-  if (p.forward_weight == 1.0) {
-    s << "hg:" << p.g_forward;
-  } else {
-    s << "dual:" << p.g_forward << "," << p.g_back << "," << p.forward_weight;
-  }
-  return s.str();
 }
 
 }  // namespace nimbus::render

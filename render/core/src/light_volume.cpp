@@ -116,12 +116,14 @@ LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double
   return out;
 }
 
-double phase_legendre(const DualLobePhase& p, int l) {
-  return p.forward_weight * std::pow(p.g_forward, l) + (1.0 - p.forward_weight) * std::pow(p.g_back, l);
+double phase_legendre(const Phase& phase, int l) {
+  const Phase p = as_dual_lobes(phase);
+  return p.forward_weight * std::pow(p.g, l) + (1.0 - p.forward_weight) * std::pow(p.g_back, l);
 }
 
-glm::dvec3 light_volume_inscatter(const LightVolume& v, const DualLobePhase& phase, const glm::dvec3& world_m,
+glm::dvec3 light_volume_inscatter(const LightVolume& v, const Phase& cloud_phase, const glm::dvec3& world_m,
                                   const glm::dvec3& to_eye) {
+  const Phase phase = as_dual_lobes(cloud_phase);
   const LightVolumeSample s = sample_light_volume(v, world_m);
   const double mean = (s.fluence.x + s.fluence.y + s.fluence.z) / 3.0;
   if (!(mean > 0.0)) return glm::dvec3(0.0);
@@ -139,7 +141,7 @@ glm::dvec3 light_volume_inscatter(const LightVolume& v, const DualLobePhase& pha
     q_less += f[k] * mu[k] * mu[k];
     // HG(g_i) * HG(mu_k) = HG(g_i mu_k): the dual lobe with both g scaled by mu_k.
     lobe += f[k] * 4.0 * M_PI *
-            cloud_phase_value(DualLobePhase{phase.g_forward * mu[k], phase.g_back * mu[k], phase.forward_weight}, ws);
+            phase_value(dual_lobe_phase(phase.g * mu[k], phase.g_back * mu[k], phase.forward_weight), ws);
   }
   // Eq. MS-1 over the fluence: 1 + 3 p_1 F.w / phi + (15 / 2) p_2 w^T Q w / phi.
   const double directional =

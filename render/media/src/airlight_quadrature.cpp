@@ -34,8 +34,12 @@ void validate(const SegmentQuery& q) {
           std::hypot(q.cos_gamma, q.sin_gamma));
   require(std::isfinite(q.x0) && q.x0 >= 0.0, "x0", "finite and >= 0", q.x0);
   require(!std::isnan(q.x1) && q.x1 >= q.x0, "x1", ">= x0", q.x1);
-  if (q.phase.kind == PhaseKind::HenyeyGreenstein || q.phase.kind == PhaseKind::Schlick)
-    require(q.phase.g > -1.0 && q.phase.g < 1.0, "phase g", "in (-1, 1)", q.phase.g);
+  if (phase_takes_g(q.phase.kind)) require(q.phase.g > -1.0 && q.phase.g < 1.0, "phase g", "in (-1, 1)", q.phase.g);
+  if (q.phase.kind == PhaseKind::DualHenyeyGreenstein) {
+    require(q.phase.g_back > -1.0 && q.phase.g_back < 1.0, "phase g_back", "in (-1, 1)", q.phase.g_back);
+    require(q.phase.forward_weight >= 0.0 && q.phase.forward_weight <= 1.0, "phase forward_weight", "in [0, 1]",
+            q.phase.forward_weight);
+  }
 }
 
 // The light lies on the ray's line (h = 0) at signed position a: closed forms or a bounded
@@ -113,8 +117,10 @@ double segment_airlight_quadrature(const SegmentQuery& query) {
   std::vector<double> cuts;
   if (K > 0.0)
     for (double g : {0.25, 1.0, 4.0, 16.0, 64.0}) cuts.push_back(omega_at(g));
-  if (q.phase.kind == PhaseKind::HenyeyGreenstein || q.phase.kind == PhaseKind::Schlick) {
-    const double width = std::max(1.0 - std::abs(q.phase.g), 1e-6);  // forward/back peak width in theta
+  if (phase_takes_g(q.phase.kind)) {
+    double width = 1.0 - std::abs(q.phase.g);  // forward/back peak width in theta (the narrower lobe's)
+    if (q.phase.kind == PhaseKind::DualHenyeyGreenstein) width = std::min(width, 1.0 - std::abs(q.phase.g_back));
+    width = std::max(width, 1e-6);
     for (double k : {0.5, 2.0, 8.0}) {
       cuts.push_back(0.5 * (kPi - k * width));  // theta near 0
       cuts.push_back(0.5 * k * width);          // theta near pi

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nimbus/base/input_limits.hpp"
+
 namespace nimbus::render {
 
 void validate(const Medium& medium) {
@@ -14,9 +16,18 @@ void validate(const Medium& medium) {
   const double albedo = medium.albedo;
   if (!(albedo >= 0.0 && albedo <= 1.0))
     throw std::invalid_argument("medium albedo must be in [0, 1] (got " + std::to_string(albedo) + ")");
-  const Phase& p = medium.phase;
-  if (phase_takes_g(p.kind) && !(p.g > -1.0 && p.g < 1.0))
-    throw std::invalid_argument("medium phase g must be in (-1, 1) (got " + std::to_string(p.g) + ")");
+  validate(medium.phase, "medium phase");
+  if (medium.phase.kind == PhaseKind::DualHenyeyGreenstein)  // the fog's shaders and tables take one lobe
+    throw std::invalid_argument("medium phase " + to_string(medium.phase) +
+                                ": the fog takes one lobe (isotropic, hg:G, schlick:G or rayleigh); two are a cloud's");
+}
+
+Phase parse_medium_phase(const std::string& text) {
+  const Phase p = parse_phase(text);
+  if (p.kind == PhaseKind::DualHenyeyGreenstein)
+    throw std::invalid_argument("phase '" + echo(text) +
+                                "': the fog takes one lobe (isotropic, hg:G, schlick:G or rayleigh); two are a cloud's");
+  return p;
 }
 
 }  // namespace nimbus::render

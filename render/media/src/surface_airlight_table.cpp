@@ -124,8 +124,9 @@ SurfaceAirlightTable::SurfaceAirlightTable(const Phase& phase, int nx, int ny) :
   if (ny < 9 || ny > 2049 || ny % 2 == 0)
     throw std::invalid_argument("surface airlight table ny must be odd and in [9, 2049] (got " + std::to_string(ny) + ")");
   static std::mutex mutex;
-  if (phase_takes_g(phase.kind) && !(phase.g > -1.0 && phase.g < 1.0))
-    throw std::invalid_argument("surface airlight table phase g must be in (-1, 1) (got " + std::to_string(phase.g) + ")");
+  validate(phase, "surface airlight table phase");
+  if (phase.kind == PhaseKind::DualHenyeyGreenstein)  // its cache holds one lobe per (kind, g)
+    throw std::invalid_argument("surface airlight table phase " + to_string(phase) + ": the fog's table takes one lobe");
   static std::map<std::tuple<int, int, int, double>, std::shared_ptr<const Impl>> built;
   const std::lock_guard<std::mutex> lock(mutex);
   const double g = phase_takes_g(phase.kind) ? phase.g : 0.0;

@@ -114,7 +114,7 @@ PathTracedImage render_cloud_path_traced(const std::vector<CloudVolume>& clouds,
         beta *= cloud.optics.albedo;  // sigma_s / sigma_t at a real collision
         // Next-event estimation toward the sun: light propagating along -to_light scatters into -d.
         const double T_sun = transmittance(media, o, to_light, rng);
-        if (T_sun > 0.0) L += beta * light.irradiance_w_m2 * (cloud_phase_value(cloud.optics.phase, glm::dot(to_light, d)) * T_sun);
+        if (T_sun > 0.0) L += beta * light.irradiance_w_m2 * (phase_value(cloud.optics.phase, glm::dot(to_light, d)) * T_sun);
         if (bounce + 1 >= settings.roulette_after) {
           if (!survives_roulette(beta, rng)) break;
         }

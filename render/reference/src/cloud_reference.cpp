@@ -167,7 +167,7 @@ CloudSample trace(const Prepared& P, const glm::dvec3& eye, const glm::dvec3& di
         for (std::size_t i = 0; i < rays.size(); ++i) {
           if (rho[i] == 0.0) continue;
           weight += P.clouds[i].optics.albedo * (rays[i].extinction_per_m * rho[i]) *
-                    cloud_phase_value(P.clouds[i].optics.phase, cos_theta);
+                    phase_value(P.clouds[i].optics.phase, cos_theta);
         }
         source += weight * a.irradiance_w_m2 * P.light_transmittance(x, a.to_light, a.distance_m, shadow_step);
       }

@@ -232,7 +232,7 @@ struct Similarity {
     return !deep.empty() && cell_at(v, g, p, q) && deep[q] != 0;
   }
 };
-const DualLobePhase kIsotropic{0.0, 0.0, 1.0};
+const Phase kIsotropic;
 
 std::vector<SimilarMedium> similar_media(const std::vector<CloudVolume>& clouds) {
   std::vector<SimilarMedium> out;

@@ -1,7 +1,7 @@
 // The path tracer's medium machinery, shared by the tracer (cloud_path_tracer.cpp) and the
 // light-volume photon tracer (light_volume_builder.cpp): a per-stream RNG, each cloud's 8^3 brick
 // majorants met by a 3D DDA, delta tracking (Woodcock et al. 1965), ratio tracking (Novak et al.
-// 2014) and the dual-lobe phase's sampling. Internal to render/reference.
+// 2014) and the sampling of a phase of Henyey-Greenstein lobes. Internal to render/reference.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -195,10 +195,11 @@ inline glm::dvec3 rotate_about(const glm::dvec3& w, double cos_theta, double u) 
   return glm::normalize(cos_theta * w + sin_theta * (std::cos(phi) * t + std::sin(phi) * b));
 }
 
-// The dual-lobe phase sampled: a lobe by its weight, then that lobe's HG. The pdf is the phase
-// itself, so the path weight does not change.
-inline glm::dvec3 sample_phase(const DualLobePhase& p, const glm::dvec3& w, PathRng& rng) {
-  const double g = rng.uniform() < p.forward_weight ? p.g_forward : p.g_back;
+// A phase of Henyey-Greenstein lobes sampled in its dual-lobe form: a lobe by its weight, then
+// that lobe's HG. The pdf is the phase itself, so the path weight does not change.
+inline glm::dvec3 sample_phase(const Phase& phase, const glm::dvec3& w, PathRng& rng) {
+  const Phase p = as_dual_lobes(phase);
+  const double g = rng.uniform() < p.forward_weight ? p.g : p.g_back;
   return rotate_about(w, sample_hg_cos(g, rng.uniform()), rng.uniform());
 }
 

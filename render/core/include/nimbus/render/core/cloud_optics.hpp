@@ -1,5 +1,5 @@
 // How cloud density meets light: extinction and scattering per unit density (world units), a
-// dual-lobe Henyey-Greenstein phase, an ambient sky term and the multiple-scattering
+// phase of Henyey-Greenstein lobes (phase.hpp), an ambient sky term and the multiple-scattering
 // approximations; the lights are in light.hpp.
 #pragma once
 #include <cstdint>
@@ -8,29 +8,21 @@
 #include <glm/glm.hpp>
 
 #include "nimbus/render/core/light.hpp"
+#include "nimbus/render/core/phase.hpp"
 #include "nimbus/render/core/render_settings.hpp"
 
 namespace nimbus::render {
 
-// p(theta) = w HG(theta; g_forward) + (1 - w) HG(theta; g_back); w = 1 and g_forward = 0 is
-// isotropic (1 / 4 pi). theta is the angle between the light's propagation direction and the
-// scattered direction (0 = forward).
-struct DualLobePhase {
-  double g_forward = 0.0;       // (-1, 1)
-  double g_back = 0.0;          // (-1, 1)
-  double forward_weight = 1.0;  // [0, 1]
-};
-
 // A cloud's look where nothing says otherwise, for nimbus render, the viewer, Python and the
 // Blender add-on's material alike: a forward lobe (g 0.7) with a fifth of backward scattering
 // (g -0.25), and albedo 0.99 (docs/clouds.md compares the phases).
-inline constexpr DualLobePhase kCloudPhase{0.7, -0.25, 0.8};
+inline constexpr Phase kCloudPhase = dual_lobe_phase(0.7, -0.25, 0.8);
 inline constexpr double kCloudAlbedo = 0.99;
 
 struct CloudOptics {
   double extinction_per_m = setting(Setting::CloudExtinction).still_default;  // sigma_t per unit density, per metre (grey)
   glm::dvec3 albedo{kCloudAlbedo};  // sigma_s / sigma_t per channel, [0, 1] (chromatic allowed)
-  DualLobePhase phase;
+  Phase phase;  // Henyey-Greenstein lobes only: isotropic, hg or dual (as_dual_lobes)
   // Isotropic sky radiance that lights every point of the cloud unshadowed (W sr^-1 m^-2 per
   // channel); its in-scattered radiance is sigma_s rho L_ambient. 0 switches it off.
   glm::dvec3 ambient_radiance{0.0};
@@ -97,11 +89,12 @@ void validate(const CloudOptics& optics);
 void validate(const MultipleScattering& ms);
 void validate(const LightVolumeSettings& settings);
 
-// Double-precision phase value per steradian for cos(theta).
-double cloud_phase_value(const DualLobePhase& phase, double cos_theta);
+// parse_phase for a cloud: "isotropic", "hg:G" or "dual:GF,GB,W"; std::invalid_argument naming
+// the text for those malformed and for the fog's other kinds.
+Phase parse_cloud_phase(const std::string& text);
 
-// "isotropic", "hg:G", "dual:GF,GB,W" <-> DualLobePhase; std::invalid_argument naming the text.
-DualLobePhase parse_cloud_phase(const std::string& text);
-std::string to_string(const DualLobePhase& phase);
+// A cloud phase as the shaders take it (lib/cloud_phase.glsl, CloudBlock.phase): its dual-lobe
+// form's (g forward, g back, forward weight) in float.
+glm::vec3 cloud_phase_lobes(const Phase& phase);
 
 }  // namespace nimbus::render

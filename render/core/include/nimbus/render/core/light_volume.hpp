@@ -94,14 +94,15 @@ LightVolumeSample sample_light_volume(const LightVolume& volume, const glm::dvec
 // draws keyframe k's volume blended towards k + 1's as its density blends (sky_renderer.hpp).
 LightVolume mix_light_volumes(const LightVolume& a, const LightVolume& b, double t);
 
-// Legendre coefficients of the dual-lobe phase (p_0 = 1): p_l = w g_forward^l + (1 - w) g_back^l.
-double phase_legendre(const DualLobePhase& phase, int l);
+// Legendre coefficients of a phase of Henyey-Greenstein lobes (p_0 = 1), in its dual-lobe form
+// (as_dual_lobes): p_l = w g^l + (1 - w) g_back^l.
+double phase_legendre(const Phase& phase, int l);
 
 // Eqs. MS-1, MS-3 and MS-4 per unit irradiance, RGB: the radiance that the light volume's scattered light
 // in-scatters at `world_m` toward the eye, per unit scattering coefficient, where `to_eye` is the
 // unit direction of propagation toward the eye; the flux and quadrupole terms scaled per channel
 // by fluence_c / mean(fluence), as the lobes; the harmonics' part of each channel clamped at 0.
-glm::dvec3 light_volume_inscatter(const LightVolume& volume, const DualLobePhase& phase, const glm::dvec3& world_m,
+glm::dvec3 light_volume_inscatter(const LightVolume& volume, const Phase& phase, const glm::dvec3& world_m,
                                   const glm::dvec3& to_eye);
 
 }  // namespace nimbus::render

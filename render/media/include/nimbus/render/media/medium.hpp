@@ -13,7 +13,11 @@ struct Medium {
 };
 
 // Throws std::invalid_argument naming the field when a coefficient is negative, NaN or
-// infinite, or the albedo is outside [0, 1].
+// infinite, the albedo is outside [0, 1], or the phase is not one lobe.
 void validate(const Medium& medium);
+
+// parse_phase for the fog: one lobe, "isotropic", "hg:G", "schlick:G" or "rayleigh";
+// std::invalid_argument naming the text for those malformed and for a dual lobe (a cloud's).
+Phase parse_medium_phase(const std::string& text);
 
 }  // namespace nimbus::render

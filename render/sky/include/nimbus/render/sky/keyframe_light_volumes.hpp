@@ -32,12 +32,11 @@ struct KeyframeLight {
   glm::dvec3 direction_to_sun{0.0, 1.0, 0.0};  // unit
   double extinction_per_m = 0.04;
   glm::dvec3 albedo{0.99};
-  DualLobePhase phase;
+  Phase phase;
   LightVolumeSettings settings;
   // The same optics (the clouds' media): a kept keyframe density serves both.
   bool same_optics(const KeyframeLight& o) const {
-    return extinction_per_m == o.extinction_per_m && albedo == o.albedo && phase.g_forward == o.phase.g_forward &&
-           phase.g_back == o.phase.g_back && phase.forward_weight == o.phase.forward_weight;
+    return extinction_per_m == o.extinction_per_m && albedo == o.albedo && phase == o.phase;
   }
   bool operator==(const KeyframeLight& o) const {
     return direction_to_sun == o.direction_to_sun && same_optics(o) && settings == o.settings;

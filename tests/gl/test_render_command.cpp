@@ -94,6 +94,8 @@ TEST(RenderCommand, BadTextIsAParseErrorNamingTheFlag) {
       {{"--shafts", "raymarch:0"}, "--shafts: "},
       {{"--cloud-albedo", "1,2"}, "--cloud-albedo: '1,2'"},
       {{"--cloud-phase", "dual:2"}, "--cloud-phase: "},
+      {{"--cloud-phase", "schlick:0.3"}, "--cloud-phase: cloud phase 'schlick:0.3': clouds take Henyey-Greenstein lobes"},
+      {{"--cloud-phase", "dual:0.7,-0.25,1.2"}, "--cloud-phase: phase 'dual:0.7,-0.25,1.2': forward_weight (W) must be in [0, 1]"},
       {{"--ambient", "nan"}, "--ambient: 'nan'"},
       {{"--ms-method", "photons"}, "--ms-method: "},
       {{"--ambient", ""}, "--ambient: the value is empty"},
@@ -122,7 +124,12 @@ TEST(RenderCommand, TypedDefaultsSpelledOutGiveTheVeryPixels) {
   // And a value that is not the default changes them.
   std::vector<std::string> other = base;
   for (const char* flag : {"--cloud-phase", "hg:0.2"}) other.push_back(flag);
-  EXPECT_NE(render_clouds_image(other).rgba, a.rgba);
+  const render::Image hg = render_clouds_image(other);
+  EXPECT_NE(hg.rgba, a.rgba);
+  // One phase, two spellings: hg:G is the dual lobe (G, any, 1), to the bit.
+  std::vector<std::string> dual = base;
+  for (const char* flag : {"--cloud-phase", "dual:0.2,-0.5,1"}) dual.push_back(flag);
+  EXPECT_EQ(render_clouds_image(dual).rgba, hg.rgba);
 }
 
 }  // namespace

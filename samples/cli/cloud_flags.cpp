@@ -25,15 +25,6 @@ glm::dvec2 parse_spot_cone(const std::string& text) {
   return {*inner, *outer};
 }
 
-std::optional<double> parse_repeat_to(const std::string& text) {
-  if (text == "auto") return std::nullopt;
-  const render::RenderSetting& repeat_to = render::setting(render::Setting::RepeatTo);
-  const std::optional<double> r = parse_double(text);
-  if (!r || !render::in_range(repeat_to, *r))
-    throw UsageError("--repeat-to: '" + echo(text, 40) + "' is not auto or a distance in " + render::range_text(repeat_to));
-  return r;
-}
-
 std::optional<glm::dvec3> parse_ambient(const std::string& text) {
   if (text == "auto") return std::nullopt;
   return parse_colour("--ambient", text);

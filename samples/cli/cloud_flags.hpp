@@ -14,9 +14,6 @@ glm::dvec3 parse_spot_axis(const std::string& text);
 // --spot-cone INNER,OUTER degrees, 0 < INNER <= OUTER <= 180.
 glm::dvec2 parse_spot_cone(const std::string& text);
 
-// --repeat-to: "auto" (nullopt) or a distance in the table's range, metres.
-std::optional<double> parse_repeat_to(const std::string& text);
-
 // --ambient: "auto" (nullopt: the sky's mean radiance, else 0) or V or R,G,B.
 std::optional<glm::dvec3> parse_ambient(const std::string& text);
 

@@ -64,7 +64,7 @@ int run_render(const RenderArgs& a, const CLI::App& cmd) {
       throw UsageError("--view-state: the camera comes from the state; only --res may be given");
     check_render_flags(cmd, kRenderViewState);
     const int samples = cmd.count("--spp") > 0 ? a.clouds.spp : 1;
-    return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure, samples, !a.clouds.no_grain_filter);
+    return run_render_view_state(a.view_state, a.camera, a.output, a.preview, a.exposure, samples, a.clouds.request.grain_filter.on);
   }
   if (!a.clouds.files.empty() || !a.clouds.presets.empty()) {
     check_render_flags(cmd, kRenderClouds);

@@ -133,41 +133,27 @@ void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
                    "Every --lamp is a spot shining along DX,DY,DZ");
   add_typed_option(cmd, "--spot-cone", a.spot_cone_deg, parse_spot_cone,
                    "The spot's inner,outer cone half-angles, degrees", "20,30");
-  add_setting_option(cmd, render::Setting::MaxLights, a.max_lights);
-  add_setting_option(cmd, render::Setting::Slices, a.slices);
-  add_setting_option(cmd, render::Setting::LightRes, a.light_res);
-  add_typed_option(cmd, render::flag_name(render::setting(render::Setting::RepeatTo)), a.repeat_to_m, parse_repeat_to,
-                   setting_help(render::Setting::RepeatTo));
-  add_setting_option(cmd, render::Setting::CloudShadowRes, a.shadow_map_res);
-  add_typed_option(cmd, "--shafts", a.shafts, render::parse_shaft_method,
+  add_cloud_setting_options(cmd, a.request, a.settings_given);  // the table's numbers (setting_flags.hpp)
+  add_typed_option(cmd, "--shafts", a.request.shafts, render::parse_shaft_method,
                    "The scene's light-shaft method under the clouds (see --method)", kCloudShaftsDefault);
-  add_setting_option(cmd, render::Setting::CloudExtinction, a.cloud_extinction);
-  add_typed_option(cmd, "--cloud-albedo", a.cloud_albedo,
-                   [](const std::string& t) { return std::optional(parse_colour("--cloud-albedo", t)); },
-                   "Cloud single-scattering albedo, V or R,G,B (default " + number_text(render::kCloudAlbedo) + ")");
-  add_typed_option(cmd, "--cloud-phase", a.cloud_phase, render::parse_cloud_phase,
+  add_typed_option(cmd, "--cloud-albedo", a.request.optics.albedo,
+                   [](const std::string& t) { return parse_colour("--cloud-albedo", t); },
+                   "Cloud single-scattering albedo, V or R,G,B", number_text(render::kCloudAlbedo));
+  add_typed_option(cmd, "--cloud-phase", a.request.optics.phase, render::parse_cloud_phase,
                    "Cloud phase: isotropic, hg:G or dual:GF,GB,W", render::to_string(render::kCloudPhase));
   add_typed_option(cmd, "--ambient", a.ambient, parse_ambient,
                    "Ambient sky radiance on the clouds, R,G,B or auto (the sky's mean, else 0)", "auto");
-  add_setting_option(cmd, render::Setting::Multiple, a.multiple);
   add_typed_option(cmd, "--ms-method", a.ms_method,
                    [](const std::string& t) { return std::optional(render::parse_multiple_scattering_method(t)); },
                    "Multiple-scattering method of the slicer: light-volume (photon-traced scattered light per voxel; "
                    "the default) or octaves (the default when --multiple N > 0 is given alone)");
-  add_setting_option(cmd, render::Setting::MsGrid, a.ms_grid);
-  add_setting_option(cmd, render::Setting::MsPhotons, a.ms_photons);
-  add_setting_option(cmd, render::Setting::MsLobes, a.ms_lobes);
-  add_setting_option(cmd, render::Setting::MsDiffusionDepth, a.ms_diffusion);
-  add_setting_option(cmd, render::Setting::MsSimilarityDepth, a.ms_similarity);
-  cmd->add_option("--ms-seed", a.ms_seed, "Light volume: random seed (the same seed gives the same volume)")
+  cmd->add_option("--ms-seed", a.request.slices.multiple.light_volume.seed,
+                  "Light volume: random seed (the same seed gives the same volume)")
       ->capture_default_str();
-  add_setting_option(cmd, render::Setting::Blur, a.blur_deg);
-  cmd->add_flag("--no-jitter", a.no_jitter, "Do not jitter the samples within their slices");
-  cmd->add_flag("--no-grain-filter", a.no_grain_filter,
-                "Slices: keep the jitter's grain (by default a still of fewer than 32 samples is filtered of it, guided by depth)");
-  add_setting_option(cmd, render::Setting::MsOcclusion, a.ms_occlusion);
-  add_setting_option(cmd, render::Setting::MsContribution, a.ms_contribution);
-  add_setting_option(cmd, render::Setting::MsEccentricity, a.ms_eccentricity);
+  cmd->add_flag_callback("--no-jitter", [&a] { a.request.slices.jitter = false; },
+                         "Do not jitter the samples within their slices");
+  cmd->add_flag_callback("--no-grain-filter", [&a] { a.request.grain_filter.on = false; },
+                         "Slices: keep the jitter's grain (by default a still of fewer than 32 samples is filtered of it, guided by depth)");
   cmd->add_option("--spp", a.spp, "--method pathtrace: samples per pixel; --view-state: progressive samples averaged (sub-pixel offsets, shifted jitter: the slicer's grain goes), default 1")->capture_default_str();
   cmd->add_option("--bounces", a.bounces, "--method pathtrace: scattering events per path at most (1: single scattering)")
       ->capture_default_str();
@@ -288,7 +274,7 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
       image = naming_gpu_memory("--res", camera.width, camera.height, [&] { return renderer.render(camera, &stats, &depths); });
       // One jittered frame of slices holds the jitter's grain (grain_filter.hpp).
       render::GrainFilter grain;
-      grain.on = !a.no_grain_filter;
+      grain.on = a.request.grain_filter.on;
       image = render::still_picture(image, 1, depths, grain, fs.method == render::CloudMethod::Slices && fs.slices.jitter);
     } catch (const std::invalid_argument& e) {
       // A stage refused what it computed (a NaN pixel): the flags were checked, so say which

@@ -15,6 +15,7 @@
 #include "nimbus/render/core/image.hpp"
 #include "nimbus/render/core/render_settings.hpp"
 #include "nimbus/render/media/shaft_method.hpp"
+#include "nimbus/render/sky/request_settings.hpp"
 #include "render_args.hpp"
 #include "sun_flags.hpp"
 
@@ -23,8 +24,14 @@ namespace nimbus::cli {
 // The scene's light-shaft method under the clouds when --shafts is left out.
 inline constexpr const char* kCloudShaftsDefault = "raymarch:48";
 
-// A setting's default for a still (render_settings.hpp).
-inline double still_default(render::Setting id) { return render::setting(id).still_default; }
+// The request `nimbus render` and Python start from: the table's still defaults, the shaft method
+// above, the library's optics.
+inline render::RenderRequest still_request() {
+  render::RenderRequest r;
+  render::set_setting_defaults(r, render::SettingDefaults::Still);
+  r.shafts = render::parse_shaft_method(kCloudShaftsDefault);
+  return r;
+}
 
 // A cloud held in memory (the Python module's Volume), rendered among the files as the file it
 // would be written to: its grid made ready by render::cloud_grid_in_memory.
@@ -50,33 +57,14 @@ struct CloudRenderArgs {
   glm::dvec3 lamp_intensity_w_sr{100.0};  // every --lamp, per channel
   std::optional<glm::dvec3> spot_axis;    // every --lamp is a spot shining that way (renderer frame, non-zero)
   glm::dvec2 spot_cone_deg{20.0, 30.0};   // inner, outer half-angles of the spot's cone, 0 < inner <= outer <= 180
-  // The table's settings (render_settings.hpp) start at its defaults.
-  int max_lights = int(still_default(render::Setting::MaxLights));  // lights drawn by the slicer, one pass each
+  // What a request file would hold (render_request.hpp), at a still's defaults: the table's
+  // numbers (render_settings.hpp; --fov and --exposure are the render command's own, in every
+  // mode), the optics' albedo and phase, the scene's shaft method, jitter, the grain filter.
+  render::RenderRequest request = still_request();
+  std::set<render::Setting> settings_given;  // the table's settings given a value (not auto) by a flag
   bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
-  int slices = int(still_default(render::Setting::Slices));
-  int light_res = int(still_default(render::Setting::LightRes));
-  // Periodic clouds' copies out to this distance, metres; unset (auto): 32000 under --scene sky, else 0.
-  std::optional<double> repeat_to_m;
-  int shadow_map_res = int(still_default(render::Setting::CloudShadowRes));  // the clouds' shadow on the scene
-  render::ShaftMethod shafts = render::parse_shaft_method(kCloudShaftsDefault);  // the scene's method under the clouds
-  std::optional<double> cloud_extinction;
-  std::optional<glm::dvec3> cloud_albedo;           // unset: render::kCloudAlbedo
-  render::Phase cloud_phase = render::kCloudPhase;
   std::optional<glm::dvec3> ambient;                // W m^-2 sr^-1; unset (auto): the sky's mean radiance, else 0
-  std::optional<int> multiple;       // octaves; light-volume: 0 (off) or 1; unset: see --ms-method
   std::optional<render::MultipleScatteringMethod> ms_method;  // unset: light-volume unless --multiple N > 0 asks for octaves
-  int ms_grid = int(still_default(render::Setting::MsGrid));  // light volume: cells along the clouds' longest axis
-  int64_t ms_photons = int64_t(still_default(render::Setting::MsPhotons));  // light volume: photons from the sun
-  int ms_lobes = int(still_default(render::Setting::MsLobes));  // light volume: scattering orders kept as lobes
-  double ms_diffusion = still_default(render::Setting::MsDiffusionDepth);  // light volume: diffusion deeper than this (transport mfp; 0: off)
-  double ms_similarity = still_default(render::Setting::MsSimilarityDepth);  // light volume: similar medium deeper than this (transport mfp; 0: off)
-  uint64_t ms_seed = 1;              // light volume
-  double ms_occlusion = still_default(render::Setting::MsOcclusion);  // octaves' a, b, c
-  double ms_contribution = still_default(render::Setting::MsContribution);
-  double ms_eccentricity = still_default(render::Setting::MsEccentricity);
-  double blur_deg = still_default(render::Setting::Blur);
-  bool no_jitter = false;
-  bool no_grain_filter = false;      // slices: leave the jitter's grain in the picture (grain_filter.hpp)
   int spp = 64;                      // pathtrace: samples per pixel
   int bounces = 1000;                // pathtrace: scattering events per path at most
   uint64_t seed = 1;                 // pathtrace

@@ -30,26 +30,27 @@ void refuse_if_given_without(const CloudRenderArgs& a, const std::string& flag, 
   if (a.given.count(flag) && !applies) throw UsageError(flag + ": " + why);
 }
 
-// --multiple, --ms-method and the light volume's flags as the slicer's MultipleScattering; each
-// bad value a UsageError naming its flag. Without the sun the light volume (photons from the sun)
-// is not the default.
+// The request's multiple scattering (--multiple, the light volume's and the octaves' flags) with
+// its method chosen by --ms-method, else by what was given; each flag given where its method is
+// not in effect is a UsageError naming it. Without the sun the light volume (photons from the
+// sun) is not the default.
 render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool sun) {
-  render::MultipleScattering ms;
+  render::MultipleScattering ms = a.request.slices.multiple;
+  const std::optional<int> multiple =
+      a.settings_given.count(render::Setting::Multiple) ? std::optional(ms.octaves) : std::nullopt;
   if (!a.ms_method) {
-    ms.method = (a.multiple && *a.multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
-                                                        : render::MultipleScatteringMethod::LightVolume;
+    ms.method = (multiple && *multiple > 0) || !sun ? render::MultipleScatteringMethod::Octaves
+                                                    : render::MultipleScatteringMethod::LightVolume;
   } else {
     ms.method = *a.ms_method;
   }
-  if (a.multiple) check_flag(render::Setting::Multiple, *a.multiple);
   if (ms.method == render::MultipleScatteringMethod::LightVolume) {
     if (!sun) throw UsageError("--ms-method: light-volume traces photons from the sun, and nothing gives one (--sun)");
-    if (a.multiple && *a.multiple > 1)
+    if (multiple && *multiple > 1)
       throw UsageError("--multiple: --ms-method light-volume takes 0 (single scattering) or 1 (on), got " +
-                       std::to_string(*a.multiple));
-    if (a.multiple && *a.multiple == 0) ms.method = render::MultipleScatteringMethod::Octaves;  // octaves 0: single
-  } else {
-    ms.octaves = a.multiple.value_or(0);
+                       std::to_string(*multiple));
+    ms.octaves = render::MultipleScattering{}.octaves;  // --multiple 1 here means on, not an octave
+    if (multiple && *multiple == 0) ms.method = render::MultipleScatteringMethod::Octaves;  // octaves 0: single
   }
   const bool light_volume = ms.method == render::MultipleScatteringMethod::LightVolume;
   for (const char* flag : {"--ms-grid", "--ms-photons", "--ms-lobes", "--ms-diffusion-depth", "--ms-similarity-depth", "--ms-seed"})
@@ -60,24 +61,6 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
     refuse_if_given_without(a, flag, !light_volume && ms.octaves > 0,
                             "applies to the octaves of multiple scattering (--multiple 1-3 with --ms-method octaves), "
                             "which this render does not use");
-  // Each value against the one table's range (render_settings.hpp), named by its flag.
-  check_flag(render::Setting::MsGrid, a.ms_grid);
-  check_flag(render::Setting::MsPhotons, double(a.ms_photons));
-  check_flag(render::Setting::MsLobes, a.ms_lobes);
-  check_flag(render::Setting::MsDiffusionDepth, a.ms_diffusion);
-  check_flag(render::Setting::MsSimilarityDepth, a.ms_similarity);
-  check_flag(render::Setting::MsOcclusion, a.ms_occlusion);
-  check_flag(render::Setting::MsContribution, a.ms_contribution);
-  check_flag(render::Setting::MsEccentricity, a.ms_eccentricity);
-  ms.light_volume.resolution = a.ms_grid;
-  ms.light_volume.photons = a.ms_photons;
-  ms.light_volume.lobe_orders = a.ms_lobes;
-  ms.light_volume.diffusion_depth = a.ms_diffusion;
-  ms.light_volume.seed = a.ms_seed;
-  ms.light_volume.similarity_depth = a.ms_similarity;
-  ms.occlusion = a.ms_occlusion;
-  ms.contribution = a.ms_contribution;
-  ms.eccentricity = a.ms_eccentricity;
   return ms;
 }
 
@@ -131,21 +114,17 @@ void plan_frames_and_names(CloudRenderPlan& p, const CloudRenderArgs& a, const s
     for (const auto& [flag, name] : {std::pair<std::string, std::string>{"-o", output}, {"--preview", preview}})
       if (has_frame_field(name)) throw UsageError(flag + ": '" + echo(name) + "' holds a frame field but no --frames was given");
   check_exposure(exposure);
-  check_flag(render::Setting::CloudShadowRes, a.shadow_map_res);
 }
 
 // Stage 3: the clouds' optics (the scene's gas, the flags, the sky's ambient light).
 void plan_optics(CloudRenderPlan& p, const CloudRenderArgs& a) {
   render::CloudOptics& optics = p.frame.optics;
   const std::optional<render::Scene>& scene = p.frame.scene;
-  if (a.cloud_extinction) {
-    check_flag(render::Setting::CloudExtinction, *a.cloud_extinction);
-    optics.extinction_per_m = *a.cloud_extinction;
-  } else if (scene && scene->cloud_extinction_per_m) {
+  optics.extinction_per_m = a.request.optics.extinction_per_m;
+  if (!a.settings_given.count(render::Setting::CloudExtinction) && scene && scene->cloud_extinction_per_m)
     optics.extinction_per_m = *scene->cloud_extinction_per_m;  // the scene's gas (steam-lamp: a cup's steam)
-  }
-  if (a.cloud_albedo) optics.albedo = *a.cloud_albedo;
-  optics.phase = a.cloud_phase;
+  optics.albedo = a.request.optics.albedo;
+  optics.phase = a.request.optics.phase;
   // auto: the sky's mean radiance, set with the sun (plan_sun); 0 without a sky.
   if (a.ambient) optics.ambient_radiance = *a.ambient;
   try {
@@ -222,28 +201,16 @@ bool plan_sun(CloudRenderPlan& p, const CloudRenderArgs& a) {
 
 // Stage 5: the renderer's settings: the method, the slicer, the scene's shaft method.
 void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
-  check_flag(render::Setting::Slices, a.slices);
-  check_flag(render::Setting::LightRes, a.light_res);
-  check_flag(render::Setting::MaxLights, a.max_lights);
-  check_flag(render::Setting::Blur, a.blur_deg);
-  render::CloudSliceSettings slices;
-  slices.slices = a.slices;
-  slices.light_res = a.light_res;
-  slices.jitter = !a.no_jitter;
+  render::CloudSliceSettings slices = a.request.slices;  // the table's numbers, each checked as its flag was read
   slices.ambient = true;
-  slices.blur_cone_rad = a.blur_deg * kPi / 180.0;
   slices.multiple = multiple_scattering_of(a, sun);
-  slices.max_lights = a.max_lights;
-  slices.multiple.occlusion = a.ms_occlusion;
-  slices.multiple.contribution = a.ms_contribution;
-  slices.multiple.eccentricity = a.ms_eccentricity;
   // Only the slicer draws a periodic field's copies; the CPU methods draw each cloud once.
   refuse_if_given_without(a, "--repeat-to", p.cloud_method == render::CloudMethod::Slices,
                           "--method " + p.method + " draws each cloud once (the " +
                               (p.cloud_method == render::CloudMethod::PathTrace ? "path tracer" : "reference renderer") +
                               " does not repeat a periodic field); only --method slices draws its copies");
   const bool sky = p.frame.scene && p.frame.scene->name == "sky";
-  slices.repeat_to_m = a.repeat_to_m.value_or(sky ? render::setting(render::Setting::RepeatTo).still_default : 0.0);
+  if (!a.settings_given.count(render::Setting::RepeatTo) && !sky) slices.repeat_to_m = 0.0;  // auto: one tile
   try {
     render::validate(slices);
   } catch (const std::invalid_argument& e) {
@@ -251,7 +218,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
   }
   render::ShaftMethod shafts;
   if (p.frame.scene) {
-    shafts = a.shafts;
+    shafts = a.request.shafts;
     if (shafts.kind == render::ShaftMethod::Kind::Reference)
       throw UsageError("--shafts: the scene under GPU clouds needs a GPU method, not reference");
   }
@@ -259,7 +226,7 @@ void plan_settings(CloudRenderPlan& p, const CloudRenderArgs& a, bool sun) {
   fs.method = p.cloud_method;
   fs.slices = slices;
   fs.shafts = shafts;
-  fs.cloud_shadow_res = a.shadow_map_res;
+  fs.cloud_shadow_res = a.request.cloud_shadow_res;
   fs.shaft_settings.surface_airlight = a.surface_airlight;
 }
 

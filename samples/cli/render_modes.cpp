@@ -2,6 +2,7 @@
 #include "render_modes.hpp"
 
 #include "flag_checks.hpp"
+#include "setting_flags.hpp"
 
 namespace nimbus::cli {
 
@@ -9,7 +10,8 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
   constexpr unsigned all = kRenderScene | kRenderClouds | kRenderViewState;
   constexpr unsigned scene = kRenderScene, clouds = kRenderClouds, view = kRenderViewState;
   constexpr unsigned placed = kRenderScene | kRenderClouds;  // a scene or clouds the flags place
-  static const std::vector<FlagModes> table = {
+  static const std::vector<FlagModes> table = [] {
+    std::vector<FlagModes> t = {
       // Every mode: the image and its preview.
       {"--output", all}, {"--res", all}, {"--preview", all}, {"--exposure", all},
       {"--view-state", view},
@@ -25,14 +27,16 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       {"--many-frames", clouds}, {"--start-frame", clouds},
       {"--frame-from-env", clouds}, {"--chunk", clouds}, {"--sun", clouds}, {"--sun-elevation", clouds}, {"--sun-azimuth", clouds}, {"--time-of-day", clouds},
       {"--latitude", clouds}, {"--day-of-year", clouds}, {"--lamp", clouds}, {"--lamp-intensity", clouds},
-      {"--spot", clouds}, {"--spot-cone", clouds}, {"--max-lights", clouds}, {"--slices", clouds},
-      {"--light-res", clouds}, {"--repeat-to", clouds}, {"--cloud-shadow-res", clouds}, {"--shafts", clouds},
-      {"--cloud-extinction", clouds}, {"--cloud-albedo", clouds}, {"--cloud-phase", clouds},
-      {"--ambient", clouds}, {"--multiple", clouds}, {"--ms-method", clouds}, {"--ms-grid", clouds},
-      {"--ms-photons", clouds}, {"--ms-lobes", clouds}, {"--ms-diffusion-depth", clouds}, {"--ms-similarity-depth", clouds}, {"--ms-seed", clouds}, {"--blur", clouds},
-      {"--no-jitter", clouds}, {"--no-grain-filter", clouds | view}, {"--ms-occlusion", clouds}, {"--ms-contribution", clouds},
-      {"--ms-eccentricity", clouds}, {"--spp", clouds | view}, {"--bounces", clouds}, {"--seed", clouds},
-  };
+      {"--spot", clouds}, {"--spot-cone", clouds}, {"--shafts", clouds}, {"--cloud-albedo", clouds},
+      {"--cloud-phase", clouds}, {"--ambient", clouds}, {"--ms-method", clouds}, {"--ms-seed", clouds},
+      {"--no-jitter", clouds}, {"--no-grain-filter", clouds | view}, {"--spp", clouds | view}, {"--bounces", clouds},
+      {"--seed", clouds},
+    };
+    // The table's numbers that are the clouds' (setting_flags.hpp): --slices, --ms-photons...
+    for (const render::RenderSetting& s : render::kRenderSettings)
+      if (is_cloud_setting(s.id)) t.push_back({render::flag_name(s), clouds});
+    return t;
+  }();
   static const std::vector<std::string> names = {"a scene alone", "clouds (FILE.vdb or --preset)",
                                                  "a view state (--view-state)"};
   check_flags_apply(render, table, mode, names);

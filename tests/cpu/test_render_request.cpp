@@ -1,4 +1,5 @@
-// The render request (render/sky render_request.hpp): its JSON round-trips every field, a view
+// The render request (render/sky render_request.hpp): each setting of the one table bound to its
+// own field (request_settings.hpp), its JSON round-trips every field, a view
 // state is exactly the request plus the sky and the clocks (the same keys, read by the same code),
 // and a bad value or key is refused naming it.
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include <utility>
 
 #include "nimbus/render/sky/render_request.hpp"
+#include "nimbus/render/sky/request_settings.hpp"
 #include "nimbus/render/sky/view_state.hpp"
 
 namespace nimbus::render {
@@ -104,16 +106,51 @@ TEST(RenderRequest, BadValuesAndKeysAreNamed) {
   const std::pair<json, std::string> cases[] = {
       {{{"sky", json::object()}}, "request.sky: unknown key (known: scene, camera, optics, renderer)"},
       {{{"scene", "mars"}}, "request scene: unknown name 'mars'"},
-      {{{"camera", {{"fov", 0.5}}}}, "request camera.fov"},
+      {{{"camera", {{"fov", 0.5}}}}, "request.camera.fov: must be in [1, 179]"},
       {{{"optics", {{"phase", "dual:2"}}}}, "request.optics.phase: "},
       {{{"optics", {{"albedo", {1.5, 0.5, 0.5}}}}}, "request optics: "},
-      {{{"renderer", {{"slices", 1}}}}, "request renderer.slices"},
+      {{{"renderer", {{"slices", 1}}}}, "request.renderer.slices: must be in [2, 4096]"},
       {{{"renderer", {{"shafts", "reference"}}}}, "request renderer.shafts: the scene under GPU clouds needs a GPU method"},
       {{{"renderer", {{"speed", 2}}}}, "request.renderer.speed: unknown key"},
   };
   for (const auto& [doc, expected] : cases) {
     const std::string error = error_of(doc);
     EXPECT_NE(error.find(expected), std::string::npos) << doc.dump() << " gave: " << error;
+  }
+}
+
+// Each setting of the table the request holds has a field of its own: set at both ends of its
+// range, it reads back (the blur through its radians), moves that field alone, and a value beyond
+// the range is refused naming it, the field unchanged. The defaults are the table's.
+TEST(RenderRequest, EachSettingIsBoundToItsOwnField) {
+  EXPECT_FALSE(in_request(Setting::Speed));  // the view state's clock
+  EXPECT_THROW(setting_value(RenderRequest{}, Setting::Speed), std::logic_error);
+  RenderRequest still;
+  set_setting_defaults(still, SettingDefaults::Still);
+  const json base = render_request_to_json(RenderRequest{});
+  for (const RenderSetting& s : kRenderSettings) {
+    if (!in_request(s.id)) continue;
+    SCOPED_TRACE(std::string(s.flag));
+    EXPECT_EQ(setting_value(RenderRequest{}, s.id), s.view_default);
+    EXPECT_EQ(setting_value(still, s.id), s.still_default);
+    const double step = s.integer ? 1.0 : 1e-6 * (s.max - s.min);
+    for (const double v : {s.min_open ? s.min + step : s.min, s.max_open ? s.max - step : s.max}) {
+      RenderRequest r;
+      set_setting_value(r, s.id, v, "NAME");
+      EXPECT_NEAR(setting_value(r, s.id), v, 1e-12 * std::max(1.0, std::abs(v)));
+      for (const RenderSetting& other : kRenderSettings) {  // no other setting moved
+        if (other.id == s.id || !in_request(other.id)) continue;
+        EXPECT_EQ(setting_value(r, other.id), other.view_default) << other.flag;
+      }
+    }
+    RenderRequest r;
+    try {
+      set_setting_value(r, s.id, s.max_open ? s.max : s.max + step, "NAME");
+      ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("NAME: must be in " + range_text(s), 0), 0u) << e.what();
+    }
+    EXPECT_EQ(setting_value(r, s.id), s.view_default);
   }
 }
 

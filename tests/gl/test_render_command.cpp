@@ -43,12 +43,14 @@ TEST(RenderCommand, LeftOutFlagsKeepTheLibraryDefaults) {
   EXPECT_EQ(a.lamp_intensity_w_sr, glm::dvec3(100.0));
   EXPECT_FALSE(a.spot_axis.has_value());
   EXPECT_EQ(a.spot_cone_deg, glm::dvec2(20.0, 30.0));
-  EXPECT_FALSE(a.repeat_to_m.has_value());  // auto
-  EXPECT_EQ(render::to_string(a.shafts), render::to_string(render::parse_shaft_method(kCloudShaftsDefault)));
-  EXPECT_FALSE(a.cloud_albedo.has_value());
-  EXPECT_EQ(a.cloud_phase.g, render::kCloudPhase.g);
-  EXPECT_EQ(a.cloud_phase.g_back, render::kCloudPhase.g_back);
-  EXPECT_EQ(a.cloud_phase.forward_weight, render::kCloudPhase.forward_weight);
+  EXPECT_TRUE(a.settings_given.empty());  // --repeat-to and the rest: auto, or the table's
+  EXPECT_EQ(render::to_string(a.request.shafts), render::to_string(render::parse_shaft_method(kCloudShaftsDefault)));
+  EXPECT_EQ(a.request.optics.albedo, glm::dvec3(render::kCloudAlbedo));
+  EXPECT_EQ(a.request.optics.phase, render::kCloudPhase);
+  for (const render::RenderSetting& s : render::kRenderSettings) {
+    if (!render::in_request(s.id)) continue;
+    EXPECT_EQ(render::setting_value(a.request, s.id), s.still_default) << s.flag;
+  }
   EXPECT_FALSE(a.ambient.has_value());  // auto
   EXPECT_FALSE(a.ms_method.has_value());
 }
@@ -66,19 +68,25 @@ TEST(RenderCommand, TypedFlagsFillTypedFields) {
   ASSERT_TRUE(a.spot_axis.has_value());
   EXPECT_EQ(*a.spot_axis, glm::dvec3(0.0, -2.0, 0.0));
   EXPECT_EQ(a.spot_cone_deg, glm::dvec2(10.0, 25.0));
-  ASSERT_TRUE(a.repeat_to_m.has_value());
-  EXPECT_EQ(*a.repeat_to_m, 500.0);
-  EXPECT_EQ(a.shafts.kind, render::ShaftMethod::Kind::Analytic);
-  ASSERT_TRUE(a.cloud_albedo.has_value());
-  EXPECT_EQ(*a.cloud_albedo, glm::dvec3(0.9));
-  EXPECT_EQ(a.cloud_phase.g, 0.5);
-  EXPECT_EQ(a.cloud_phase.forward_weight, 1.0);  // hg:G is one lobe
+  ASSERT_TRUE(a.settings_given.count(render::Setting::RepeatTo));
+  EXPECT_EQ(a.request.slices.repeat_to_m, 500.0);
+  EXPECT_EQ(a.request.shafts.kind, render::ShaftMethod::Kind::Analytic);
+  EXPECT_EQ(a.request.optics.albedo, glm::dvec3(0.9));
+  EXPECT_EQ(a.request.optics.phase.g, 0.5);
+  EXPECT_EQ(a.request.optics.phase.forward_weight, 1.0);  // hg:G is one lobe
   ASSERT_TRUE(a.ambient.has_value());
   EXPECT_EQ(*a.ambient, glm::dvec3(0.1, 0.2, 0.3));
   ASSERT_TRUE(a.ms_method.has_value());
   EXPECT_EQ(*a.ms_method, render::MultipleScatteringMethod::Octaves);
   // "auto" is a value of its own.
-  EXPECT_FALSE(parsed({"--repeat-to", "auto", "--ambient", "auto"}).repeat_to_m.has_value());
+  EXPECT_FALSE(parsed({"--repeat-to", "auto", "--ambient", "auto"}).settings_given.count(render::Setting::RepeatTo));
+  // The table's numbers reach the request's fields, in the fields' units.
+  const CloudRenderArgs t = parsed({"--slices", "64", "--blur", "10", "--ms-photons", "4096", "--cloud-shadow-res", "128"});
+  EXPECT_EQ(t.request.slices.slices, 64);
+  EXPECT_DOUBLE_EQ(t.request.slices.blur_cone_rad, 10.0 * 3.14159265358979323846 / 180.0);
+  EXPECT_EQ(t.request.slices.multiple.light_volume.photons, 4096);
+  EXPECT_EQ(t.request.cloud_shadow_res, 128);
+  EXPECT_EQ(t.settings_given.size(), 4u);
 }
 
 TEST(RenderCommand, BadTextIsAParseErrorNamingTheFlag) {
@@ -89,8 +97,11 @@ TEST(RenderCommand, BadTextIsAParseErrorNamingTheFlag) {
       {{"--spot-cone", "30,20"}, "--spot-cone: '30,20' must be INNER,OUTER degrees"},
       {{"--spot-cone", "0,20"}, "--spot-cone: '0,20'"},
       {{"--spot-cone", "10,181"}, "--spot-cone: '10,181'"},
-      {{"--repeat-to", "-1"}, "--repeat-to: '-1' is not auto or a distance in [0, 1e+06] metres"},
-      {{"--repeat-to", "2e6"}, "--repeat-to: '2e6'"},
+      {{"--repeat-to", "-1"}, "--repeat-to: must be in [0, 1e+06] metres, got -1"},
+      {{"--repeat-to", "2e6"}, "--repeat-to: must be in [0, 1e+06] metres, got 2e+06"},
+      {{"--slices", "1.5"}, "--slices: must be in [2, 4096], got 1.5"},
+      {{"--ms-photons", "lots"}, "--ms-photons: 'lots' is not an integer"},
+      {{"--blur", "90"}, "--blur: must be in [0, 90) degrees, got 90"},
       {{"--shafts", "raymarch:0"}, "--shafts: "},
       {{"--cloud-albedo", "1,2"}, "--cloud-albedo: '1,2'"},
       {{"--cloud-phase", "dual:2"}, "--cloud-phase: "},

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "json_members.hpp"
+#include "nimbus/render/sky/request_settings.hpp"
 #include "nimbus/render/core/world_axes.hpp"
 #include "nimbus/render/scene/scene.hpp"
 
@@ -28,51 +29,73 @@ void check_scene_name(const std::string& scene, const std::string& what) {
   bad(what + " scene: unknown name '" + echo(scene) + "' (known: " + known + "none)");
 }
 
+// A number of the one table at "<section>.<k>" read into its field (request_settings.hpp), its
+// range checked naming `key`; false when no setting has that key.
+bool read_setting(RenderRequest& r, const std::string& section, const std::string& k, const json& v,
+                  const std::string& key) {
+  const Setting id = setting_at_view_key(section, k);
+  if (id == Setting::Count) return false;
+  double value = 0.0;
+  if (setting(id).integer) {
+    if (!v.is_number_integer()) bad(key + " must be an integer");
+    value = v.is_number_unsigned() ? double(v.get<std::uint64_t>()) : double(v.get<std::int64_t>());
+  } else {
+    value = number(v, key);
+  }
+  set_setting_value(r, id, value, key);
+  return true;
+}
+
+// "eye, look_at, fov": a section's keys, its own then the table's, for an unknown key's error.
+std::string known_keys(const std::string& section, const std::string& own) {
+  std::string known = own;
+  for (const RenderSetting& s : kRenderSettings)
+    if (s.view_key.substr(0, s.view_key.find('.')) == section)
+      known += ", " + std::string(s.view_key.substr(s.view_key.find('.') + 1));
+  return known;
+}
+
 void read_camera(RenderRequest& r, const json& v, const std::string& key, int version) {
   members(v, key, [&](const std::string& ck, const json& cv, const std::string& ckey) {
+    if (read_setting(r, "camera", ck, cv, ckey)) return;
     if (ck == "eye") r.camera.eye = camera_point(vec3(cv, ckey), version);
     else if (ck == "look_at") r.camera.look_at = camera_point(vec3(cv, ckey), version);
-    else if (ck == "fov") r.camera.fov_deg = number(cv, ckey);
-    else bad(ckey + ": unknown key (known: eye, look_at, fov)");
+    else bad(ckey + ": unknown key (known: " + known_keys("camera", "eye, look_at") + ")");
   });
 }
 
 void read_optics(RenderRequest& r, const json& v, const std::string& key) {
   members(v, key, [&](const std::string& ok, const json& ov, const std::string& okey) {
-    if (ok == "extinction") r.optics.extinction_per_m = number(ov, okey);
-    else if (ok == "albedo") r.optics.albedo = vec3(ov, okey);
+    if (read_setting(r, "optics", ok, ov, okey)) return;
+    if (ok == "albedo") r.optics.albedo = vec3(ov, okey);
     else if (ok == "phase") r.optics.phase = parsed(ov, okey, "isotropic, hg:G or dual:GF,GB,W", parse_cloud_phase);
-    else if (ok == "multiple") r.slices.multiple.octaves = integer(ov, okey);
     else if (ok == "ms_method")
       r.slices.multiple.method = parsed(ov, okey, "light-volume or octaves", parse_multiple_scattering_method);
-    else if (ok == "ms_grid") r.slices.multiple.light_volume.resolution = integer(ov, okey);
-    else if (ok == "ms_photons") {
-      if (!ov.is_number_integer()) bad(okey + " must be an integer");
-      r.slices.multiple.light_volume.photons = ov.get<std::int64_t>();
-    } else bad(okey + ": unknown key (known: extinction, albedo, phase, multiple, ms_method, ms_grid, ms_photons)");
+    else bad(okey + ": unknown key (known: " + known_keys("optics", "albedo, phase, ms_method") + ")");
   });
 }
 
 void read_renderer(RenderRequest& r, const json& v, const std::string& key) {
   members(v, key, [&](const std::string& rk, const json& rv, const std::string& rkey) {
-    if (rk == "slices") r.slices.slices = integer(rv, rkey);
-    else if (rk == "light_res") r.slices.light_res = integer(rv, rkey);
-    else if (rk == "cloud_shadow_res") r.cloud_shadow_res = integer(rv, rkey);
-    else if (rk == "render_scale") r.render_scale = number(rv, rkey);
-    else if (rk == "exposure") r.exposure_stops = number(rv, rkey);
-    else if (rk == "jitter") r.slices.jitter = volume::json_bool(rv, rkey);
+    if (read_setting(r, "renderer", rk, rv, rkey)) return;
+    if (rk == "jitter") r.slices.jitter = volume::json_bool(rv, rkey);
     else if (rk == "grain_filter") r.grain_filter.on = volume::json_bool(rv, rkey);
-    else if (rk == "repeat_to") r.slices.repeat_to_m = number(rv, rkey);
     else if (rk == "shafts") r.shafts = parsed(rv, rkey, "a shaft method such as raymarch:24", parse_shaft_method);
-    else bad(rkey + ": unknown key (known: slices, light_res, cloud_shadow_res, render_scale, exposure, jitter, grain_filter, repeat_to, shafts)");
+    else bad(rkey + ": unknown key (known: " + known_keys("renderer", "jitter, grain_filter, shafts") + ")");
   });
 }
 
 }  // namespace
 
+RenderRequest::RenderRequest() { set_setting_defaults(*this, SettingDefaults::View); }
+
 void validate(const RenderRequest& r, const std::string& what) {
-  // A number the JSON holds, against the one table's range, named by its key.
-  const auto check = [&](Setting id, double value) { check_setting(id, value, what + " " + std::string(setting(id).view_key)); };
+  // A number against the one table's range, named by its key (by its flag where a file does not
+  // hold it).
+  const auto check = [&](Setting id, double value) {
+    const RenderSetting& s = setting(id);
+    check_setting(id, value, what + " " + (s.view_key.empty() ? flag_name(s) : std::string(s.view_key)));
+  };
   const auto named = [&](const std::string& part, const auto& validate_part) {
     try {
       validate_part();
@@ -81,27 +104,16 @@ void validate(const RenderRequest& r, const std::string& what) {
     }
   };
   check_scene_name(r.scene, what);
-  // Below 1 degree the view holds a speck of sky (the table's range, the CLI's --fov's).
-  check(Setting::Fov, r.camera.fov_deg);
+  // Every number of the table the request holds, against its range (a program's own request is
+  // not checked as its JSON is read).
+  for (const RenderSetting& s : kRenderSettings)
+    if (in_request(s.id)) check(s.id, setting_value(r, s.id));
   named("camera", [&] { validate(r.camera); });
-  check(Setting::CloudExtinction, r.optics.extinction_per_m);
   named("optics", [&] { validate(r.optics); });
-  const MultipleScattering& ms = r.slices.multiple;
-  check(Setting::Multiple, ms.octaves);
-  check(Setting::MsGrid, ms.light_volume.resolution);
-  check(Setting::MsPhotons, double(ms.light_volume.photons));
-  check(Setting::Slices, r.slices.slices);
-  check(Setting::LightRes, r.slices.light_res);
-  check(Setting::RepeatTo, r.slices.repeat_to_m);
   named("renderer", [&] {
     validate(r.slices);  // what the JSON does not hold: the defaults, or a program's own
     validate(r.grain_filter);
   });
-  check(Setting::CloudShadowRes, r.cloud_shadow_res);
-  // The renderer draws no less than 1 % of the window's size (sky_renderer.cpp); below it the
-  // scale would be silently raised.
-  check(Setting::RenderScale, r.render_scale);
-  check(Setting::Exposure, r.exposure_stops);
   if (r.shafts.kind == ShaftMethod::Kind::Reference)
     bad(what + " renderer.shafts: the scene under GPU clouds needs a GPU method, not reference");
 }
@@ -137,29 +149,23 @@ RenderRequest render_request_from_json(const json& doc, const std::string& where
 }
 
 json render_request_to_json(const RenderRequest& r) {
-  return {{"scene", r.scene},
-          {"camera",
-           {{"eye", to_json(render_to_world(r.camera.eye))},
-            {"look_at", to_json(render_to_world(r.camera.look_at))},
-            {"fov", r.camera.fov_deg}}},
-          {"optics",
-           {{"extinction", r.optics.extinction_per_m},
-            {"albedo", to_json(r.optics.albedo)},
-            {"phase", to_string(r.optics.phase)},
-            {"multiple", r.slices.multiple.octaves},
-            {"ms_method", to_string(r.slices.multiple.method)},
-            {"ms_grid", r.slices.multiple.light_volume.resolution},
-            {"ms_photons", r.slices.multiple.light_volume.photons}}},
-          {"renderer",
-           {{"slices", r.slices.slices},
-            {"light_res", r.slices.light_res},
-            {"cloud_shadow_res", r.cloud_shadow_res},
-            {"render_scale", r.render_scale},
-            {"exposure", r.exposure_stops},
-            {"jitter", r.slices.jitter},
-            {"grain_filter", r.grain_filter.on},
-            {"repeat_to", r.slices.repeat_to_m},
-            {"shafts", to_string(r.shafts)}}}};
+  json doc = {{"scene", r.scene},
+              {"camera", {{"eye", to_json(render_to_world(r.camera.eye))}, {"look_at", to_json(render_to_world(r.camera.look_at))}}},
+              {"optics",
+               {{"albedo", to_json(r.optics.albedo)},
+                {"phase", to_string(r.optics.phase)},
+                {"ms_method", to_string(r.slices.multiple.method)}}},
+              {"renderer",
+               {{"jitter", r.slices.jitter}, {"grain_filter", r.grain_filter.on}, {"shafts", to_string(r.shafts)}}}};
+  // The table's numbers at their view keys (an integer setting as a JSON integer).
+  for (const RenderSetting& s : kRenderSettings) {
+    if (s.view_key.empty() || !in_request(s.id)) continue;
+    const std::size_t dot = s.view_key.find('.');
+    const double v = setting_value(r, s.id);
+    doc[std::string(s.view_key.substr(0, dot))][std::string(s.view_key.substr(dot + 1))] =
+        s.integer ? json(std::int64_t(v)) : json(v);
+  }
+  return doc;
 }
 
 }  // namespace nimbus::render

@@ -21,6 +21,12 @@
 namespace nimbus::render {
 
 struct RenderRequest {
+  // Every number of the one table (render_settings.hpp) at its view default, the file format's:
+  // the viewer's where it trades error for speed (2^19 light-volume photons, a quarter of `nimbus
+  // render`'s: a keyframe's volume in about half a second on 2 cores, 0.4-0.5 points more error,
+  // docs/viewer.md). request_settings.hpp binds each to its field below.
+  RenderRequest();
+
   // What lies under and behind the clouds: "sky" (ground, haze and sky lit by the sky's sun),
   // another scene preset (its own lights; its sun, if it has one, follows the sky's), or "none".
   std::string scene = "sky";
@@ -31,31 +37,20 @@ struct RenderRequest {
     Camera c;
     c.eye = {-600.0, 250.0, 5200.0};
     c.look_at = {400.0, 1500.0, -1500.0};
-    c.fov_deg = setting(Setting::Fov).view_default;
     return c;
   }();
-  // Cloud optics: extinction, albedo, phase. Their ambient_radiance is not the request's: the
-  // sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither saved nor read.
-  CloudOptics optics{setting(Setting::CloudExtinction).view_default, glm::dvec3(kCloudAlbedo), kCloudPhase,
-                     glm::dvec3(0.0)};
+  // Cloud optics: extinction (the table's), albedo, phase. Their ambient_radiance is not the
+  // request's: the sky's daylight sets it as the frame is made (sun_setup.hpp), and it is neither
+  // saved nor read.
+  CloudOptics optics{0.0, glm::dvec3(kCloudAlbedo), kCloudPhase, glm::dvec3(0.0)};
   // The slicer at full quality (the viewer's adaptive quality lowers slices and scale in
   // motion), jitter (one fixed blue-noise pattern: no flicker), and multiple scattering: the
   // photon-traced light volume (built per keyframe in the background: keyframe_light_volumes.hpp),
   // or octaves (also drawn while the first light volume is being built). A periodic field's tiles
-  // are repeated out to repeat_to, within the aerial perspective's 40 km reach. Every number the
-  // JSON holds takes its range and its default from the one table (render_settings.hpp), whose
-  // view_default is the viewer's where it trades error for speed (2^19 photons, a quarter of
-  // `nimbus render`'s: a keyframe's volume in about half a second on 2 cores, 0.4-0.5 points more
-  // error, docs/viewer.md). The others keep CloudSliceSettings' defaults.
+  // are repeated out to repeat_to, within the aerial perspective's 40 km reach.
   CloudSliceSettings slices = [] {
     CloudSliceSettings s;
-    s.slices = int(setting(Setting::Slices).view_default);
-    s.light_res = int(setting(Setting::LightRes).view_default);
     s.multiple.method = MultipleScatteringMethod::LightVolume;
-    s.multiple.octaves = int(setting(Setting::Multiple).view_default);
-    s.multiple.light_volume.resolution = int(setting(Setting::MsGrid).view_default);
-    s.multiple.light_volume.photons = std::int64_t(setting(Setting::MsPhotons).view_default);
-    s.repeat_to_m = setting(Setting::RepeatTo).view_default;
     return s;
   }();
   ShaftMethod shafts = [] {  // a GPU method ("raymarch:24" in the JSON)
@@ -67,9 +62,9 @@ struct RenderRequest {
   // A still's grain filter (grain_filter.hpp): on while a still is the mean of few jittered
   // frames ("grain_filter" in the JSON, true or false; the rest of it keeps its defaults).
   GrainFilter grain_filter;
-  int cloud_shadow_res = int(setting(Setting::CloudShadowRes).view_default);
-  double render_scale = setting(Setting::RenderScale).view_default;  // the frame's share of the window's size
-  double exposure_stops = setting(Setting::Exposure).view_default;   // display and PNG screenshots: radiance times 2^stops
+  int cloud_shadow_res = 0;   // texels per side of the clouds' shadow on the scene
+  double render_scale = 1.0;  // the frame's share of the window's size
+  double exposure_stops = 0.0;  // display and PNG screenshots: radiance times 2^stops
 };
 
 // Throws std::invalid_argument naming the field as `what` KEY ("view state optics: ...").

@@ -45,6 +45,24 @@ def test_camera_defaults_are_the_programs(run, tmp_path, humilis):
     assert_same_pixels(ours, theirs)
 
 
+def test_a_request_file_renders_as_its_values_given_as_keywords(tmp_path, humilis):
+    """request= reads nimbus render --request's JSON: the same pixels as its values given one by
+    one, and a keyword given with it overrides the file's value."""
+    v, _ = humilis
+    request = tmp_path / "request.json"
+    request.write_text('{"camera": {"eye": [900, -1800, 300], "look_at": [0, 0, 1000], "fov": 40},'
+                       ' "optics": {"phase": "hg:0.3", "multiple": 0, "ms_method": "octaves"},'
+                       ' "renderer": {"slices": 32, "repeat_to": 0}}')
+    given = dict(scene="none", res=(48, 27), sun=(0.3, -0.5, 0.8))
+    ours = nimbus.render(v, request=str(request), **given)
+    assert ours[..., 3].max() > 0.1  # the cloud covers pixels
+    spelled = dict(eye=(900, -1800, 300), look_at=(0, 0, 1000), fov=40, cloud_phase="hg:0.3", multiple=0,
+                   ms_method="octaves", slices=32, repeat_to=0, **given)
+    np.testing.assert_array_equal(ours, nimbus.render(v, **spelled))
+    np.testing.assert_array_equal(nimbus.render(v, request=str(request), slices=64, **given),
+                                  nimbus.render(v, **(spelled | {"slices": 64})))
+
+
 def test_render_of_a_path_equals_the_render_of_its_volume(humilis):
     v, path = humilis
     options = dict(scene="none", res=(48, 27), sun=(0.3, -0.5, 0.8), ms_photons=1 << 17, slices=64)

@@ -23,6 +23,7 @@
 #include "nimbus/base/input_limits.hpp"
 #include "nimbus/base/memory.hpp"
 #include "nimbus/render/image/image_io.hpp"
+#include "nimbus/volume/json_io.hpp"
 #include "nimbus/volume/vdb_read.hpp"
 #include "outputs.hpp"
 #include "progress.hpp"
@@ -112,7 +113,32 @@ std::string describe_clouds(const CloudRenderArgs& a, int frame, bool sequence) 
 
 }  // namespace
 
+// --request FILE: the file's request in place of a still's defaults. CLI11 runs callbacks in the
+// order the options were added, so this one comes first and the flags override it. Every value
+// in the file is stated, as a flag is given: its method of multiple scattering is --ms-method's
+// (a view state's octaves are the viewer's fallback, not a still's).
+void add_request_file_option(CLI::App* cmd, CloudRenderArgs& a) {
+  cmd->add_option_function<std::string>(
+      "--request",
+      [&a](const std::string& path) {
+        a.request = parse_flag_text("--request", path, [&](const std::string& p) {
+          const nlohmann::json doc = volume::read_json_file(p, "render request");
+          if (doc.is_object() && (doc.contains("sky") || doc.contains("time")))
+            throw UsageError("--request: '" + echo(p) + "' is a view state (it holds a sky and clocks): render it with "
+                             "--view-state, or keep its scene, camera, optics and renderer as a request");
+          return render::render_request_from_json(doc, "render request '" + p + "'");
+        });
+        a.request_file = path;
+        a.ms_method = a.request.slices.multiple.method;
+        for (const render::RenderSetting& s : render::kRenderSettings)
+          if (is_cloud_setting(s.id) && s.id != render::Setting::Multiple) a.settings_given.insert(s.id);
+      },
+      "A render request (JSON: scene, camera, optics, renderer, as a view state holds them; docs/cli.md) in place "
+      "of the defaults; the flags given override it");
+}
+
 void add_cloud_render_options(CLI::App* cmd, CloudRenderArgs& a) {
+  add_request_file_option(cmd, a);
   cmd->add_option("file", a.files, "VDB file(s) of clouds (a %04d pattern with --frames)");
   cmd->add_option("--preset", a.presets, "Cloud preset(s) to generate (nimbus presets)");
   cmd->add_option("--grid", a.grid, "Grid name in the files (default: density, else the first float grid)");
@@ -176,17 +202,19 @@ void check_cloud_render_files(const CloudRenderArgs& a, const CloudRenderPlan& p
     for (const std::string& pattern : a.files)
       inputs.file("FILE", frame_path(pattern, frame, range.sequence && has_frame_field(pattern)));
   }
+  if (!a.request_file.empty()) inputs.file("--request", a.request_file);
   for (const PathArg& in : inputs.paths()) refuse_special_file(in.path, in.flag);
   check_outputs(outputs, inputs);
 }
 
-// The camera of a frame: framed on its clouds unless the flags place it, or the scene is made for
+// The camera of a frame: framed on its clouds unless the flags or a request file place it, or the scene is made for
 // its gas (steam-lamp: its camera is aimed where the steam rises).
 render::Camera frame_camera(const CloudRenderArgs& a, const CloudRenderPlan& plan, const CameraArgs& camera_args,
                             const std::vector<render::CloudVolume>& clouds, int frame) {
   const std::optional<render::Scene>& scene = plan.frame.scene;
   render::Camera camera = plan.frame.camera;
-  const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && !(scene && scene->cloud_extinction_per_m);
+  const bool framed = camera_args.eye.empty() && camera_args.look_at.empty() && a.request_file.empty() &&
+                      !(scene && scene->cloud_extinction_per_m);
   if (framed) {
     CameraArgs size_only;
     size_only.res = camera_args.res;
@@ -203,7 +231,7 @@ render::Camera frame_camera(const CloudRenderArgs& a, const CloudRenderPlan& pla
     throw std::runtime_error("framing the camera on " + describe_clouds(a, frame, plan.range.sequence) + ": " + e.what());
   }
   const double repeat_to_m = plan.frame.settings.slices.repeat_to_m;
-  if (!camera_args.eye.empty() || !camera_args.look_at.empty() || repeat_to_m > 0.0)
+  if (!camera_args.eye.empty() || !camera_args.look_at.empty() || !a.request_file.empty() || repeat_to_m > 0.0)
     camera = render::fit_far_plane(camera, clouds, repeat_to_m);
   return camera;
 }
@@ -286,7 +314,8 @@ int run_render_clouds(const CloudRenderArgs& a, const std::string& scene_name, b
     if (sink)
       sink(image, frame);
     else
-      write_cloud_frame(image, plan, camera, stats, renderer.clouds().size(), seconds, frame, output, preview, exposure);
+      write_cloud_frame(image, plan, camera, stats, renderer.clouds().size(), seconds, frame, output, preview,
+                        exposure || a.request_file.empty() ? exposure : std::optional(a.request.exposure_stops));
   }
   return 0;
 }

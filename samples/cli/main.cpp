@@ -92,6 +92,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "nimbus: %s\n", one_line(e.what()).c_str());
     return 2;
+  } catch (const std::exception& e) {  // a file a flag reads as it is parsed (--request) cannot be read
+    std::fprintf(stderr, "nimbus: error: %s\n", one_line(e.what()).c_str());
+    return 1;
   }
   try {
     nimbus::cli::refuse_empty_values(app);

@@ -61,6 +61,11 @@ struct CloudRenderArgs {
   // numbers (render_settings.hpp; --fov and --exposure are the render command's own, in every
   // mode), the optics' albedo and phase, the scene's shaft method, jitter, the grain filter.
   render::RenderRequest request = still_request();
+  // --request FILE: a render request's JSON (render_request.hpp; a view state's scene, camera,
+  // optics and renderer), read before the flags, which override it. Its camera is used as it is
+  // (not framed on the clouds), its exposure is the preview's, and its render_scale is the
+  // viewer's alone.
+  std::string request_file;
   std::set<render::Setting> settings_given;  // the table's settings given a value (not auto) by a flag
   bool surface_airlight = true;      // the scene's surfaces reflect the fog's airlight (--no-surface-airlight)
   std::optional<glm::dvec3> ambient;                // W m^-2 sr^-1; unset (auto): the sky's mean radiance, else 0

@@ -65,7 +65,7 @@ render::MultipleScattering multiple_scattering_of(const CloudRenderArgs& a, bool
 }
 
 // Stage 1: the method (slices, reference, pathtrace) and the scene under the clouds.
-void plan_method_and_scene(CloudRenderPlan& p, const std::string& scene_name, bool scene_given,
+void plan_method_and_scene(CloudRenderPlan& p, const CloudRenderArgs& a, const std::string& scene_name, bool scene_given,
                            const std::string& method_text, bool method_given) {
   p.method = method_given ? method_text : "slices";
   try {
@@ -73,7 +73,7 @@ void plan_method_and_scene(CloudRenderPlan& p, const std::string& scene_name, bo
   } catch (const std::invalid_argument&) {
     throw UsageError("--method: '" + p.method + "' is not a cloud method (slices, reference or pathtrace)");
   }
-  const std::string scene_choice = scene_given ? scene_name : "sky";
+  const std::string scene_choice = scene_given ? scene_name : a.request.scene;  // "sky" unless a request file says
   const bool no_scene = scene_choice == "none";
   if (render::is_cpu_method(p.cloud_method) && !no_scene)
     throw UsageError("--method " + p.method + " renders clouds alone, without a scene: add --scene none");
@@ -255,6 +255,11 @@ void plan_camera_and_presets(CloudRenderPlan& p, const CloudRenderArgs& a) {
     camera.height = 512;
     camera.fov_deg = 44.8;  // vdb_render's default
   }
+  if (!a.request_file.empty()) {  // its view, as it is (the flags apply over it)
+    camera.eye = a.request.camera.eye;
+    camera.look_at = a.request.camera.look_at;
+    camera.fov_deg = a.request.camera.fov_deg;
+  }
   for (const std::string& name : a.presets) {
     try {
       p.presets.push_back(render::load_preset_cloud(name));
@@ -286,7 +291,7 @@ CloudRenderPlan plan_cloud_render(const CloudRenderArgs& a, const std::string& s
                                   const std::string& method_text, bool method_given, const std::string& output,
                                   const std::string& preview, std::optional<double> exposure) {
   CloudRenderPlan p;
-  plan_method_and_scene(p, scene_name, scene_given, method_text, method_given);
+  plan_method_and_scene(p, a, scene_name, scene_given, method_text, method_given);
   plan_frames_and_names(p, a, output, preview, exposure);
   plan_optics(p, a);
   plan_lamps(p, a);

@@ -22,7 +22,7 @@ void check_render_flags(const CLI::App& render, RenderMode mode) {
       {"--jitter", scene}, {"--shadow-res", scene}, {"--extinction", scene}, {"--albedo", scene},
       {"--phase", scene}, {"--hide-bulbs", scene},
       // Clouds (add_cloud_render_options).
-      {"file", clouds}, {"--preset", clouds}, {"--grid", clouds}, {"--up-axis", clouds}, {"--level-set-to-fog", clouds},
+      {"file", clouds}, {"--request", clouds}, {"--preset", clouds}, {"--grid", clouds}, {"--up-axis", clouds}, {"--level-set-to-fog", clouds},
       {"--voxel-size", clouds}, {"--time", clouds}, {"--frames", clouds}, {"--fps", clouds}, {"--time-scale", clouds},
       {"--many-frames", clouds}, {"--start-frame", clouds},
       {"--frame-from-env", clouds}, {"--chunk", clouds}, {"--sun", clouds}, {"--sun-elevation", clouds}, {"--sun-azimuth", clouds}, {"--time-of-day", clouds},

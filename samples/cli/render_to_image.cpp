@@ -62,7 +62,7 @@ render::Image render_clouds_image(const std::vector<std::string>& args, std::vec
     if (o->count() > 0) a.clouds.given.insert(o->get_name());
   a.clouds.surface_airlight = !a.no_surface_airlight;
   render::Image out;
-  run_render_clouds(a.clouds, a.scene, true, a.method, cmd->count("--method") > 0, a.camera, "", "", std::nullopt,
+  run_render_clouds(a.clouds, a.scene, cmd->count("--scene") > 0, a.method, cmd->count("--method") > 0, a.camera, "", "", std::nullopt,
                     [&](render::Image& image, int) { out = std::move(image); });
   return out;
 }

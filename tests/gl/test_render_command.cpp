@@ -12,6 +12,7 @@
 #include "cli.hpp"
 #include "render_clouds.hpp"
 #include "render_to_image.hpp"
+#include "support/vdb_fixtures.hpp"
 #include "test_gl_support.hpp"
 
 namespace nimbus::cli {
@@ -35,6 +36,13 @@ std::string parse_error(const std::vector<std::string>& flags) {
     return e.what();
   }
   return "";
+}
+
+// The picture's summed alpha: pixels' worth of cloud.
+double coverage(const render::Image& image) {
+  double sum = 0.0;
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4) sum += image.rgba[i];
+  return sum;
 }
 
 TEST(RenderCommand, LeftOutFlagsKeepTheLibraryDefaults) {
@@ -129,9 +137,7 @@ TEST(RenderCommand, TypedDefaultsSpelledOutGiveTheVeryPixels) {
   const render::Image b = render_clouds_image(spelled);
   ASSERT_EQ(a.rgba.size(), b.rgba.size());
   EXPECT_EQ(a.rgba, b.rgba);
-  double lit = 0.0;
-  for (std::size_t i = 3; i < a.rgba.size(); i += 4) lit += a.rgba[i];
-  EXPECT_GT(lit, 10.0) << "the cloud covers some of the frame (else the comparison proves nothing)";
+  EXPECT_GT(coverage(a), 10.0) << "the cloud covers some of the frame (else the comparison proves nothing)";
   // And a value that is not the default changes them.
   std::vector<std::string> other = base;
   for (const char* flag : {"--cloud-phase", "hg:0.2"}) other.push_back(flag);
@@ -141,6 +147,43 @@ TEST(RenderCommand, TypedDefaultsSpelledOutGiveTheVeryPixels) {
   std::vector<std::string> dual = base;
   for (const char* flag : {"--cloud-phase", "dual:0.2,-0.5,1"}) dual.push_back(flag);
   EXPECT_EQ(render_clouds_image(dual).rgba, hg.rgba);
+}
+
+// A request file is the request the flags make: its scene, camera, optics and renderer render the
+// very pixels of the same values given as flags, and a flag given with it overrides the file's
+// value, as that flag alone would. A view state is not a request, and is refused naming the file.
+TEST(RenderCommand, ARequestFileIsTheFlagsRequest) {
+  NIMBUS_REQUIRE_GL();
+  test::TempDir dir;
+  const std::string file = (dir / "request.json").string();
+  test::write_bytes(file, R"({"scene": "none", "camera": {"eye": [1500, -2500, 900], "look_at": [0, 0, 700], "fov": 40},
+      "optics": {"phase": "hg:0.3", "multiple": 0, "ms_method": "octaves", "extinction": 0.05},
+      "renderer": {"slices": 32, "repeat_to": 0}})");
+  const std::vector<std::string> flags = {"--preset", "cumulus-humilis", "--res", "64x36", "--scene", "none",
+                                          "--eye", "1500,-2500,900", "--look-at", "0,0,700", "--fov", "40",
+                                          "--cloud-phase", "hg:0.3", "--multiple", "0", "--ms-method", "octaves",
+                                          "--cloud-extinction", "0.05", "--slices", "32"};
+  const render::Image from_flags = render_clouds_image(flags);
+  const render::Image from_file = render_clouds_image({"--preset", "cumulus-humilis", "--res", "64x36", "--request", file});
+  ASSERT_EQ(from_file.rgba.size(), from_flags.rgba.size());
+  EXPECT_EQ(from_file.rgba, from_flags.rgba);
+  EXPECT_GT(coverage(from_flags), 5.0) << "the cloud covers some of the frame (else the comparison proves nothing)";
+  // A flag over the file: as the flag alone.
+  std::vector<std::string> more = flags;
+  *(std::find(more.begin(), more.end(), "--slices") + 1) = "64";
+  *(std::find(more.begin(), more.end(), "--cloud-phase") + 1) = "hg:0.6";
+  const render::Image over = render_clouds_image({"--preset", "cumulus-humilis", "--res", "64x36", "--request", file,
+                                                  "--slices", "64", "--cloud-phase", "hg:0.6"});
+  EXPECT_EQ(over.rgba, render_clouds_image(more).rgba);
+  EXPECT_NE(over.rgba, from_file.rgba);
+  // A view state holds a sky and clocks: not a request.
+  test::write_bytes(file, R"({"scene": "none", "sky": {}, "time": {}})");
+  try {
+    render_clouds_image({"--preset", "cumulus-humilis", "--request", file});
+    ADD_FAILURE() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a view state"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

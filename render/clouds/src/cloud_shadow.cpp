@@ -112,15 +112,10 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
   }
   UniformArray<CloudBlock> cloud_ubo;
   cloud_ubo.update(blocks);
-  p.set("u_origin", to_float(origin));
-  p.set("u_axis_x", to_float(axis_x));
-  p.set("u_axis_y", to_float(axis_y));
-  p.set("u_to_sun", to_float(-dir));
-  p.set("u_res", resolution);
-  const GLuint groups = static_cast<GLuint>((resolution + 7) / 8);
+  // Each cloud's march: the map's plane, and the cloud's depth range along dir in half-voxel steps.
+  std::vector<CloudShadowMarchBlock> marches(clouds.size());
   for (std::size_t i = 0; i < clouds.size(); ++i) {
     const CloudVolume& c = clouds[i];
-    // This cloud's depth range along dir, marched in half-voxel steps.
     double d0 = 1e300, d1 = -1e300;
     for (int k = 0; k < 8; ++k) {
       const glm::dvec3 q(k & 1 ? c.world_max.x : c.world_min.x, k & 2 ? c.world_max.y : c.world_min.y,
@@ -131,12 +126,24 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
     }
     const double step = 0.5 * voxel_size_m(c);
     const int steps = std::max(1, static_cast<int>(std::ceil((d1 - d0) / step)));
+    CloudShadowMarchBlock& m = marches[i];
+    m.origin = to_float(origin);
+    m.axis_x = to_float(axis_x);
+    m.axis_y = to_float(axis_y);
+    m.to_sun = to_float(-dir);
+    m.res = resolution;
+    m.depth0 = static_cast<float>(d0);
+    m.step_m = static_cast<float>((d1 - d0) / steps);
+    m.steps = steps;
+    m.box_min = to_float(c.world_min);
+    m.box_max = to_float(c.world_max);
+  }
+  UniformArray<CloudShadowMarchBlock> march_ubo;
+  march_ubo.update(marches);
+  const GLuint groups = static_cast<GLuint>((resolution + 7) / 8);
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
     cloud_ubo.bind(contract::BLOCK_CLOUD, i);
-    p.set("u_depth0", static_cast<float>(d0));
-    p.set("u_step", static_cast<float>((d1 - d0) / steps));
-    p.set("u_steps", steps);
-    p.set("u_box_min", to_float(c.world_min));
-    p.set("u_box_max", to_float(c.world_max));
+    march_ubo.bind(contract::BLOCK_CLOUD_SHADOW_MARCH, i);
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY, textures[i]->texture.id());
     const bool next = !next_textures.empty() && next_textures[i];
     glBindTextureUnit(contract::UNIT_CLOUD_DENSITY_NEXT, (next ? next_textures[i] : textures[i])->texture.id());

@@ -76,6 +76,19 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CloudBlock.tc_eye", offsetof(CloudBlock, tc_eye)},
         {"CloudBlock.copy_offset_m", offsetof(CloudBlock, copy_offset_m)}}},
       slice_light_layout(),
+      {"CloudShadowMarchBlock",
+       contract::BLOCK_CLOUD_SHADOW_MARCH,
+       sizeof(CloudShadowMarchBlock),
+       {{"CloudShadowMarchBlock.origin", offsetof(CloudShadowMarchBlock, origin)},
+        {"CloudShadowMarchBlock.res", offsetof(CloudShadowMarchBlock, res)},
+        {"CloudShadowMarchBlock.axis_x", offsetof(CloudShadowMarchBlock, axis_x)},
+        {"CloudShadowMarchBlock.steps", offsetof(CloudShadowMarchBlock, steps)},
+        {"CloudShadowMarchBlock.axis_y", offsetof(CloudShadowMarchBlock, axis_y)},
+        {"CloudShadowMarchBlock.depth0", offsetof(CloudShadowMarchBlock, depth0)},
+        {"CloudShadowMarchBlock.to_sun", offsetof(CloudShadowMarchBlock, to_sun)},
+        {"CloudShadowMarchBlock.step_m", offsetof(CloudShadowMarchBlock, step_m)},
+        {"CloudShadowMarchBlock.box_min", offsetof(CloudShadowMarchBlock, box_min)},
+        {"CloudShadowMarchBlock.box_max", offsetof(CloudShadowMarchBlock, box_max)}}},
   };
 }
 

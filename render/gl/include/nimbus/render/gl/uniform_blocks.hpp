@@ -95,6 +95,30 @@ static_assert(offsetof(SliceLightBlock, world_to_light_uv) == 0 && offsetof(Slic
                   offsetof(SliceLightBlock, light_slab_m) == 216 && sizeof(SliceLightBlock) == 224,
               "SliceLightBlock must follow std140 as lib/cloud_light_block.glsl declares it");
 
+// cloud_shadow_build.comp.glsl: CloudShadowMarchBlock, the march of one cloud through the clouds'
+// shadow map (cloud_shadow.hpp), one per cloud.
+struct CloudShadowMarchBlock {
+  glm::vec3 origin{0.0f};   // world point of the map's corner (texel 0, 0) on its plane, metres
+  int res = 0;              // texels per side
+  glm::vec3 axis_x{0.0f};   // map width vector, metres
+  int steps = 0;            // steps of the march
+  glm::vec3 axis_y{0.0f};   // map height vector, metres
+  float depth0 = 0.0f;      // the march starts at this depth, metres along the light from the plane
+  glm::vec3 to_sun{0.0f};   // unit, towards the sun
+  float step_m = 0.0f;      // the step, metres
+  glm::vec3 box_min{0.0f};  // the cloud's support, world metres
+  float pad0 = 0.0f;
+  glm::vec3 box_max{0.0f};
+  float pad1 = 0.0f;
+};
+static_assert(offsetof(CloudShadowMarchBlock, origin) == 0 && offsetof(CloudShadowMarchBlock, res) == 12 &&
+                  offsetof(CloudShadowMarchBlock, axis_x) == 16 && offsetof(CloudShadowMarchBlock, steps) == 28 &&
+                  offsetof(CloudShadowMarchBlock, axis_y) == 32 && offsetof(CloudShadowMarchBlock, depth0) == 44 &&
+                  offsetof(CloudShadowMarchBlock, to_sun) == 48 && offsetof(CloudShadowMarchBlock, step_m) == 60 &&
+                  offsetof(CloudShadowMarchBlock, box_min) == 64 && offsetof(CloudShadowMarchBlock, box_max) == 80 &&
+                  sizeof(CloudShadowMarchBlock) == 96,
+              "CloudShadowMarchBlock must follow std140 as cloud_shadow_build.comp.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {

@@ -85,5 +85,6 @@ const int BLOCK_LIGHTS = 1;            // LightsBlock (lib/light_list.glsl)
 const int BLOCK_CLOUD = 2;             // CloudBlock (lib/cloud_block.glsl), one range per cloud
 const int BLOCK_SLICE_LIGHT = 3;       // SliceLightBlock (lib/cloud_light_block.glsl): the slicer pass's light
 const int BLOCK_CLOUD_SHADOW_MARCH = 4;  // CloudShadowMarchBlock (cloud_shadow_build.comp.glsl), one range per cloud
+const int BLOCK_SHADOW_MAP = 5;        // ShadowMapBlock (lib/shadow_map_block.glsl): a shadow map's light, its skirts
 
 #endif

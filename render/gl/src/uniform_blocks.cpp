@@ -89,6 +89,19 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"CloudShadowMarchBlock.step_m", offsetof(CloudShadowMarchBlock, step_m)},
         {"CloudShadowMarchBlock.box_min", offsetof(CloudShadowMarchBlock, box_min)},
         {"CloudShadowMarchBlock.box_max", offsetof(CloudShadowMarchBlock, box_max)}}},
+      {"ShadowMapBlock",
+       contract::BLOCK_SHADOW_MAP,
+       sizeof(ShadowMapBlock),
+       {{"ShadowMapBlock.origin", offsetof(ShadowMapBlock, origin)},
+        {"ShadowMapBlock.mode", offsetof(ShadowMapBlock, mode)},
+        {"ShadowMapBlock.to_sun", offsetof(ShadowMapBlock, to_sun)},
+        {"ShadowMapBlock.layer", offsetof(ShadowMapBlock, layer)},
+        {"ShadowMapBlock.axis_x", offsetof(ShadowMapBlock, axis_x)},
+        {"ShadowMapBlock.res", offsetof(ShadowMapBlock, res)},
+        {"ShadowMapBlock.axis_y", offsetof(ShadowMapBlock, axis_y)},
+        {"ShadowMapBlock.rel_threshold", offsetof(ShadowMapBlock, rel_threshold)},
+        {"ShadowMapBlock.max_distance", offsetof(ShadowMapBlock, max_distance)},
+        {"ShadowMapBlock.max_quads", offsetof(ShadowMapBlock, max_quads)}}},
   };
 }
 

@@ -10,6 +10,7 @@
 #include "nimbus/render/scene/intersect.hpp"
 #include "nimbus/render/core/shader_contract.hpp"
 #include "nimbus/render/gl/to_float.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
 #include "shaft_renderer_impl.hpp"
 
 namespace nimbus::render {
@@ -56,10 +57,14 @@ void ShaftRenderer::Impl::build_point_maps() {
   point_depth = make_depth_texture(res, res);
   glViewport(0, 0, res, res);
   const glm::dmat4 proj = glm::perspective(M_PI / 2.0, 1.0, 0.01, static_cast<double>(kFarDistanceM));
-  shadow_program.set("u_mode", contract::SHADOW_POINT_LIGHT);
+  UniformBuffer<ShadowMapBlock> block;
+  block.bind(contract::BLOCK_SHADOW_MAP);
   for (int i = 0; i < n_point; ++i) {
     const glm::dvec3 pos = scene.lamps[static_cast<std::size_t>(i)].position_m;
-    shadow_program.set("u_origin", to_float(pos));
+    ShadowMapBlock lamp;
+    lamp.mode = contract::SHADOW_POINT_LIGHT;
+    lamp.origin = to_float(pos);
+    block.update(lamp);
     for (int f = 0; f < 6; ++f) {
       const GlFramebuffer fbo = make_framebuffer(
           {{GL_COLOR_ATTACHMENT0, tex, 0, i * 6 + f}, {GL_DEPTH_ATTACHMENT, point_depth.id()}});
@@ -124,9 +129,13 @@ void ShaftRenderer::Impl::build_sun_map() {
   glViewport(0, 0, sres, sres);
   glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_far);
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &clear_depth);
-  shadow_program.set("u_mode", contract::SHADOW_SUN);
-  shadow_program.set("u_origin", to_float(sun_origin));
-  shadow_program.set("u_to_sun", to_float(-sun_propagation));
+  ShadowMapBlock sun;
+  sun.mode = contract::SHADOW_SUN;
+  sun.origin = to_float(sun_origin);
+  sun.to_sun = to_float(-sun_propagation);
+  UniformBuffer<ShadowMapBlock> block;
+  block.update(sun);
+  block.bind(contract::BLOCK_SHADOW_MAP);
   shadow_program.set("u_view_proj", to_float(sun_view_proj));
   draw(occluders);
 }
@@ -140,9 +149,8 @@ void ShaftRenderer::Impl::build_skirts() {
   GlBuffer counter = make_buffer(2 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
   const ShaderProgram& b = skirt_build_program;
   b.use();
-  b.set("u_rel_threshold", static_cast<float>(settings.silhouette_jump));
-  b.set("u_max_distance", static_cast<float>(max_skirt_distance_m));
-  b.set("u_max_quads", static_cast<unsigned>(max_quads));
+  UniformBuffer<ShadowMapBlock> block;
+  block.bind(contract::BLOCK_SHADOW_MAP);
   if (point_maps) glBindTextureUnit(contract::UNIT_POINT_SHADOW, point_maps.id());
   if (sun_map) glBindTextureUnit(contract::UNIT_SUN_SHADOW, sun_map.id());
   skirts.clear();
@@ -150,20 +158,24 @@ void ShaftRenderer::Impl::build_skirts() {
     const bool is_sun = layer >= n_point;
     const GLuint zero2[2] = {0, 0};
     glNamedBufferSubData(counter.id(), 0, sizeof(zero2), zero2);
-    b.set("u_mode", is_sun ? contract::SHADOW_SUN : contract::SHADOW_POINT_LIGHT);
-    b.set("u_layer", layer);
-    int res = 0;
+    ShadowMapBlock m;
+    m.rel_threshold = static_cast<float>(settings.silhouette_jump);
+    m.max_distance = static_cast<float>(max_skirt_distance_m);
+    m.max_quads = static_cast<unsigned>(max_quads);
+    m.mode = is_sun ? contract::SHADOW_SUN : contract::SHADOW_POINT_LIGHT;
+    m.layer = layer;
     if (is_sun) {
-      res = settings.sun_shadow_res;
-      b.set("u_origin", to_float(sun_origin));
-      b.set("u_axis_x", to_float(sun_axis_x));
-      b.set("u_axis_y", to_float(sun_axis_y));
-      b.set("u_to_sun", to_float(-sun_propagation));
+      m.res = settings.sun_shadow_res;
+      m.origin = to_float(sun_origin);
+      m.axis_x = to_float(sun_axis_x);
+      m.axis_y = to_float(sun_axis_y);
+      m.to_sun = to_float(-sun_propagation);
     } else {
-      res = settings.point_shadow_res;
-      b.set("u_origin", to_float(scene.lamps[static_cast<std::size_t>(layer)].position_m));
+      m.res = settings.point_shadow_res;
+      m.origin = to_float(scene.lamps[static_cast<std::size_t>(layer)].position_m);
     }
-    b.set("u_res", res);
+    block.update(m);
+    const int res = m.res;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_SKIRT_QUADS, scratch.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, contract::STORAGE_SKIRT_COUNTER, counter.id());
     const GLuint groups = static_cast<GLuint>((res + 7) / 8);

@@ -119,6 +119,29 @@ static_assert(offsetof(CloudShadowMarchBlock, origin) == 0 && offsetof(CloudShad
                   sizeof(CloudShadowMarchBlock) == 96,
               "CloudShadowMarchBlock must follow std140 as cloud_shadow_build.comp.glsl declares it");
 
+// lib/shadow_map_block.glsl: ShadowMapBlock, the light a shadow map is made for and the limits of
+// the skirts built from it (the light-shaft renderer's shadow maps and shadow volumes).
+struct ShadowMapBlock {
+  glm::vec3 origin{0.0f};     // the lamp's position, or the sun map's corner, metres
+  int mode = 0;               // contract::SHADOW_POINT_LIGHT or SHADOW_SUN
+  glm::vec3 to_sun{0.0f};     // unit, towards the sun
+  int layer = 0;              // the lamp's cube-map layer, or the sun's (after the lamps)
+  glm::vec3 axis_x{0.0f};     // the sun map's width vector, metres
+  int res = 0;                // texels per side of each face
+  glm::vec3 axis_y{0.0f};     // the sun map's height vector, metres
+  float rel_threshold = 0.0f; // relative distance jump that makes a silhouette
+  float max_distance = 0.0f;  // skirts end here, metres
+  unsigned max_quads = 0;     // the skirts' buffer holds this many quads
+  float pad0 = 0.0f, pad1 = 0.0f;  // the block's size rounds up to a vec4
+};
+static_assert(offsetof(ShadowMapBlock, origin) == 0 && offsetof(ShadowMapBlock, mode) == 12 &&
+                  offsetof(ShadowMapBlock, to_sun) == 16 && offsetof(ShadowMapBlock, layer) == 28 &&
+                  offsetof(ShadowMapBlock, axis_x) == 32 && offsetof(ShadowMapBlock, res) == 44 &&
+                  offsetof(ShadowMapBlock, axis_y) == 48 && offsetof(ShadowMapBlock, rel_threshold) == 60 &&
+                  offsetof(ShadowMapBlock, max_distance) == 64 && offsetof(ShadowMapBlock, max_quads) == 68 &&
+                  sizeof(ShadowMapBlock) == 80,
+              "ShadowMapBlock must follow std140 as lib/shadow_map_block.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {

@@ -45,7 +45,7 @@ void main() {
   float sun = float(lights.has_sun) * u_sigma_s * phase_value(u_phase_kind, u_phase_g, dot(-lights.sun.position.xyz, -dir));
   air += lights.sun.power.rgb * (sun * max(weighted.g, 0.0));
   vec3 clouds = cloud.rgb;
-  if (u_aerial_on != 0) {
+  if (sky_state.aerial_on != 0) {
     vec3 S, T;
     if (A > 0.0) {
       aerial_perspective(dir, D, S, T);

@@ -137,14 +137,14 @@ void main() {
   vec3 Ls = texelFetch(u_surface_radiance, px, 0).rgb;
   float t = texelFetch(u_surface_distance, px, 0).r;
   bool hit = t > 0.0;
-  bool sky = !hit && u_has_sky != 0;
+  bool sky = !hit && sky_state.has_sky != 0;
   // The fog ends at the sky (scene.hpp Sky): a surface beyond it, the ground toward the
   // horizon, is seen through the sky's distance of fog.
-  float t_end = hit ? (u_has_sky != 0 ? min(t, u_sky_distance) : t) : (sky ? u_sky_distance : INF_M);
+  float t_end = hit ? (sky_state.has_sky != 0 ? min(t, sky_state.distance_m) : t) : (sky ? sky_state.distance_m : INF_M);
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
   vec3 L = hit ? Ls * exp(-u_sigma_t * t_end) : (sky ? sky_radiance(dir) * exp(-u_sigma_t * t_end) : vec3(0.0));
   float jitter = pixel_jitter(px);
-  float t_march = hit ? t_end : (sky ? min(u_sky_distance, u_march_cutoff_m) : u_march_cutoff_m);
+  float t_march = hit ? t_end : (sky ? min(sky_state.distance_m, u_march_cutoff_m) : u_march_cutoff_m);
 
   for (int i = 0; i < lights.lamp_count; ++i) {
 #if METHOD == SHAFT_METHOD_RAYMARCH

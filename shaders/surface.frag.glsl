@@ -61,13 +61,13 @@ void main() {
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.
-      float v = point_visibility(i, world + n * (u_normal_offset_texels * d * u_point_texel_angle));
+      float v = point_visibility(i, world + n * (u_normal_offset_texels * d * scene_shadows.point_texel_angle));
       L += albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
       float cos_s = max(dot(n, lights.sun.position.xyz), 0.0);
       if (cos_s > 0.0)
-        L += albedo / 3.14159265358979 * lights.sun.power.rgb * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * u_sun_texel_m));
+        L += albedo / 3.14159265358979 * lights.sun.power.rgb * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * scene_shadows.sun_texel_m));
     }
     // The sky, uniform at its mean, seen by the share (1 + n.y) / 2 (render::sky_irradiance).
     L += albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));

@@ -86,5 +86,7 @@ const int BLOCK_CLOUD = 2;             // CloudBlock (lib/cloud_block.glsl), one
 const int BLOCK_SLICE_LIGHT = 3;       // SliceLightBlock (lib/cloud_light_block.glsl): the slicer pass's light
 const int BLOCK_CLOUD_SHADOW_MARCH = 4;  // CloudShadowMarchBlock (cloud_shadow_build.comp.glsl), one range per cloud
 const int BLOCK_SHADOW_MAP = 5;        // ShadowMapBlock (lib/shadow_map_block.glsl): a shadow map's light, its skirts
+const int BLOCK_SCENE_SHADOWS = 6;     // SceneShadowsBlock (lib/lights.glsl): the scene's shadow maps, looked up
+const int BLOCK_SKY = 7;               // SkyBlock (lib/sky_block.glsl): the sky behind the scene, the aerial perspective
 
 #endif

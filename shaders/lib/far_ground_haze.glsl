@@ -1,6 +1,6 @@
 // The haze in front of a surface beyond the aerial-perspective table's reach (the flat ground
 // toward the horizon, up to thousands of kilometres away): the table ends at
-// u_aerial_max_distance_m, and past it the near-horizontal path is taken as a homogeneous
+// sky_state.aerial_max_distance_m, and past it the near-horizontal path is taken as a homogeneous
 // medium, so its transmittance continues exponentially at the rate of a level path over the
 // table's reach, T_h(R) (the ray's own may have met the tables' curved ground already: they
 // are made for one viewer altitude), and its radiance tends to that of the horizon sky behind
@@ -19,7 +19,7 @@ vec3 level_direction(vec3 dir) {
 
 vec3 horizon_sky(vec3 dir) {
   vec3 h = level_direction(dir);
-  float d = u_sky_distance;
+  float d = sky_state.distance_m;
   vec3 L = sky_radiance(h) * exp(-u_sigma_t * d);
   for (int i = 0; i < lights.lamp_count; ++i)
     L += lights.lamp[i].power.rgb *
@@ -33,9 +33,9 @@ vec3 horizon_sky(vec3 dir) {
 // In-scattered radiance and transmittance from the eye to a surface distance_m away along dir,
 // at any distance.
 void surface_haze(vec3 dir, float distance_m, out vec3 inscattered, out vec3 transmittance) {
-  float R = u_aerial_max_distance_m;
+  float R = sky_state.aerial_max_distance_m;
   aerial_perspective(dir, min(distance_m, R), inscattered, transmittance);
-  if (distance_m <= R || u_has_sky == 0) return;
+  if (distance_m <= R || sky_state.has_sky == 0) return;
   vec3 level_s, level_t;
   aerial_perspective(level_direction(dir), R, level_s, level_t);
   vec3 tail = pow(max(level_t, vec3(1.0e-30)), vec3(distance_m / R - 1.0));  // T_h(R)^(D/R - 1)

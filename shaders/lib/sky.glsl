@@ -2,22 +2,16 @@
 // gradient from the horizon to the zenith, or the physical sky's sky-view table
 // (atmosphere_tables.hpp), read through the same map and the same bilinear weights as the CPU.
 #include "lib/atmosphere_map.glsl"
-uniform int u_has_sky;
-uniform int u_sky_physical;    // 1: the sky-view table; 0: the gradient
-uniform vec3 u_sky_zenith;     // W sr^-1 m^-2 per channel
-uniform vec3 u_sky_horizon;
-uniform float u_sky_distance;  // metres
-uniform vec3 u_sky_sun;        // the physical sky's direction to the sun, unit
-uniform float u_sky_cos_horizon;  // cos of the horizon's zenith angle at the viewer
+#include "lib/sky_block.glsl"
 layout(binding = UNIT_SKY_VIEW) uniform sampler2D u_sky_view;  // RGBA32F, ATM_SKY_W x ATM_SKY_H
 
 // Texel coordinates of a view direction in the sky-view and aerial-perspective maps (as
 // table_sky_radiance: the azimuth from the sun's, the zenith angle).
 vec2 sky_view_uv(vec3 dir) {
-  vec2 sh = vec2(u_sky_sun.x, u_sky_sun.z), dh = vec2(dir.x, dir.z);
+  vec2 sh = vec2(sky_state.sun.x, sky_state.sun.z), dh = vec2(dir.x, dir.z);
   float ls = length(sh), ld = length(dh);
   float cos_phi = (ls > 1.0e-9 && ld > 1.0e-9) ? dot(sh, dh) / (ls * ld) : 1.0;
-  return atm_view_uv(cos_phi, clamp(dir.y, -1.0, 1.0), u_sky_cos_horizon);
+  return atm_view_uv(cos_phi, clamp(dir.y, -1.0, 1.0), sky_state.cos_horizon);
 }
 
 // Bilinear, clamped, texel centres on the ends (AtmosphereTable::bilinear).
@@ -32,8 +26,8 @@ vec3 sky_table_bilinear(vec2 c) {
 }
 
 vec3 sky_radiance(vec3 dir) {
-  if (u_sky_physical != 0) {
+  if (sky_state.physical != 0) {
     return sky_table_bilinear(sky_view_uv(dir) * vec2(float(ATM_SKY_W - 1), float(ATM_SKY_H - 1)));
   }
-  return u_sky_horizon + (u_sky_zenith - u_sky_horizon) * sqrt(max(dir.y, 0.0));
+  return sky_state.horizon + (sky_state.zenith - sky_state.horizon) * sqrt(max(dir.y, 0.0));
 }

@@ -49,8 +49,10 @@ TEST(AtmosphereGl, ShadersReadTheTablesAsTheCpu) {
   GlTexture target = make_texture_2d(GL_RGBA32F, kW, kH, TextureParams{GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE, 1});
   GlFramebuffer fbo = make_framebuffer({{GL_COLOR_ATTACHMENT0, target.id()}});
   ShaderProgram p = ShaderProgram::from_sources({{"atmosphere_probe.frag.glsl", kProbe}}, {"fullscreen.vert.glsl", "atmosphere_probe.frag.glsl"});
-  bind_sky_view(p, tex);
-  bind_aerial_perspective(p, tex);
+  UniformBuffer<SkyBlock> sky;  // a physical sky with no gradient: what the tables give
+  sky.update(sky_block(nullptr, &tex));
+  sky.bind(contract::BLOCK_SKY);
+  bind_atmosphere_textures(tex);
   GlVertexArray vao = make_vertex_array();
   for (int what = 0; what < 3; ++what) {
     for (double distance : {0.0, 3000.0, 25000.0, 90000.0}) {

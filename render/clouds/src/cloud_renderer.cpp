@@ -368,18 +368,12 @@ Image CloudRenderer::Impl::composite(const SceneUnderlay& underlay, GpuTimer& ti
   const auto& tables = scene && scene->sky ? scene->sky->atmosphere : nullptr;
   if (tables) {
     if (!aerial || aerial->tables != tables) aerial = upload_atmosphere(tables);
-    bind_aerial_perspective(cp, *aerial);
-    bind_sky_view(cp, *aerial);  // the horizon sky that the far ground fades into (lib/far_ground_haze.glsl)
-  } else {
-    cp.set("u_aerial_on", 0);
+    // The aerial perspective, and the horizon sky that the far ground fades into
+    // (lib/far_ground_haze.glsl).
+    bind_atmosphere_textures(*aerial);
   }
-  cp.set("u_has_sky", scene && scene->sky ? 1 : 0);
-  if (scene && scene->sky) {
-    cp.set("u_sky_zenith", to_float(scene->sky->zenith_radiance_w_sr_m2));
-    cp.set("u_sky_horizon", to_float(scene->sky->horizon_radiance_w_sr_m2));
-    cp.set("u_sky_distance", static_cast<float>(scene->sky->distance_m));
-    if (!tables) cp.set("u_sky_physical", 0);
-  }
+  sky_ubo.update(sky_block(scene && scene->sky ? &*scene->sky : nullptr, tables ? &*aerial : nullptr));
+  sky_ubo.bind(contract::BLOCK_SKY);
   timer.time(kComposite, [&] {
     glBindFramebuffer(GL_FRAMEBUFFER, out_fbo.id());
     glViewport(0, 0, w, h);

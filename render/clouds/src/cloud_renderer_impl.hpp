@@ -57,6 +57,7 @@ struct CloudRenderer::Impl {
   std::optional<AtmosphereTextures> aerial;  // the underlay scene's physical sky, uploaded once per table set
   UniformBuffer<CameraBlock> camera_ubo;
   UniformBuffer<LightsBlock> lights_ubo;
+  UniformBuffer<SkyBlock> sky_ubo;
   UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
   UniformBuffer<SliceLightBlock> slice_light_ubo;  // the light of the pass being drawn
   GlVertexArray empty_vao, mesh_vao;

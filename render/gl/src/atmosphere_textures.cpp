@@ -40,18 +40,27 @@ AtmosphereTextures upload_atmosphere(std::shared_ptr<const AtmosphereTables> tab
   return t;
 }
 
-void bind_sky_view(const ShaderProgram& p, const AtmosphereTextures& t) {
-  p.set("u_sky_physical", 1);
-  p.set("u_sky_sun", to_float(t.tables->view.direction_to_sun));
-  p.set("u_sky_cos_horizon", static_cast<float>(horizon_cos(t.tables->atmosphere, t.tables->view.altitude_m)));
-  glBindTextureUnit(contract::UNIT_SKY_VIEW, t.sky_view.id());
+SkyBlock sky_block(const Sky* sky, const AtmosphereTextures* tables) {
+  SkyBlock b;
+  if (sky) {
+    b.has_sky = 1;
+    b.zenith = to_float(sky->zenith_radiance_w_sr_m2);
+    b.horizon = to_float(sky->horizon_radiance_w_sr_m2);
+    b.distance_m = static_cast<float>(sky->distance_m);
+  }
+  if (tables) {
+    const AtmosphereTables& t = *tables->tables;
+    b.physical = 1;
+    b.aerial_on = 1;
+    b.sun = to_float(t.view.direction_to_sun);
+    b.cos_horizon = static_cast<float>(horizon_cos(t.atmosphere, t.view.altitude_m));
+    b.aerial_max_distance_m = static_cast<float>(t.view.aerial_max_distance_m);
+  }
+  return b;
 }
 
-void bind_aerial_perspective(const ShaderProgram& p, const AtmosphereTextures& t) {
-  p.set("u_aerial_on", 1);
-  p.set("u_aerial_sun", to_float(t.tables->view.direction_to_sun));
-  p.set("u_aerial_cos_horizon", static_cast<float>(horizon_cos(t.tables->atmosphere, t.tables->view.altitude_m)));
-  p.set("u_aerial_max_distance_m", static_cast<float>(t.tables->view.aerial_max_distance_m));
+void bind_atmosphere_textures(const AtmosphereTextures& t) {
+  glBindTextureUnit(contract::UNIT_SKY_VIEW, t.sky_view.id());
   glBindTextureUnit(contract::UNIT_AERIAL_SCATTERING, t.aerial_scattering.id());
   glBindTextureUnit(contract::UNIT_AERIAL_TRANSMITTANCE, t.aerial_transmittance.id());
 }

@@ -25,17 +25,20 @@ namespace nimbus::render {
 
 using namespace shaft_detail;
 
-// The lights (LightsBlock) and the uniforms of shaders/lib/lights.glsl: the shadow maps on
-// UNIT_POINT_SHADOW and UNIT_SUN_SHADOW, and the clouds' shadow.
+// The lights (LightsBlock) and shaders/lib/lights.glsl's shadow maps: their geometry
+// (SceneShadowsBlock), the maps on UNIT_POINT_SHADOW and UNIT_SUN_SHADOW, and the clouds' shadow.
 void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
   lights_block.bind(contract::BLOCK_LIGHTS);
-  p.set("u_sun_origin", to_float(sun_origin));
-  p.set("u_sun_axis_x", to_float(sun_axis_x));
-  p.set("u_sun_axis_y", to_float(sun_axis_y));
-  p.set("u_point_shadow_bias", 1.0e-4f);
-  p.set("u_sun_shadow_bias", static_cast<float>(1.0e-4 * glm::length(sun_axis_x)));
-  p.set("u_point_texel_angle", 2.0f / static_cast<float>(settings.point_shadow_res));
-  p.set("u_sun_texel_m", static_cast<float>(sun_texel_m));
+  SceneShadowsBlock shadows;
+  shadows.sun_origin = to_float(sun_origin);
+  shadows.sun_axis_x = to_float(sun_axis_x);
+  shadows.sun_axis_y = to_float(sun_axis_y);
+  shadows.point_bias = 1.0e-4f;
+  shadows.sun_bias = static_cast<float>(1.0e-4 * glm::length(sun_axis_x));
+  shadows.point_texel_angle = 2.0f / static_cast<float>(settings.point_shadow_res);
+  shadows.sun_texel_m = static_cast<float>(sun_texel_m);
+  shadows_block.update(shadows);
+  shadows_block.bind(contract::BLOCK_SCENE_SHADOWS);
   if (point_maps) glBindTextureUnit(contract::UNIT_POINT_SHADOW, point_maps.id());
   if (sun_map) glBindTextureUnit(contract::UNIT_SUN_SHADOW, sun_map.id());
   bind_cloud_shadow(p, cloud_shadow);
@@ -44,17 +47,9 @@ void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
 // The shaft pass's view of the world's end: the sky (shaders/lib/sky.glsl) and the height above
 // which nothing shadows the sun.
 void ShaftRenderer::Impl::bind_sky(const ShaderProgram& p) const {
-  p.set("u_has_sky", scene.sky ? 1 : 0);
-  if (scene.sky) {
-    p.set("u_sky_zenith", to_float(scene.sky->zenith_radiance_w_sr_m2));
-    p.set("u_sky_horizon", to_float(scene.sky->horizon_radiance_w_sr_m2));
-    p.set("u_sky_distance", static_cast<float>(scene.sky->distance_m));
-  }
-  if (atmosphere) {
-    bind_sky_view(p, *atmosphere);
-  } else {
-    p.set("u_sky_physical", 0);
-  }
+  sky_ubo.update(sky_block(scene.sky ? &*scene.sky : nullptr, atmosphere ? &*atmosphere : nullptr));
+  sky_ubo.bind(contract::BLOCK_SKY);
+  if (atmosphere) bind_atmosphere_textures(*atmosphere);
   // With the sun above the horizon nothing shadows the fog above the highest occluder or cloud.
   double ceiling = 1e30;
   if (scene.sun && glm::normalize(scene.sun->direction_to_sun).y > 1e-6)

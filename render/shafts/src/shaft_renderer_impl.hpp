@@ -51,6 +51,8 @@ struct ShaftRenderer::Impl {
   GlVertexArray empty_vao;
   UniformBuffer<CameraBlock> camera_block;
   UniformBuffer<LightsBlock> lights_block;
+  mutable UniformBuffer<SceneShadowsBlock> shadows_block;  // filled as it is bound (bind_lights)
+  mutable UniformBuffer<SkyBlock> sky_ubo;                  // filled as it is bound (bind_sky)
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
   std::map<std::pair<bool, bool>, ShaderProgram> surface_programs;  // by (CLOUD_SHADOW, SURFACE_AIRLIGHT)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};

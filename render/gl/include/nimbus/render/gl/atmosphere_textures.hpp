@@ -7,6 +7,7 @@
 
 #include "nimbus/render/media/atmosphere_tables.hpp"
 #include "nimbus/render/gl/resources.hpp"
+#include "nimbus/render/gl/uniform_blocks.hpp"
 
 namespace nimbus::render {
 
@@ -20,9 +21,11 @@ struct AtmosphereTextures {
 // Uploads the tables (a current GL context is needed).
 AtmosphereTextures upload_atmosphere(std::shared_ptr<const AtmosphereTables> tables);
 
-// Sets lib/sky.glsl's physical-sky uniforms and binds the sky view to UNIT_SKY_VIEW.
-void bind_sky_view(const ShaderProgram& p, const AtmosphereTextures& t);
-// Sets lib/aerial_perspective.glsl's uniforms and binds its two tables.
-void bind_aerial_perspective(const ShaderProgram& p, const AtmosphereTextures& t);
+// lib/sky_block.glsl's values: `sky`'s gradient (none: no sky), and the physical sky's when its
+// tables are uploaded (`tables`, else none: the gradient, no aerial perspective).
+SkyBlock sky_block(const Sky* sky, const AtmosphereTextures* tables);
+// Binds the tables' textures: the sky view to UNIT_SKY_VIEW, the aerial perspective's two to
+// theirs.
+void bind_atmosphere_textures(const AtmosphereTextures& t);
 
 }  // namespace nimbus::render

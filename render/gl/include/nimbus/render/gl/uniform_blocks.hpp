@@ -142,6 +142,45 @@ static_assert(offsetof(ShadowMapBlock, origin) == 0 && offsetof(ShadowMapBlock, 
                   sizeof(ShadowMapBlock) == 80,
               "ShadowMapBlock must follow std140 as lib/shadow_map_block.glsl declares it");
 
+// lib/lights.glsl: SceneShadowsBlock, the light-shaft renderer's shadow maps as their lookups read
+// them: the sun map's plane and texel, and both maps' biases.
+struct SceneShadowsBlock {
+  glm::vec3 sun_origin{0.0f};      // the sun map's corner, metres
+  float point_bias = 0.0f;         // relative distance bias of the lamps' cube maps
+  glm::vec3 sun_axis_x{0.0f};      // the sun map's width vector, metres
+  float sun_bias = 0.0f;           // metres
+  glm::vec3 sun_axis_y{0.0f};      // the sun map's height vector, metres
+  float point_texel_angle = 0.0f;  // a cube-map texel's angle at a face centre, radians
+  float sun_texel_m = 0.0f;        // a sun-map texel, metres
+  float pad0 = 0.0f, pad1 = 0.0f, pad2 = 0.0f;  // the block's size rounds up to a vec4
+};
+static_assert(offsetof(SceneShadowsBlock, sun_origin) == 0 && offsetof(SceneShadowsBlock, point_bias) == 12 &&
+                  offsetof(SceneShadowsBlock, sun_axis_x) == 16 && offsetof(SceneShadowsBlock, sun_bias) == 28 &&
+                  offsetof(SceneShadowsBlock, sun_axis_y) == 32 && offsetof(SceneShadowsBlock, point_texel_angle) == 44 &&
+                  offsetof(SceneShadowsBlock, sun_texel_m) == 48 && sizeof(SceneShadowsBlock) == 64,
+              "SceneShadowsBlock must follow std140 as lib/lights.glsl declares it");
+
+// lib/sky_block.glsl: SkyBlock, the scene's sky: its gradient, and the physical sky's tables when
+// they are bound (sky_block, atmosphere_textures.hpp).
+struct SkyBlock {
+  glm::vec3 zenith{0.0f};             // the gradient's zenith radiance, W sr^-1 m^-2
+  int has_sky = 0;                    // 1: the scene has a sky
+  glm::vec3 horizon{0.0f};            // the gradient's horizon radiance
+  int physical = 0;                   // 1: the sky-view table; 0: the gradient
+  glm::vec3 sun{0.0f};                // the physical sky's direction to the sun, unit
+  float cos_horizon = 0.0f;           // cos of the horizon's zenith angle at the viewer
+  float distance_m = 0.0f;            // the sky's distance, metres
+  int aerial_on = 0;                  // 1: the aerial perspective's tables are bound
+  float aerial_max_distance_m = 0.0f; // the tables' reach, metres
+  float pad0 = 0.0f;                  // the block's size rounds up to a vec4
+};
+static_assert(offsetof(SkyBlock, zenith) == 0 && offsetof(SkyBlock, has_sky) == 12 && offsetof(SkyBlock, horizon) == 16 &&
+                  offsetof(SkyBlock, physical) == 28 && offsetof(SkyBlock, sun) == 32 &&
+                  offsetof(SkyBlock, cos_horizon) == 44 && offsetof(SkyBlock, distance_m) == 48 &&
+                  offsetof(SkyBlock, aerial_on) == 52 && offsetof(SkyBlock, aerial_max_distance_m) == 56 &&
+                  sizeof(SkyBlock) == 64,
+              "SkyBlock must follow std140 as lib/sky_block.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {

@@ -12,16 +12,16 @@ uniform vec3 u_eye;  // metres
 
 void main() {
   ivec3 cell = ivec3(gl_GlobalInvocationID);
-  ivec3 cells = ivec3(u_lv_cells);
+  ivec3 cells = ivec3(lv_grid.cells);
   if (any(greaterThanEqual(cell, cells))) return;
   vec3 u = vec3(cell) + 0.5;
   LightVolumeCell v = light_volume_cell(cell);
   float mean = (v.a.r + v.a.g + v.a.b) / 3.0;
   vec4 lit = vec4(0.0);
   if (mean > 0.0) {
-    vec3 to_eye = u_eye - (u_lv_world_min + u * u_lv_cell_m);
+    vec3 to_eye = u_eye - (lv_grid.world_min + u * lv_grid.cell_m);
     float dist = length(to_eye);
-    to_eye = dist > 0.0 ? to_eye / dist : -u_lv_light_dir;
+    to_eye = dist > 0.0 ? to_eye / dist : -lv_grid.light_dir;
     lit = vec4(v.a.rgb * light_volume_angular(v, mean, to_eye, u_lr_phase), mean);
   }
   imageStore(u_radiance, cell, lit);

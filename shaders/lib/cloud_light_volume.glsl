@@ -14,10 +14,13 @@
 #define NIMBUS_CLOUD_LIGHT_VOLUME_GLSL
 #include "lib/cloud_phase.glsl"
 layout(binding = UNIT_LIGHT_VOLUME) uniform sampler3D u_light_volume;
-uniform vec3 u_lv_world_min;   // the grid's corner, metres
-uniform vec3 u_lv_cell_m;      // a cell's sides, metres per axis
-uniform vec3 u_lv_cells;       // cells per axis
-uniform vec3 u_lv_light_dir;   // the sun's direction of propagation, unit (the lobes' axis)
+// The grid (uniform_blocks.hpp's LightVolumeBlock).
+layout(std140, binding = BLOCK_LIGHT_VOLUME) uniform LightVolumeBlock {
+  vec3 world_min;  // the grid's corner, metres
+  vec3 cell_m;     // a cell's sides, metres per axis
+  vec3 cells;      // cells per axis
+  vec3 light_dir;  // the sun's direction of propagation, unit (the lobes' axis)
+} lv_grid;
 
 struct LightVolumeCell {
   vec4 a;     // fluence RGB, Q xx
@@ -29,7 +32,7 @@ struct LightVolumeCell {
 
 // The volume's values at u (cells from the corner), interpolated.
 LightVolumeCell light_volume_at(vec3 u) {
-  vec3 tc = clamp(u, vec3(0.5), u_lv_cells - 0.5) / vec3(5.0 * u_lv_cells.x, u_lv_cells.yz);
+  vec3 tc = clamp(u, vec3(0.5), lv_grid.cells - 0.5) / vec3(5.0 * lv_grid.cells.x, lv_grid.cells.yz);
   float fifth = 0.2;
   LightVolumeCell v;
   v.a = textureLod(u_light_volume, tc, 0.0);
@@ -42,7 +45,7 @@ LightVolumeCell light_volume_at(vec3 u) {
 
 // One cell's own values (cell in [0, cells)).
 LightVolumeCell light_volume_cell(ivec3 cell) {
-  ivec3 step = ivec3(int(u_lv_cells.x), 0, 0);
+  ivec3 step = ivec3(int(lv_grid.cells.x), 0, 0);
   LightVolumeCell v;
   v.a = texelFetch(u_light_volume, cell, 0);
   v.b = texelFetch(u_light_volume, cell + step, 0);
@@ -56,7 +59,7 @@ LightVolumeCell light_volume_cell(ivec3 cell) {
 // mean > 0. phase: the cloud's (g_forward, g_back, forward weight), CloudBlock.phase.
 float light_volume_angular(LightVolumeCell v, float mean, vec3 to_eye, vec3 phase) {
   vec3 w = to_eye;
-  float ws = dot(w, u_lv_light_dir);
+  float ws = dot(w, lv_grid.light_dir);
   float wqw = v.a.w * w.x * w.x + v.b.w * w.y * w.y - (v.a.w + v.b.w) * w.z * w.z +
               2.0 * (v.c.x * w.x * w.y + v.c.y * w.x * w.z + v.c.z * w.y * w.z);
   vec3 g = phase;  // g_forward, g_back, forward weight
@@ -73,7 +76,7 @@ float light_volume_angular(LightVolumeCell v, float mean, vec3 to_eye, vec3 phas
 }
 
 vec3 light_volume_inscatter(vec3 world, vec3 to_eye, vec3 phase) {
-  vec3 u = clamp((world - u_lv_world_min) / u_lv_cell_m, vec3(0.0), u_lv_cells);  // cells from the corner
+  vec3 u = clamp((world - lv_grid.world_min) / lv_grid.cell_m, vec3(0.0), lv_grid.cells);  // cells from the corner
   LightVolumeCell v = light_volume_at(u);
   float mean = (v.a.r + v.a.g + v.a.b) / 3.0;
   if (!(mean > 0.0)) return vec3(0.0);
@@ -91,8 +94,8 @@ layout(binding = UNIT_LIGHT_RADIANCE) uniform sampler3D u_light_radiance;
 uniform vec3 u_lr_phase;  // the phase it is made for (the comp shader's)
 
 vec3 light_volume_radiance(vec3 world) {
-  vec3 u = clamp((world - u_lv_world_min) / u_lv_cell_m, vec3(0.0), u_lv_cells);
-  vec3 tc = clamp(u, vec3(0.5), u_lv_cells - 0.5) / vec3(2.0 * u_lv_cells.x, u_lv_cells.yz);
+  vec3 u = clamp((world - lv_grid.world_min) / lv_grid.cell_m, vec3(0.0), lv_grid.cells);
+  vec3 tc = clamp(u, vec3(0.5), lv_grid.cells - 0.5) / vec3(2.0 * lv_grid.cells.x, lv_grid.cells.yz);
   vec4 lit = textureLod(u_light_radiance, tc, 0.0);
   vec4 fit = textureLod(u_light_radiance, tc + vec3(0.5, 0.0, 0.0), 0.0);
   if (!(lit.a > 0.0)) return vec3(0.0);

@@ -82,7 +82,7 @@ void set_pass_uniforms(const CloudRenderer::Impl& s, const FrameContext& frame, 
   eye.set("u_view_proj", frame.camera_block.view_proj);
   eye.set("u_octave_abc", glm::vec3(static_cast<float>(ms.occlusion), static_cast<float>(ms.contribution),
                                     static_cast<float>(ms.eccentricity)));
-  if (frame.light_volume) s.set_light_volume_uniforms(eye);
+  if (frame.light_volume) s.bind_light_volume_grid();
   set_jitter_uniforms(eye, frame.settings);
   if (frame.underlay) {
     const Scene* scene = frame.underlay->scene;

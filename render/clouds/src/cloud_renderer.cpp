@@ -167,11 +167,14 @@ void CloudRenderer::set_light_volume(const LightVolume& volume) {
 
 bool CloudRenderer::has_light_volume() const { return impl_->light_volume_tex.id() != 0; }
 
-void CloudRenderer::Impl::set_light_volume_uniforms(const ShaderProgram& program) const {
-  program.set("u_lv_world_min", to_float(lv_world_min));
-  program.set("u_lv_cell_m", to_float(lv_cell_m));
-  program.set("u_lv_cells", glm::vec3(lv_cells));
-  program.set("u_lv_light_dir", to_float(lv_light_dir));
+void CloudRenderer::Impl::bind_light_volume_grid() const {
+  LightVolumeBlock b;
+  b.world_min = to_float(lv_world_min);
+  b.cell_m = to_float(lv_cell_m);
+  b.cells = glm::vec3(lv_cells);
+  b.light_dir = to_float(lv_light_dir);
+  light_volume_ubo.update(b);
+  light_volume_ubo.bind(contract::BLOCK_LIGHT_VOLUME);
 }
 
 void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::vec3& phase, GlTexture& target) {
@@ -186,7 +189,7 @@ void CloudRenderer::Impl::make_light_radiance(const glm::dvec3& eye, const glm::
   if (!radiance_program) radiance_program.emplace(std::vector<std::string>{"light_volume_radiance.comp.glsl"});
   const ShaderProgram& p = *radiance_program;
   p.use();
-  set_light_volume_uniforms(p);
+  bind_light_volume_grid();
   p.set("u_lr_phase", phase);
   p.set("u_eye", to_float(eye));
   glBindTextureUnit(contract::UNIT_LIGHT_VOLUME, light_volume_tex.id());

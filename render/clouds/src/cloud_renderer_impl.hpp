@@ -58,6 +58,7 @@ struct CloudRenderer::Impl {
   UniformBuffer<CameraBlock> camera_ubo;
   UniformBuffer<LightsBlock> lights_ubo;
   UniformBuffer<SkyBlock> sky_ubo;
+  mutable UniformBuffer<LightVolumeBlock> light_volume_ubo;  // filled as it is bound (bind_light_volume_grid)
   UniformArray<CloudBlock> cloud_ubo;  // one block per cloud, refilled every frame
   UniformBuffer<SliceLightBlock> slice_light_ubo;  // the light of the pass being drawn
   GlVertexArray empty_vao, mesh_vao;
@@ -97,7 +98,7 @@ struct CloudRenderer::Impl {
   // ms_volume: MS_VOLUME of cloud_slice.frag.glsl (0 none, 1 per sample, 2 the frame's radiance).
   const ShaderProgram& eye_program(bool underlay, int octaves, int ms_volume, bool lamp);
   // The light volume's uniforms (u_lv_*) on a program that reads it.
-  void set_light_volume_uniforms(const ShaderProgram& program) const;
+  void bind_light_volume_grid() const;  // LightVolumeBlock: the grid's corner, cells, light
   void upload_mesh(const cloud_detail::SliceMesh& mesh);
   void ensure_light_buffers(int res);
   void ensure_eye_buffers(int w, int h, bool distance);

@@ -124,6 +124,13 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"SkyBlock.distance_m", offsetof(SkyBlock, distance_m)},
         {"SkyBlock.aerial_on", offsetof(SkyBlock, aerial_on)},
         {"SkyBlock.aerial_max_distance_m", offsetof(SkyBlock, aerial_max_distance_m)}}},
+      {"LightVolumeBlock",
+       contract::BLOCK_LIGHT_VOLUME,
+       sizeof(LightVolumeBlock),
+       {{"LightVolumeBlock.world_min", offsetof(LightVolumeBlock, world_min)},
+        {"LightVolumeBlock.cell_m", offsetof(LightVolumeBlock, cell_m)},
+        {"LightVolumeBlock.cells", offsetof(LightVolumeBlock, cells)},
+        {"LightVolumeBlock.light_dir", offsetof(LightVolumeBlock, light_dir)}}},
   };
 }
 

@@ -181,6 +181,22 @@ static_assert(offsetof(SkyBlock, zenith) == 0 && offsetof(SkyBlock, has_sky) == 
                   sizeof(SkyBlock) == 64,
               "SkyBlock must follow std140 as lib/sky_block.glsl declares it");
 
+// lib/cloud_light_volume.glsl: LightVolumeBlock, the light volume's grid (cloud_renderer.hpp).
+struct LightVolumeBlock {
+  glm::vec3 world_min{0.0f};  // the grid's corner, metres
+  float pad0 = 0.0f;
+  glm::vec3 cell_m{0.0f};     // a cell's sides, metres per axis
+  float pad1 = 0.0f;
+  glm::vec3 cells{0.0f};      // cells per axis
+  float pad2 = 0.0f;
+  glm::vec3 light_dir{0.0f};  // the sun's direction of propagation, unit
+  float pad3 = 0.0f;
+};
+static_assert(offsetof(LightVolumeBlock, world_min) == 0 && offsetof(LightVolumeBlock, cell_m) == 16 &&
+                  offsetof(LightVolumeBlock, cells) == 32 && offsetof(LightVolumeBlock, light_dir) == 48 &&
+                  sizeof(LightVolumeBlock) == 64,
+              "LightVolumeBlock must follow std140 as lib/cloud_light_volume.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {

@@ -27,11 +27,15 @@ uniform float u_sigma_t;    // extinction, per metre
 uniform float u_sigma_s;    // scattering, per metre
 uniform int u_phase_kind;   // PHASE_* code
 uniform float u_phase_g;
-uniform float u_march_cutoff_m;  // ray-march end for rays that hit nothing
-uniform float u_shadow_ceiling_m;  // no shadow of the sun (opaque or cloud) above this height; 1e30 = none known
+// The pass's own values (uniform_blocks.hpp's ShaftPassBlock).
+layout(std140, binding = BLOCK_SHAFT_PASS) uniform ShaftPassBlock {
+  float march_cutoff_m;    // ray-march end for rays that hit nothing
+  float shadow_ceiling_m;  // no shadow of the sun (opaque or cloud) above this height; 1e30 = none known
+  int jitter_mode;         // JITTER_* code
+  float jitter_shift;      // this frame's shift of the jitter values, modulo 1
+  int f_table_size;        // the F table's size (AIRLIGHT_TABLE)
+} shaft_pass;
 layout(binding = UNIT_JITTER) uniform sampler2D u_jitter;  // tiled jitter values in [0, 1)
-uniform int u_jitter_mode;       // JITTER_* code
-uniform float u_jitter_shift;    // this frame's shift of the jitter values, modulo 1
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 #include "lib/phase.glsl"
@@ -41,7 +45,6 @@ uniform float u_jitter_shift;    // this frame's shift of the jitter values, mod
 #if METHOD == SHAFT_METHOD_ANALYTIC && AIRLIGHT_TABLE
 #include "lib/airlight_table.glsl"
 layout(binding = UNIT_F_TABLE) uniform sampler2D u_F_table;
-uniform int u_F_size;
 #endif
 #if METHOD == SHAFT_METHOD_SHADOW_VOLUME
 layout(binding = UNIT_SV_NEAR) uniform sampler2DArray u_sv_near;  // layer = point light index, last layer = sun
@@ -58,10 +61,10 @@ float hash_jitter(uvec2 p) {
 }
 
 float pixel_jitter(ivec2 px) {
-  if (u_jitter_mode == JITTER_WHITE) return fract(hash_jitter(uvec2(px)) + u_jitter_shift);
-  if (u_jitter_mode == JITTER_BLUE_NOISE) {
+  if (shaft_pass.jitter_mode == JITTER_WHITE) return fract(hash_jitter(uvec2(px)) + shaft_pass.jitter_shift);
+  if (shaft_pass.jitter_mode == JITTER_BLUE_NOISE) {
     ivec2 size = textureSize(u_jitter, 0);
-    return fract(texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r + u_jitter_shift);
+    return fract(texelFetch(u_jitter, ivec2(px.x % size.x, px.y % size.y), 0).r + shaft_pass.jitter_shift);
   }
   return 0.5;
 }
@@ -111,7 +114,7 @@ float table_point(int i, vec3 dir, float t_end, float Dvp) {
   float cg = clamp(dot(dir, to_light) / Dsv, -1.0, 1.0);
   float sg = min(length(cross(dir, to_light)) / Dsv, 1.0);
   float a = (u_sigma_t > 0.0 ? u_sigma_s / u_sigma_t : 0.0) *
-            airlight_table(u_F_table, u_F_size, u_sigma_t, 1.0, Dsv, Dvp, cg, sg);
+            airlight_table(u_F_table, shaft_pass.f_table_size, u_sigma_t, 1.0, Dsv, Dvp, cg, sg);
   return (isnan(a) || isinf(a)) ? closed_point(i, dir, 0.0, t_end) : a;
 }
 #endif
@@ -123,7 +126,7 @@ float closed_sun(vec3 dir, float x0, float x1) {
 // The part [lo, hi] of [a, b] below the shadow ceiling (lo > hi: none). Above it the sun (above
 // the horizon) meets no occluder and no cloud, so the airlight there has its closed form.
 vec2 shadowed_span(vec3 dir, float a, float b) {
-  float y0 = camera.eye.y - u_shadow_ceiling_m;  // < 0: the eye is below the ceiling
+  float y0 = camera.eye.y - shaft_pass.shadow_ceiling_m;  // < 0: the eye is below the ceiling
   float dy = dir.y;
   float cross_t = -y0 / (abs(dy) > 1.0e-12 ? dy : 1.0e-12);  // where the ray meets the ceiling
   float lo = a, hi = b;
@@ -144,7 +147,7 @@ void main() {
   vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
   vec3 L = hit ? Ls * exp(-u_sigma_t * t_end) : (sky ? sky_radiance(dir) * exp(-u_sigma_t * t_end) : vec3(0.0));
   float jitter = pixel_jitter(px);
-  float t_march = hit ? t_end : (sky ? min(sky_state.distance_m, u_march_cutoff_m) : u_march_cutoff_m);
+  float t_march = hit ? t_end : (sky ? min(sky_state.distance_m, shaft_pass.march_cutoff_m) : shaft_pass.march_cutoff_m);
 
   for (int i = 0; i < lights.lamp_count; ++i) {
 #if METHOD == SHAFT_METHOD_RAYMARCH

@@ -89,5 +89,6 @@ const int BLOCK_SHADOW_MAP = 5;        // ShadowMapBlock (lib/shadow_map_block.g
 const int BLOCK_SCENE_SHADOWS = 6;     // SceneShadowsBlock (lib/lights.glsl): the scene's shadow maps, looked up
 const int BLOCK_SKY = 7;               // SkyBlock (lib/sky_block.glsl): the sky behind the scene, the aerial perspective
 const int BLOCK_LIGHT_VOLUME = 8;      // LightVolumeBlock (lib/cloud_light_volume.glsl): the light volume's grid
+const int BLOCK_SHAFT_PASS = 9;        // ShaftPassBlock (shafts.frag.glsl): the shaft pass's march and jitter
 
 #endif

@@ -126,17 +126,17 @@ CloudShadowMap CloudShadowBuilder::build(const std::vector<CloudVolume>& clouds,
     }
     const double step = 0.5 * voxel_size_m(c);
     const int steps = std::max(1, static_cast<int>(std::ceil((d1 - d0) / step)));
-    CloudShadowMarchBlock& m = marches[i];
-    m.origin = to_float(origin);
-    m.axis_x = to_float(axis_x);
-    m.axis_y = to_float(axis_y);
-    m.to_sun = to_float(-dir);
-    m.res = resolution;
-    m.depth0 = static_cast<float>(d0);
-    m.step_m = static_cast<float>((d1 - d0) / steps);
-    m.steps = steps;
-    m.box_min = to_float(c.world_min);
-    m.box_max = to_float(c.world_max);
+    CloudShadowMarchBlock& march = marches[i];
+    march.origin = to_float(origin);
+    march.axis_x = to_float(axis_x);
+    march.axis_y = to_float(axis_y);
+    march.to_sun = to_float(-dir);
+    march.res = resolution;
+    march.depth0 = static_cast<float>(d0);
+    march.step_m = static_cast<float>((d1 - d0) / steps);
+    march.steps = steps;
+    march.box_min = to_float(c.world_min);
+    march.box_max = to_float(c.world_max);
   }
   UniformArray<CloudShadowMarchBlock> march_ubo;
   march_ubo.update(marches);

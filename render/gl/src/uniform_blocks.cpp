@@ -131,6 +131,14 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"LightVolumeBlock.cell_m", offsetof(LightVolumeBlock, cell_m)},
         {"LightVolumeBlock.cells", offsetof(LightVolumeBlock, cells)},
         {"LightVolumeBlock.light_dir", offsetof(LightVolumeBlock, light_dir)}}},
+      {"ShaftPassBlock",
+       contract::BLOCK_SHAFT_PASS,
+       sizeof(ShaftPassBlock),
+       {{"ShaftPassBlock.march_cutoff_m", offsetof(ShaftPassBlock, march_cutoff_m)},
+        {"ShaftPassBlock.shadow_ceiling_m", offsetof(ShaftPassBlock, shadow_ceiling_m)},
+        {"ShaftPassBlock.jitter_mode", offsetof(ShaftPassBlock, jitter_mode)},
+        {"ShaftPassBlock.jitter_shift", offsetof(ShaftPassBlock, jitter_shift)},
+        {"ShaftPassBlock.f_table_size", offsetof(ShaftPassBlock, f_table_size)}}},
   };
 }
 

@@ -29,7 +29,7 @@ class RayMarchPass final : public ShaftMethodPass {
 class AnalyticPass final : public ShaftMethodPass {
  public:
   using ShaftMethodPass::ShaftMethodPass;
-  void bind(ShaftRenderer::Impl& s, const ShaderProgram& p) const override {
+  void bind(ShaftRenderer::Impl& s, const ShaderProgram&) const override {
     if (method_.airlight.kind != AirlightMethod::Table) return;
     auto it = s.f_tables.find(method_.airlight.n);
     if (it == s.f_tables.end()) {
@@ -39,7 +39,6 @@ class AnalyticPass final : public ShaftMethodPass {
       glTextureSubImage2D(t.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, table.data());
       it = s.f_tables.emplace(n, std::move(t)).first;
     }
-    p.set("u_F_size", method_.airlight.n);
     glBindTextureUnit(contract::UNIT_F_TABLE, it->second.id());
   }
 };

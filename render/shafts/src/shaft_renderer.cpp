@@ -44,17 +44,30 @@ void ShaftRenderer::Impl::bind_lights(const ShaderProgram& p) const {
   bind_cloud_shadow(p, cloud_shadow);
 }
 
-// The shaft pass's view of the world's end: the sky (shaders/lib/sky.glsl) and the height above
-// which nothing shadows the sun.
-void ShaftRenderer::Impl::bind_sky(const ShaderProgram& p) const {
+// The shaft pass's view of the world's end: the sky (shaders/lib/sky.glsl).
+void ShaftRenderer::Impl::bind_sky() const {
   sky_ubo.update(sky_block(scene.sky ? &*scene.sky : nullptr, atmosphere ? &*atmosphere : nullptr));
   sky_ubo.bind(contract::BLOCK_SKY);
   if (atmosphere) bind_atmosphere_textures(*atmosphere);
+}
+
+// The shaft pass's own values: where its march ends, the height above which nothing shadows the
+// sun, its jitter, and the analytic method's F table.
+ShaftPassBlock ShaftRenderer::Impl::shaft_pass_block(const Camera& camera, const ShaftMethod& method) const {
+  ShaftPassBlock b;
+  const double sigma_t = scene.medium.extinction_per_m;
+  b.march_cutoff_m =
+      static_cast<float>(sigma_t > 0 ? std::min(settings.march_cutoff_optical / sigma_t, camera.far_m) : camera.far_m);
   // With the sun above the horizon nothing shadows the fog above the highest occluder or cloud.
   double ceiling = 1e30;
   if (scene.sun && glm::normalize(scene.sun->direction_to_sun).y > 1e-6)
     ceiling = std::max(opaque_ceiling_m, cloud_shadow ? cloud_shadow->top_y_m : -1e300) + 1e-3;
-  p.set("u_shadow_ceiling_m", static_cast<float>(std::clamp(ceiling, -1e30, 1e30)));
+  b.shadow_ceiling_m = static_cast<float>(std::clamp(ceiling, -1e30, 1e30));
+  b.jitter_mode = jitter_code(method.jitter);
+  const double shift = jitter_frame * 0.6180339887498949;
+  b.jitter_shift = static_cast<float>(shift - std::floor(shift));
+  b.f_table_size = method.airlight.n;
+  return b;
 }
 
 const ShaderProgram& ShaftRenderer::Impl::shaft_program(const ShaftMethod& m) {
@@ -211,16 +224,13 @@ void ShaftRenderer::Impl::draw_shafts(const Camera& camera, const ShaderProgram&
   glDisable(GL_BLEND);
   p.use();
   bind_lights(p);
-  bind_sky(p);
+  bind_sky();
+  shaft_pass_ubo.update(shaft_pass_block(camera, method));
+  shaft_pass_ubo.bind(contract::BLOCK_SHAFT_PASS);
   p.set("u_sigma_t", static_cast<float>(sigma_t));
   p.set("u_sigma_s", static_cast<float>(scene.medium.scattering_per_m()));
   p.set("u_phase_kind", phase_code(scene.medium.phase.kind));
   p.set("u_phase_g", static_cast<float>(scene.medium.phase.g));
-  p.set("u_march_cutoff_m",
-        static_cast<float>(sigma_t > 0 ? std::min(settings.march_cutoff_optical / sigma_t, camera.far_m) : camera.far_m));
-  p.set("u_jitter_mode", jitter_code(method.jitter));
-  const double shift = jitter_frame * 0.6180339887498949;
-  p.set("u_jitter_shift", static_cast<float>(shift - std::floor(shift)));
   glBindTextureUnit(contract::UNIT_SURFACE_RADIANCE, radiance.id());
   glBindTextureUnit(contract::UNIT_SCENE_DISTANCE, distance.id());
   glBindTextureUnit(contract::UNIT_JITTER, jitter_tex.id());

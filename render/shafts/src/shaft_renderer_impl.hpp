@@ -53,6 +53,7 @@ struct ShaftRenderer::Impl {
   UniformBuffer<LightsBlock> lights_block;
   mutable UniformBuffer<SceneShadowsBlock> shadows_block;  // filled as it is bound (bind_lights)
   mutable UniformBuffer<SkyBlock> sky_ubo;                  // filled as it is bound (bind_sky)
+  UniformBuffer<ShaftPassBlock> shaft_pass_ubo;
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
   std::map<std::pair<bool, bool>, ShaderProgram> surface_programs;  // by (CLOUD_SHADOW, SURFACE_AIRLIGHT)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};
@@ -104,7 +105,8 @@ struct ShaftRenderer::Impl {
   double max_skirt_distance_m = 1.0e4;
   void build_skirts();
   void bind_lights(const ShaderProgram& p) const;
-  void bind_sky(const ShaderProgram& p) const;
+  void bind_sky() const;
+  ShaftPassBlock shaft_pass_block(const Camera& camera, const ShaftMethod& method) const;
   const ShaderProgram& shaft_program(const ShaftMethod& m);
   // The frame's targets for a w x h image (kept while the size stays the same).
   void ensure_targets(int w, int h);

@@ -197,6 +197,20 @@ static_assert(offsetof(LightVolumeBlock, world_min) == 0 && offsetof(LightVolume
                   sizeof(LightVolumeBlock) == 64,
               "LightVolumeBlock must follow std140 as lib/cloud_light_volume.glsl declares it");
 
+// shafts.frag.glsl: ShaftPassBlock, the light-shaft pass's own values.
+struct ShaftPassBlock {
+  float march_cutoff_m = 0.0f;    // ray-march end for rays that hit nothing, metres
+  float shadow_ceiling_m = 0.0f;  // nothing shadows the sun above this height, metres (1e30: none known)
+  int jitter_mode = 0;            // jitter_code(...)
+  float jitter_shift = 0.0f;      // this frame's shift of the jitter values, modulo 1
+  int f_table_size = 0;           // the analytic method's F table, texels per side
+  float pad0 = 0.0f, pad1 = 0.0f, pad2 = 0.0f;  // the block's size rounds up to a vec4
+};
+static_assert(offsetof(ShaftPassBlock, march_cutoff_m) == 0 && offsetof(ShaftPassBlock, shadow_ceiling_m) == 4 &&
+                  offsetof(ShaftPassBlock, jitter_mode) == 8 && offsetof(ShaftPassBlock, jitter_shift) == 12 &&
+                  offsetof(ShaftPassBlock, f_table_size) == 16 && sizeof(ShaftPassBlock) == 32,
+              "ShaftPassBlock must follow std140 as shafts.frag.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {

@@ -15,16 +15,20 @@ in vec3 v_normal;
 in vec3 v_albedo;
 uniform float u_sigma_t;           // extinction, per metre
 uniform float u_sigma_s;           // scattering, per metre (the surface airlight's)
-uniform vec3 u_emissive_radiance;  // > 0 for light bulbs: their radiance, no shading
-uniform int u_emissive;
-uniform float u_normal_offset_texels;  // shadow lookups move this many texels along the normal
-uniform vec3 u_sky_irradiance_up;  // the sky's light on an upward surface, pi (zenith + horizon) / 2; 0 without a sky
-// The ground plane (u_is_ground 1) is shaded at its exact point on the pixel's ray (its quad
-// reaches the horizon, where interpolated positions lose their metres), and with
-// u_ground_textured its albedo is the texture's (lib/ground_albedo.glsl), not the vertices'.
-uniform int u_is_ground;
-uniform float u_ground_height_m;
-uniform int u_ground_textured;
+#include "lib/contract.glsl"
+// What is drawn now (uniform_blocks.hpp's SurfaceDrawBlock). The ground plane (is_ground 1) is
+// shaded at its exact point on the pixel's ray (its quad reaches the horizon, where interpolated
+// positions lose their metres), and with ground_textured its albedo is the texture's
+// (lib/ground_albedo.glsl), not the vertices'.
+layout(std140, binding = BLOCK_SURFACE_DRAW) uniform SurfaceDrawBlock {
+  vec3 emissive_radiance;      // > 0 for light bulbs: their radiance, no shading
+  int emissive;
+  vec3 sky_irradiance_up;      // the sky's light on an upward surface, pi (zenith + horizon) / 2; 0 without a sky
+  float normal_offset_texels;  // shadow lookups move this many texels along the normal
+  int is_ground;
+  float ground_height_m;
+  int ground_textured;
+} draw;
 #include "lib/camera_ray.glsl"
 #include "lib/lights.glsl"
 #include "lib/ground_albedo.glsl"
@@ -37,18 +41,18 @@ void main() {
   vec3 n = normalize(v_normal);
   vec3 world = v_world;
   vec3 albedo = v_albedo;
-  if (u_is_ground != 0) {
+  if (draw.is_ground != 0) {
     vec3 dir = pixel_ray_dir(gl_FragCoord.xy);
-    float t = (u_ground_height_m - camera.eye.y) / (abs(dir.y) > 1.0e-9 ? dir.y : -1.0e-9);
+    float t = (draw.ground_height_m - camera.eye.y) / (abs(dir.y) > 1.0e-9 ? dir.y : -1.0e-9);
     if (t > 0.0) world = camera.eye + t * dir;
-    if (u_ground_textured != 0)
+    if (draw.ground_textured != 0)
       albedo = ground_albedo(world, dir, length(world - camera.eye), 2.0 * length(camera.right_scaled) / camera.viewport.x);
   }
   vec3 to_eye = camera.eye - world;
   if (dot(n, to_eye) < 0.0) n = -n;  // two-sided
   vec3 L = vec3(0.0);
-  if (u_emissive != 0) {
-    L = u_emissive_radiance;
+  if (draw.emissive != 0) {
+    L = draw.emissive_radiance;
   } else {
     for (int i = 0; i < lights.lamp_count; ++i) {
       vec3 l = lights.lamp[i].position.xyz - world;
@@ -61,16 +65,16 @@ void main() {
       float cos_s = max(dot(n, l / d), 0.0);
       if (cos_s <= 0.0) continue;
       // Normal offset against shadow acne on surfaces that are in the shadow maps.
-      float v = point_visibility(i, world + n * (u_normal_offset_texels * d * scene_shadows.point_texel_angle));
+      float v = point_visibility(i, world + n * (draw.normal_offset_texels * d * scene_shadows.point_texel_angle));
       L += albedo / 3.14159265358979 * I * cos_s * exp(-u_sigma_t * d) / (d * d) * v;
     }
     if (lights.has_sun != 0) {
       float cos_s = max(dot(n, lights.sun.position.xyz), 0.0);
       if (cos_s > 0.0)
-        L += albedo / 3.14159265358979 * lights.sun.power.rgb * cos_s * sun_surface_visibility(world + n * (u_normal_offset_texels * scene_shadows.sun_texel_m));
+        L += albedo / 3.14159265358979 * lights.sun.power.rgb * cos_s * sun_surface_visibility(world + n * (draw.normal_offset_texels * scene_shadows.sun_texel_m));
     }
     // The sky, uniform at its mean, seen by the share (1 + n.y) / 2 (render::sky_irradiance).
-    L += albedo / 3.14159265358979 * u_sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));
+    L += albedo / 3.14159265358979 * draw.sky_irradiance_up * (0.5 * (1.0 + clamp(n.y, -1.0, 1.0)));
   }
   o_radiance = vec4(L, 1.0);
   o_distance = length(to_eye);

@@ -90,5 +90,7 @@ const int BLOCK_SCENE_SHADOWS = 6;     // SceneShadowsBlock (lib/lights.glsl): t
 const int BLOCK_SKY = 7;               // SkyBlock (lib/sky_block.glsl): the sky behind the scene, the aerial perspective
 const int BLOCK_LIGHT_VOLUME = 8;      // LightVolumeBlock (lib/cloud_light_volume.glsl): the light volume's grid
 const int BLOCK_SHAFT_PASS = 9;        // ShaftPassBlock (shafts.frag.glsl): the shaft pass's march and jitter
+const int BLOCK_SURFACE_DRAW = 10;     // SurfaceDrawBlock (surface.frag.glsl): what the surface pass draws now
+const int BLOCK_GROUND_ALBEDO = 11;    // GroundAlbedoBlock (lib/ground_albedo.glsl): the ground's texture's scales
 
 #endif

@@ -139,6 +139,22 @@ std::vector<BlockLayout> uniform_block_layouts() {
         {"ShaftPassBlock.jitter_mode", offsetof(ShaftPassBlock, jitter_mode)},
         {"ShaftPassBlock.jitter_shift", offsetof(ShaftPassBlock, jitter_shift)},
         {"ShaftPassBlock.f_table_size", offsetof(ShaftPassBlock, f_table_size)}}},
+      {"SurfaceDrawBlock",
+       contract::BLOCK_SURFACE_DRAW,
+       sizeof(SurfaceDrawBlock),
+       {{"SurfaceDrawBlock.emissive_radiance", offsetof(SurfaceDrawBlock, emissive_radiance)},
+        {"SurfaceDrawBlock.emissive", offsetof(SurfaceDrawBlock, emissive)},
+        {"SurfaceDrawBlock.sky_irradiance_up", offsetof(SurfaceDrawBlock, sky_irradiance_up)},
+        {"SurfaceDrawBlock.normal_offset_texels", offsetof(SurfaceDrawBlock, normal_offset_texels)},
+        {"SurfaceDrawBlock.is_ground", offsetof(SurfaceDrawBlock, is_ground)},
+        {"SurfaceDrawBlock.ground_height_m", offsetof(SurfaceDrawBlock, ground_height_m)},
+        {"SurfaceDrawBlock.ground_textured", offsetof(SurfaceDrawBlock, ground_textured)}}},
+      {"GroundAlbedoBlock",
+       contract::BLOCK_GROUND_ALBEDO,
+       sizeof(GroundAlbedoBlock),
+       {{"GroundAlbedoBlock.period_m", offsetof(GroundAlbedoBlock, period_m)},
+        {"GroundAlbedoBlock.texels", offsetof(GroundAlbedoBlock, texels)},
+        {"GroundAlbedoBlock.mean_luminance", offsetof(GroundAlbedoBlock, mean_luminance)}}},
   };
 }
 

@@ -171,20 +171,25 @@ void ShaftRenderer::Impl::draw_surfaces(const CameraBlock& camera, int w, int h)
     glBindTextureUnit(contract::UNIT_SURFACE_AIRLIGHT, surface_airlight_table.id());
   }
   bind_lights(p);
-  p.set("u_emissive", 0);
-  p.set("u_sky_irradiance_up", scene.sky ? to_float(sky_irradiance(*scene.sky, glm::dvec3(0, 1, 0))) : glm::vec3(0.0f));
-  p.set("u_normal_offset_texels", 0.0f);  // the ground is in no shadow map: no acne to avoid
   // The ground: its point on each pixel's ray (exact at any distance, where the huge quad's
   // interpolated position is not), and its albedo texture when it has one.
-  p.set("u_is_ground", 1);
-  p.set("u_ground_height_m", static_cast<float>(scene.ground ? scene.ground->height_m : 0.0));
+  SurfaceDrawBlock d;
+  d.sky_irradiance_up = scene.sky ? to_float(sky_irradiance(*scene.sky, glm::dvec3(0, 1, 0))) : glm::vec3(0.0f);
+  d.normal_offset_texels = 0.0f;  // the ground is in no shadow map: no acne to avoid
+  d.is_ground = 1;
+  d.ground_height_m = static_cast<float>(scene.ground ? scene.ground->height_m : 0.0);
   const GroundAlbedoTexture* tex = scene.ground ? scene.ground->albedo_texture.get() : nullptr;
-  p.set("u_ground_textured", tex ? 1 : 0);
+  d.ground_textured = tex ? 1 : 0;
+  surface_draw_ubo.update(d);
+  surface_draw_ubo.bind(contract::BLOCK_SURFACE_DRAW);
   if (tex) {
     glBindTextureUnit(contract::UNIT_GROUND_ALBEDO, ground_albedo.id());
-    p.set("u_ground_period_m", glm::vec2(static_cast<float>(tex->params.period_m), static_cast<float>(tex->params.detail_period_m)));
-    p.set("u_ground_texels", static_cast<float>(tex->params.size));
-    p.set("u_ground_mean_luminance", static_cast<float>(tex->mean_luminance));
+    GroundAlbedoBlock g;
+    g.period_m = glm::vec2(static_cast<float>(tex->params.period_m), static_cast<float>(tex->params.detail_period_m));
+    g.texels = static_cast<float>(tex->params.size);
+    g.mean_luminance = static_cast<float>(tex->mean_luminance);
+    ground_albedo_ubo.update(g);
+    ground_albedo_ubo.bind(contract::BLOCK_GROUND_ALBEDO);
   }
   // Under a sky the ground is drawn first with depth clamping: beyond the far plane (toward the
   // horizon) it lies at depth 1 instead of being clipped, and LEQUAL lets it pass the cleared depth.
@@ -195,13 +200,15 @@ void ShaftRenderer::Impl::draw_surfaces(const CameraBlock& camera, int w, int h)
   draw(ground);
   glDisable(GL_DEPTH_CLAMP);
   glDepthFunc(GL_LESS);
-  p.set("u_is_ground", 0);
-  p.set("u_normal_offset_texels", 1.5f);
+  d.is_ground = 0;
+  d.normal_offset_texels = 1.5f;
+  surface_draw_ubo.update(d);
   draw(occluders);
-  p.set("u_emissive", 1);
+  d.emissive = 1;
   for (std::size_t i = 0; i < bulbs.size(); ++i) {
     const Light& l = scene.lamps[i];
-    p.set("u_emissive_radiance", to_float(l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m)));
+    d.emissive_radiance = to_float(l.intensity_w_sr / (M_PI * l.bulb_radius_m * l.bulb_radius_m));
+    surface_draw_ubo.update(d);
     draw(bulbs[i]);
   }
   check_gl("surface pass");

@@ -54,6 +54,8 @@ struct ShaftRenderer::Impl {
   mutable UniformBuffer<SceneShadowsBlock> shadows_block;  // filled as it is bound (bind_lights)
   mutable UniformBuffer<SkyBlock> sky_ubo;                  // filled as it is bound (bind_sky)
   UniformBuffer<ShaftPassBlock> shaft_pass_ubo;
+  UniformBuffer<SurfaceDrawBlock> surface_draw_ubo;
+  UniformBuffer<GroundAlbedoBlock> ground_albedo_ubo;
   ShaderProgram shadow_program{{"shadow_distance.vert.glsl", "shadow_distance.frag.glsl"}};
   std::map<std::pair<bool, bool>, ShaderProgram> surface_programs;  // by (CLOUD_SHADOW, SURFACE_AIRLIGHT)
   ShaderProgram skirt_build_program{{"shadow_volume_build.comp.glsl"}};

@@ -211,6 +211,35 @@ static_assert(offsetof(ShaftPassBlock, march_cutoff_m) == 0 && offsetof(ShaftPas
                   offsetof(ShaftPassBlock, f_table_size) == 16 && sizeof(ShaftPassBlock) == 32,
               "ShaftPassBlock must follow std140 as shafts.frag.glsl declares it");
 
+// surface.frag.glsl: SurfaceDrawBlock, what the surface pass draws now (the ground, the occluders
+// or a bulb), updated between its draws.
+struct SurfaceDrawBlock {
+  glm::vec3 emissive_radiance{0.0f};  // a bulb's radiance, W sr^-1 m^-2
+  int emissive = 0;                   // 1: a bulb (no shading)
+  glm::vec3 sky_irradiance_up{0.0f};  // the sky's light on an upward surface, W m^-2
+  float normal_offset_texels = 0.0f;  // shadow lookups move this many texels along the normal
+  int is_ground = 0;                  // 1: the ground plane, shaded at its exact point on the ray
+  float ground_height_m = 0.0f;
+  int ground_textured = 0;            // 1: the ground's albedo is its texture's (GroundAlbedoBlock)
+  float pad0 = 0.0f;                  // the block's size rounds up to a vec4
+};
+static_assert(offsetof(SurfaceDrawBlock, emissive_radiance) == 0 && offsetof(SurfaceDrawBlock, emissive) == 12 &&
+                  offsetof(SurfaceDrawBlock, sky_irradiance_up) == 16 &&
+                  offsetof(SurfaceDrawBlock, normal_offset_texels) == 28 && offsetof(SurfaceDrawBlock, is_ground) == 32 &&
+                  offsetof(SurfaceDrawBlock, ground_height_m) == 36 && offsetof(SurfaceDrawBlock, ground_textured) == 40 &&
+                  sizeof(SurfaceDrawBlock) == 48,
+              "SurfaceDrawBlock must follow std140 as surface.frag.glsl declares it");
+
+// lib/ground_albedo.glsl: GroundAlbedoBlock, the scales of the ground's albedo texture.
+struct GroundAlbedoBlock {
+  glm::vec2 period_m{0.0f};     // the land use's period, the detail's, metres
+  float texels = 0.0f;          // texels per side of level 0
+  float mean_luminance = 0.0f;  // the texture's mean luminance
+};
+static_assert(offsetof(GroundAlbedoBlock, period_m) == 0 && offsetof(GroundAlbedoBlock, texels) == 8 &&
+                  offsetof(GroundAlbedoBlock, mean_luminance) == 12 && sizeof(GroundAlbedoBlock) == 16,
+              "GroundAlbedoBlock must follow std140 as lib/ground_albedo.glsl declares it");
+
 // One member of a block as the GL names it ("Block.member") and its C++ offset: what the contract
 // test compares with glGetProgramResourceiv(GL_OFFSET).
 struct BlockMember {
